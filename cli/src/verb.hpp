@@ -1,0 +1,35 @@
+// A verb of the `wbi` command line: one file per verb in verbs/, registered in
+// verb_table.cpp. The verb's run() gets the arguments after its name and
+// returns the process exit code; errors are thrown (see main.cpp).
+#pragma once
+
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace wbi::cli {
+
+using Args = std::span<const std::string>;
+
+struct Verb {
+  const char* name;
+  const char* help;  // one line, shown by `wbi --help`
+  int (*run)(Args args);
+};
+
+// The command line was wrong: main() prints the message and a hint to --help, exit 1.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Every verb, in the order `wbi --help` lists them.
+std::span<const Verb> verbs();
+
+// Exit codes shared by all verbs.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitError = 1;
+inline constexpr int kExitInterrupted = 130;
+
+}  // namespace wbi::cli

@@ -1,0 +1,23 @@
+// The one table of `wbi` verbs: {name, one-line help, run}. A verb whose run is
+// nullptr is planned but not built; `wbi VERB` then says so and exits 1.
+#include <array>
+
+#include "verb.hpp"
+#include "verbs/verbs.hpp"
+
+namespace wbi::cli {
+
+std::span<const Verb> verbs() {
+  static const std::array<Verb, 7> table{{
+      {"launch", "start, watch and stop the processes of a deploy file", nullptr},
+      {"record", "record DDS topics to an MCAP file", nullptr},
+      {"play", "replay an MCAP recording onto DDS", nullptr},
+      {"bag", "inspect MCAP recordings (info)", nullptr},
+      {"topic", "list and echo the topics on the DDS domain", run_topic},
+      {"model", "inspect and evaluate robot models (info, eval, bench)", nullptr},
+      {"estimate", "estimate joint velocities and accelerations offline from a CSV file", nullptr},
+  }};
+  return table;
+}
+
+}  // namespace wbi::cli

@@ -1,0 +1,125 @@
+// `wbi topic list|echo`: what is on the DDS domain, for debugging.
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <csignal>
+#include <iostream>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include <wbi/dds/participant.hpp>
+#include <wbi/dds/topic_echo.hpp>
+
+#include "../options.hpp"
+#include "verbs.hpp"
+
+namespace wbi::cli {
+
+namespace {
+
+using std::chrono::duration;
+using std::chrono::duration_cast;
+using std::chrono::nanoseconds;
+
+nanoseconds seconds(double s) { return duration_cast<nanoseconds>(duration<double>(s)); }
+
+dds::ParticipantOptions participant_options(const Options& options) {
+  dds::ParticipantOptions participant;
+  participant.name = "wbi topic";
+  if (auto domain = options.get_optional("domain")) {
+    participant.domain_id = static_cast<int>(options.get_int("domain"));
+  }
+  return participant;
+}
+
+void add_domain_option(Options& options) {
+  options.option("domain", "ID", "DDS domain id (default: WBI_DOMAIN_ID, else 0)");
+}
+
+int run_list(Args args) {
+  Options options("wbi topic list [options]",
+                  "Lists the topics that other participants on the domain publish or subscribe,\n"
+                  "with their type and the number of writers and readers.");
+  add_domain_option(options);
+  options.option("wait", "SECONDS", "how long to listen to discovery", "1.0");
+  if (!options.parse(args)) {
+    return kExitOk;
+  }
+  dds::Participant participant(participant_options(options));
+  std::this_thread::sleep_for(seconds(options.get_double("wait")));  // discovery has no "done" event
+  for (const auto& topic : participant.discovered_topics()) {
+    std::cout << topic.name << "  [" << topic.type << "]  writers: " << topic.writers
+              << "  readers: " << topic.readers << "\n";
+  }
+  return kExitOk;
+}
+
+std::atomic<bool> interrupted{false};
+extern "C" void on_echo_interrupt(int /*signal*/) { interrupted = true; }
+
+int run_echo(Args args) {
+  Options options("wbi topic echo TOPIC [options]",
+                  "Prints every sample of TOPIC as YAML, separated by '---'. The topic's type\n"
+                  "is learnt from discovery; it must be a wbi message type.");
+  options.positional("TOPIC", "topic name, e.g. wbi/arm/sensors");
+  add_domain_option(options);
+  options.option("count", "N", "exit after N samples (0: until Ctrl-C)", "0");
+  options.option("timeout", "SECONDS", "give up when the topic is not found within this time", "5");
+  if (!options.parse(args)) {
+    return kExitOk;
+  }
+  const std::string topic_name = options.get("TOPIC");
+  const long wanted = options.get_int("count");
+  if (wanted < 0) {
+    throw UsageError("--count must be >= 0");
+  }
+  dds::Participant participant(participant_options(options));
+  const auto topic = participant.wait_for_topic(topic_name, seconds(options.get_double("timeout")));
+  if (!topic) {
+    throw std::runtime_error("topic '" + topic_name + "' not found on domain " +
+                             std::to_string(participant.domain_id()) + " within " +
+                             options.get("timeout") + " s");
+  }
+  std::mutex mutex;
+  std::condition_variable done;
+  long printed = 0;
+  dds::TopicEcho echo(participant, *topic, [&](const std::string& yaml) {
+    std::lock_guard lock(mutex);
+    if (wanted != 0 && printed >= wanted) {
+      return;
+    }
+    std::cout << yaml << "---\n" << std::flush;
+    ++printed;
+    done.notify_all();
+  });
+  std::signal(SIGINT, on_echo_interrupt);
+  std::signal(SIGTERM, on_echo_interrupt);
+  std::unique_lock lock(mutex);
+  while (!interrupted && (wanted == 0 || printed < wanted)) {
+    done.wait_for(lock, std::chrono::milliseconds(100));  // also polls the signal flag
+  }
+  return interrupted ? kExitInterrupted : kExitOk;
+}
+
+}  // namespace
+
+int run_topic(Args args) {
+  const std::string usage =
+      "usage: wbi topic {list,echo} [--help]\n\n"
+      "  list   list the topics on the domain\n"
+      "  echo   print the samples of a topic\n";
+  if (args.empty() || args[0] == "--help" || args[0] == "-h") {
+    std::cout << usage;
+    return args.empty() ? kExitError : kExitOk;
+  }
+  if (args[0] == "list") {
+    return run_list(args.subspan(1));
+  }
+  if (args[0] == "echo") {
+    return run_echo(args.subspan(1));
+  }
+  throw UsageError("unknown sub-command '" + args[0] + "'");
+}
+
+}  // namespace wbi::cli

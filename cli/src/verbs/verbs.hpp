@@ -1,0 +1,10 @@
+// Entry points of the verbs, one file each in this folder.
+#pragma once
+
+#include "../verb.hpp"
+
+namespace wbi::cli {
+
+int run_topic(Args args);
+
+}  // namespace wbi::cli

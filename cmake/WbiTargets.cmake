@@ -1,0 +1,62 @@
+# Helpers that give every project target the same flags.
+# Generated code (idl/) is compiled without -Werror: its warnings are not ours to fix.
+
+set(WBI_WARNINGS -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wold-style-cast
+                 -Wcast-align -Woverloaded-virtual -Werror)
+
+# wbi_add_library(NAME <target> [SHARED|STATIC] SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
+# Creates wbi_<name> with alias wbi::<name>; headers in <dir>/include are public.
+function(wbi_add_library)
+  cmake_parse_arguments(ARG "" "NAME" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  set(target wbi_${ARG_NAME})
+  add_library(${target} ${ARG_SOURCES})
+  add_library(wbi::${ARG_NAME} ALIAS ${target})
+  set_target_properties(${target} PROPERTIES OUTPUT_NAME wbi_${ARG_NAME} EXPORT_NAME ${ARG_NAME})
+  target_include_directories(${target} PUBLIC
+    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  target_link_libraries(${target} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  target_compile_options(${target} PRIVATE ${WBI_WARNINGS})
+  set_property(GLOBAL APPEND PROPERTY WBI_INSTALLED_TARGETS ${target})
+  if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/include)
+    install(DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  endif()
+endfunction()
+
+# wbi_add_executable(NAME <exe> SOURCES ... [DEPS ...] [NO_INSTALL])
+function(wbi_add_executable)
+  cmake_parse_arguments(ARG "NO_INSTALL" "NAME" "SOURCES;DEPS" ${ARGN})
+  add_executable(${ARG_NAME} ${ARG_SOURCES})
+  target_link_libraries(${ARG_NAME} PRIVATE ${ARG_DEPS})
+  target_compile_options(${ARG_NAME} PRIVATE ${WBI_WARNINGS})
+  if(NOT ARG_NO_INSTALL)
+    install(TARGETS ${ARG_NAME} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  endif()
+endfunction()
+
+# Each test gets its own DDS domain id in WBI_DOMAIN_ID (1, 2, ... up to 230), so
+# that tests running in parallel never discover each other.
+set_property(GLOBAL PROPERTY WBI_NEXT_TEST_DOMAIN 1)
+
+# wbi_add_test(NAME <test> SOURCES ... [DEPS ...] [LABELS ...] [TIMEOUT s])
+# One GoogleTest executable, registered with ctest as one test (its cases run in one process).
+function(wbi_add_test)
+  cmake_parse_arguments(ARG "" "NAME;TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
+  add_executable(${ARG_NAME} ${ARG_SOURCES})
+  target_link_libraries(${ARG_NAME} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main)
+  target_compile_options(${ARG_NAME} PRIVATE ${WBI_WARNINGS})
+  set_target_properties(${ARG_NAME} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/tests)
+  add_test(NAME ${ARG_NAME} COMMAND ${ARG_NAME})
+  if(NOT ARG_TIMEOUT)
+    set(ARG_TIMEOUT 120)
+  endif()
+  get_property(domain GLOBAL PROPERTY WBI_NEXT_TEST_DOMAIN)
+  if(domain GREATER 230)
+    message(FATAL_ERROR "more than 230 tests: DDS domain ids for tests are used up")
+  endif()
+  math(EXPR next "${domain} + 1")
+  set_property(GLOBAL PROPERTY WBI_NEXT_TEST_DOMAIN ${next})
+  set_tests_properties(${ARG_NAME} PROPERTIES TIMEOUT ${ARG_TIMEOUT}
+    LABELS "${ARG_LABELS}"
+    ENVIRONMENT "WBI_SOURCE_DIR=${PROJECT_SOURCE_DIR};WBI_BINARY_DIR=${PROJECT_BINARY_DIR};WBI_DOMAIN_ID=${domain}")
+endfunction()

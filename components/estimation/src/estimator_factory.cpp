@@ -1,0 +1,148 @@
+#include "wbi/estimation/estimator_factory.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "wbi/estimation/adaptive_window.hpp"
+#include "wbi/estimation/backward_difference.hpp"
+#include "wbi/estimation/kalman_derivative.hpp"
+
+namespace wbi::estimation {
+namespace {
+
+std::vector<ParameterSpec> with_stream_parameters(std::vector<ParameterSpec> specs) {
+  const StreamParameters stream;
+  specs.push_back({"sample-rate", "HZ", stream.sample_rate_hz, 1e-3, 1e7, false,
+                   "nominal sample rate, Hz: counts dropped samples and tunes the filter"});
+  specs.push_back({"max-gap", "S", stream.max_gap_s, 0.0, 1e9, false,
+                   "a longer interval between stamps restarts the estimator, s"});
+  return specs;
+}
+
+std::vector<MethodInfo> build_methods() {
+  const KalmanParameters kalman;
+  const AdaptiveWindowParameters window;
+  const BackwardDifferenceParameters difference;
+  return {
+      {"kalman",
+       "Kalman filter on a constant-jerk (or constant-acceleration) model, tuned from the "
+       "encoder resolution and sample rate",
+       with_stream_parameters({
+           {"model-order", "M", static_cast<double>(kalman.model_order), 2, 3, true,
+            "highest modelled derivative: 3 constant jerk, 2 constant acceleration"},
+           {"resolution", "COUNTS", kalman.resolution_counts, 2, 1e12, false,
+            "encoder counts per revolution (quantisation noise)"},
+           {"process-noise", "SIGMA", kalman.process_noise, 1e-12, 1e15, false,
+            "density of the white noise driving the highest derivative, rad/s^(M+1)/sqrt(Hz)"},
+       })},
+      {"adaptive-window",
+       "least-squares fits over an adaptive window (Janabi-Sharifi, Hayward and Chen 2000)",
+       with_stream_parameters({
+           {"velocity-window", "N", static_cast<double>(window.velocity_window), 2, 1000, true,
+            "longest window of the linear fit for velocity, samples"},
+           {"acceleration-window", "N", static_cast<double>(window.acceleration_window), 3, 1000,
+            true, "longest window of the quadratic fit for acceleration, samples"},
+           {"threshold", "D", window.threshold_rad, 1e-12, 1e6, false,
+            "largest distance of a sample from the fit, rad"},
+       })},
+      {"backward-difference", "backward differences with an optional first-order low-pass",
+       with_stream_parameters({
+           {"cutoff", "HZ", difference.cutoff_hz, 0, 1e9, false,
+            "low-pass cut-off frequency, Hz; 0: no low-pass"},
+       })},
+  };
+}
+
+std::string join_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& name : names) {
+    out += (out.empty() ? "" : " ") + name;
+  }
+  return out;
+}
+
+std::string format(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+// The value of every parameter of `info`: defaults overridden by `given`, validated.
+Parameters resolve(const MethodInfo& info, const Parameters& given) {
+  Parameters values;
+  for (const auto& spec : info.parameters) {
+    values[spec.name] = spec.default_value;
+  }
+  for (const auto& [name, value] : given) {
+    const auto it = values.find(name);
+    if (it == values.end()) {
+      std::vector<std::string> known;
+      for (const auto& spec : info.parameters) {
+        known.push_back(spec.name);
+      }
+      throw std::invalid_argument("method '" + info.name + "' has no parameter '" + name +
+                                  "' (its parameters: " + join_names(known) + ")");
+    }
+    it->second = value;
+  }
+  for (const auto& spec : info.parameters) {
+    const double value = values[spec.name];
+    const bool in_range = std::isfinite(value) && value >= spec.min && value <= spec.max;
+    if (!in_range || (spec.integer && value != std::round(value))) {
+      throw std::invalid_argument("method '" + info.name + "': parameter '" + spec.name +
+                                  "' must be " + (spec.integer ? "an integer" : "a number") +
+                                  " in [" + format(spec.min) + ", " + format(spec.max) +
+                                  "], got " + format(value));
+    }
+  }
+  return values;
+}
+
+}  // namespace
+
+const std::vector<MethodInfo>& methods() {
+  static const std::vector<MethodInfo> all = build_methods();
+  return all;
+}
+
+std::vector<std::string> method_names() {
+  std::vector<std::string> names;
+  for (const auto& info : methods()) {
+    names.push_back(info.name);
+  }
+  return names;
+}
+
+const MethodInfo& method_info(const std::string& name) {
+  for (const auto& info : methods()) {
+    if (info.name == name) {
+      return info;
+    }
+  }
+  throw std::invalid_argument("unknown estimation method '" + name + "' (known: " +
+                              join_names(method_names()) + ")");
+}
+
+std::unique_ptr<DerivativeEstimator> make_estimator(const std::string& method,
+                                                    Eigen::Index joints,
+                                                    const Parameters& given) {
+  const MethodInfo& info = method_info(method);
+  const Parameters p = resolve(info, given);
+  const StreamParameters stream{p.at("sample-rate"), p.at("max-gap")};
+  if (method == "kalman") {
+    const KalmanParameters params{static_cast<int>(p.at("model-order")), p.at("resolution"),
+                                  p.at("process-noise")};
+    return std::make_unique<KalmanEstimator>(joints, params, stream);
+  }
+  if (method == "adaptive-window") {
+    const AdaptiveWindowParameters params{static_cast<int>(p.at("velocity-window")),
+                                          static_cast<int>(p.at("acceleration-window")),
+                                          p.at("threshold")};
+    return std::make_unique<AdaptiveWindowEstimator>(joints, params, stream);
+  }
+  const BackwardDifferenceParameters params{p.at("cutoff")};
+  return std::make_unique<BackwardDifferenceEstimator>(joints, params, stream);
+}
+
+}  // namespace wbi::estimation

@@ -1,0 +1,83 @@
+// Untyped writer and reader behind Publisher<T> and Subscriber<T>: they own the
+// Fast DDS entities; the typed templates own the samples.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace eprosima::fastdds::dds {
+class TopicDataType;
+}
+
+namespace wbi::dds {
+class Participant;
+}
+
+namespace wbi::dds::detail {
+
+struct WriterImpl;
+struct ReaderImpl;
+
+// Metadata of a received sample.
+struct SampleInfo {
+  std::int64_t source_stamp_ns = 0;   // DDS source timestamp set by the writer
+  std::int64_t received_ns = 0;       // steady-clock time of arrival
+};
+
+// Where a reader puts what it takes: the typed side owns the storage.
+class ReaderSink {
+ public:
+  virtual ~ReaderSink() = default;
+  virtual void* storage() = 0;                        // a T to deserialize into
+  virtual void on_sample(const SampleInfo& info) = 0;  // storage() now holds a new sample
+};
+
+// Reader settings beyond the profile (used by tools that adapt to discovered writers).
+struct ReaderOverrides {
+  bool set = false;
+  bool reliable = false;
+  bool transient_local = false;
+};
+
+class Writer {
+ public:
+  // Takes ownership of type.
+  Writer(Participant& participant, const std::string& topic,
+         eprosima::fastdds::dds::TopicDataType* type, const std::string& profile);
+  ~Writer();
+  Writer(const Writer&) = delete;
+  Writer& operator=(const Writer&) = delete;
+
+  bool write(const void* sample);
+  int matched() const;
+  bool wait_matched(int count, std::chrono::nanoseconds timeout) const;
+  const std::string& topic() const;
+
+ private:
+  std::unique_ptr<WriterImpl> impl_;
+};
+
+class Reader {
+ public:
+  // Takes ownership of type. The sink must outlive the reader; samples arrive on a DDS thread.
+  Reader(Participant& participant, const std::string& topic,
+         eprosima::fastdds::dds::TopicDataType* type, const std::string& profile, ReaderSink& sink,
+         ReaderOverrides overrides = {});
+  ~Reader();
+  Reader(const Reader&) = delete;
+  Reader& operator=(const Reader&) = delete;
+
+  int matched() const;
+  bool wait_matched(int count, std::chrono::nanoseconds timeout) const;
+  const std::string& topic() const;
+
+ private:
+  std::unique_ptr<ReaderImpl> impl_;
+};
+
+// Steady-clock now in ns, the time base of SampleInfo::received_ns.
+std::int64_t steady_now_ns();
+
+}  // namespace wbi::dds::detail

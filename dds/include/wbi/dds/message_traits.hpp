@@ -1,0 +1,42 @@
+// Maps each wbi message type (generated from idl/) to its Fast DDS type
+// support, so that Publisher<T> and Subscriber<T> need only T.
+#pragma once
+
+#include <memory>
+
+#include <wbi/msg/commandsPubSubTypes.h>
+#include <wbi/msg/descriptionPubSubTypes.h>
+#include <wbi/msg/modelPubSubTypes.h>
+#include <wbi/msg/sensorsPubSubTypes.h>
+#include <wbi/msg/statePubSubTypes.h>
+#include <wbi/msg/statusPubSubTypes.h>
+
+namespace wbi::dds {
+
+template <class T>
+struct MessageTraits;  // specialised below for every top-level message
+
+#define WBI_DDS_MESSAGE(Type)                                        \
+  template <>                                                        \
+  struct MessageTraits<wbi::msg::Type> {                             \
+    using TypeSupport = wbi::msg::Type##PubSubType;                  \
+    static constexpr const char* kName = "wbi::msg::" #Type;         \
+  };
+
+WBI_DDS_MESSAGE(RobotDescription)
+WBI_DDS_MESSAGE(SensorSample)
+WBI_DDS_MESSAGE(GroundTruth)
+WBI_DDS_MESSAGE(ActuatorCommand)
+WBI_DDS_MESSAGE(ControlParameters)
+WBI_DDS_MESSAGE(StateEstimate)
+WBI_DDS_MESSAGE(ModelRequest)
+WBI_DDS_MESSAGE(ModelReply)
+WBI_DDS_MESSAGE(ComponentStatus)
+WBI_DDS_MESSAGE(SimulationClock)
+
+#undef WBI_DDS_MESSAGE
+
+template <class T>
+concept Message = requires { typename MessageTraits<T>::TypeSupport; };
+
+}  // namespace wbi::dds

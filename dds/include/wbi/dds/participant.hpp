@@ -1,0 +1,81 @@
+// The process's door to the DDS domain. Everything else in wbi reaches DDS
+// through Participant and the typed endpoints (Publisher, Subscriber, Client,
+// Server); nobody else touches Fast DDS entities.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace wbi::dds {
+
+namespace detail {
+class ParticipantImpl;
+}
+
+// How participants find each other.
+enum class Discovery {
+  // Unicast discovery on 127.0.0.1 only (shared memory for data): nothing
+  // leaves the machine. The default, and what every test uses.
+  localhost,
+  // Standard SPDP multicast on all interfaces, for robots spread over hosts.
+  multicast,
+};
+
+// The names of the QoS profiles in deploy/qos_profiles.xml.
+namespace qos {
+inline constexpr const char* kStream = "wbi.stream";                 // sensors, state, clock
+inline constexpr const char* kCommand = "wbi.command";               // actuator commands, parameters
+inline constexpr const char* kLatched = "wbi.latched";               // robot descriptions
+inline constexpr const char* kRequestReply = "wbi.request_reply";    // services
+inline constexpr const char* kStatus = "wbi.status";                 // heartbeats
+}  // namespace qos
+
+// WBI_DOMAIN_ID from the environment, 0 when unset. Throws std::invalid_argument
+// when it is not an integer in [0, 232].
+int domain_id_from_environment();
+
+struct ParticipantOptions {
+  int domain_id = domain_id_from_environment();
+  std::string name = "wbi";
+  Discovery discovery = Discovery::localhost;
+  // QoS profile file; empty: WBI_QOS_FILE when set, else the profiles compiled in.
+  std::string qos_file;
+};
+
+// A topic seen on the domain through discovery (remote endpoints only).
+struct TopicInfo {
+  std::string name;
+  std::string type;
+  int writers = 0;
+  int readers = 0;
+  bool writers_reliable = true;         // every known writer is reliable
+  bool writers_transient_local = true;  // every known writer keeps history for late joiners
+};
+
+class Participant {
+ public:
+  explicit Participant(const ParticipantOptions& options = {});
+  ~Participant();
+  Participant(const Participant&) = delete;
+  Participant& operator=(const Participant&) = delete;
+
+  int domain_id() const;
+  const std::string& name() const;
+
+  // Topics that remote participants publish or subscribe, sorted by name.
+  std::vector<TopicInfo> discovered_topics() const;
+  // Waits until a remote writer or reader of `topic` is known.
+  std::optional<TopicInfo> wait_for_topic(const std::string& topic,
+                                          std::chrono::nanoseconds timeout) const;
+
+  detail::ParticipantImpl& impl() { return *impl_; }
+
+ private:
+  std::unique_ptr<detail::ParticipantImpl> impl_;
+};
+
+}  // namespace wbi::dds

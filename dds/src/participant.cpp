@@ -1,0 +1,271 @@
+#include "wbi/dds/participant.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
+#include <fastrtps/utils/IPLocator.h>
+
+#include "participant_impl.hpp"
+#include "qos_profiles_default.hpp"
+
+namespace wbi::dds {
+
+namespace fdds = eprosima::fastdds::dds;
+using eprosima::fastrtps::rtps::IPLocator;
+using eprosima::fastrtps::rtps::Locator_t;
+
+int domain_id_from_environment() {
+  const char* text = std::getenv("WBI_DOMAIN_ID");
+  if (text == nullptr || *text == '\0') {
+    return 0;
+  }
+  char* end = nullptr;
+  const long id = std::strtol(text, &end, 10);
+  if (*end != '\0' || id < 0 || id > 232) {
+    throw std::invalid_argument(std::string("WBI_DOMAIN_ID must be an integer in [0, 232], got '") +
+                                text + "'");
+  }
+  return static_cast<int>(id);
+}
+
+namespace {
+
+// Loads each QoS profile source once per process (Fast DDS keeps profiles globally).
+void load_qos_profiles(const std::string& requested_file) {
+  static std::mutex mutex;
+  static std::set<std::string> loaded;
+  std::string file = requested_file;
+  if (file.empty()) {
+    if (const char* env = std::getenv("WBI_QOS_FILE"); env != nullptr && *env != '\0') {
+      file = env;
+    }
+  }
+  std::lock_guard lock(mutex);
+  const std::string key = file.empty() ? std::string("<built-in>") : file;
+  if (loaded.count(key) != 0) {
+    return;
+  }
+  auto* factory = fdds::DomainParticipantFactory::get_instance();
+  const auto rc = file.empty() ? factory->load_XML_profiles_string(kDefaultQosProfiles.data(),
+                                                                   kDefaultQosProfiles.size())
+                               : factory->load_XML_profiles_file(file);
+  if (rc != ReturnCode_t::RETCODE_OK) {
+    throw std::runtime_error("cannot load DDS QoS profiles from " + key);
+  }
+  loaded.insert(key);
+}
+
+fdds::DomainParticipantQos participant_qos(const ParticipantOptions& options) {
+  fdds::DomainParticipantQos qos = fdds::PARTICIPANT_QOS_DEFAULT;
+  qos.name(options.name);
+  if (options.discovery == Discovery::localhost) {
+    // Shared memory for data, UDP on 127.0.0.1 for discovery: with a unicast
+    // metatraffic locator and initial peers set, Fast DDS sends no multicast.
+    qos.transport().use_builtin_transports = false;
+    auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+    udp->interfaceWhiteList.emplace_back("127.0.0.1");
+    udp->maxInitialPeersRange = 64;  // participants per domain on this host
+    qos.transport().user_transports.push_back(
+        std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
+    qos.transport().user_transports.push_back(udp);
+    Locator_t loopback;
+    loopback.kind = LOCATOR_KIND_UDPv4;
+    IPLocator::setIPv4(loopback, 127, 0, 0, 1);
+    qos.wire_protocol().builtin.initialPeersList.push_back(loopback);
+    qos.wire_protocol().builtin.metatrafficUnicastLocatorList.push_back(loopback);
+    qos.wire_protocol().default_unicast_locator_list.push_back(loopback);
+  }
+  return qos;
+}
+
+}  // namespace
+
+namespace detail {
+
+ParticipantImpl::ParticipantImpl(const ParticipantOptions& options)
+    : domain_id(options.domain_id), name(options.name) {
+  if (domain_id < 0 || domain_id > 232) {
+    throw std::invalid_argument("DDS domain id must be in [0, 232], got " + std::to_string(domain_id));
+  }
+  load_qos_profiles(options.qos_file);
+  auto* factory = fdds::DomainParticipantFactory::get_instance();
+  fdds::StatusMask mask = fdds::StatusMask::none();  // discovery callbacks only
+  participant_ = factory->create_participant(domain_id, participant_qos(options), this, mask);
+  if (participant_ == nullptr) {
+    throw std::runtime_error("cannot create a DDS participant on domain " + std::to_string(domain_id));
+  }
+  publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
+  subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
+  if (publisher_ == nullptr || subscriber_ == nullptr) {
+    throw std::runtime_error("cannot create a DDS publisher/subscriber on domain " +
+                             std::to_string(domain_id));
+  }
+}
+
+ParticipantImpl::~ParticipantImpl() {
+  participant_->set_listener(nullptr);
+  participant_->delete_contained_entities();
+  fdds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
+}
+
+fdds::Topic& ParticipantImpl::acquire_topic(const std::string& topic_name,
+                                            fdds::TopicDataType* type) {
+  fdds::TypeSupport support(type);  // owns type; freed here unless registered
+  std::lock_guard lock(topics_mutex_);
+  auto& shared = topics_[topic_name];
+  if (shared.topic == nullptr) {
+    const std::string type_name = support.get_type_name();
+    if (participant_->find_type(type_name).empty() &&
+        support.register_type(participant_) != ReturnCode_t::RETCODE_OK) {
+      topics_.erase(topic_name);
+      throw std::runtime_error("cannot register DDS type " + type_name);
+    }
+    shared.topic = participant_->create_topic(topic_name, type_name, fdds::TOPIC_QOS_DEFAULT);
+    if (shared.topic == nullptr) {
+      topics_.erase(topic_name);
+      throw std::runtime_error("cannot create DDS topic '" + topic_name + "' of type " + type_name);
+    }
+  } else if (shared.topic->get_type_name() != support.get_type_name()) {
+    throw std::invalid_argument("topic '" + topic_name + "' has type " +
+                                shared.topic->get_type_name() + ", not " + support.get_type_name());
+  }
+  ++shared.users;
+  return *shared.topic;
+}
+
+void ParticipantImpl::release_topic(const std::string& topic_name) {
+  std::lock_guard lock(topics_mutex_);
+  auto it = topics_.find(topic_name);
+  if (it != topics_.end() && --it->second.users == 0) {
+    participant_->delete_topic(it->second.topic);
+    topics_.erase(it);
+  }
+}
+
+fdds::DataWriterQos ParticipantImpl::writer_qos(const std::string& profile) const {
+  fdds::DataWriterQos qos;
+  if (publisher_->get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
+    throw std::invalid_argument("unknown DDS QoS profile '" + profile + "' for a writer");
+  }
+  return qos;
+}
+
+fdds::DataReaderQos ParticipantImpl::reader_qos(const std::string& profile) const {
+  fdds::DataReaderQos qos;
+  if (subscriber_->get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
+    throw std::invalid_argument("unknown DDS QoS profile '" + profile + "' for a reader");
+  }
+  return qos;
+}
+
+namespace {
+std::string guid_text(const eprosima::fastrtps::rtps::GUID_t& guid) {
+  std::ostringstream out;
+  out << guid;
+  return out.str();
+}
+}  // namespace
+
+void ParticipantImpl::on_publisher_discovery(fdds::DomainParticipant* /*participant*/,
+                                             eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) {
+  using Status = eprosima::fastrtps::rtps::WriterDiscoveryInfo::DISCOVERY_STATUS;
+  const std::string key = guid_text(info.info.guid());
+  {
+    std::lock_guard lock(discovery_mutex_);
+    if (info.status == Status::REMOVED_WRITER) {
+      remote_endpoints_.erase(key);
+    } else {
+      const auto& qos = info.info.m_qos;
+      remote_endpoints_[key] = {info.info.topicName().to_string(), info.info.typeName().to_string(),
+                                true, qos.m_reliability.kind == fdds::RELIABLE_RELIABILITY_QOS,
+                                qos.m_durability.kind == fdds::TRANSIENT_LOCAL_DURABILITY_QOS};
+    }
+  }
+  discovery_changed_.notify_all();
+}
+
+void ParticipantImpl::on_subscriber_discovery(fdds::DomainParticipant* /*participant*/,
+                                              eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) {
+  using Status = eprosima::fastrtps::rtps::ReaderDiscoveryInfo::DISCOVERY_STATUS;
+  const std::string key = guid_text(info.info.guid());
+  {
+    std::lock_guard lock(discovery_mutex_);
+    if (info.status == Status::REMOVED_READER) {
+      remote_endpoints_.erase(key);
+    } else {
+      remote_endpoints_[key] = {info.info.topicName().to_string(),
+                                info.info.typeName().to_string(), false, false, false};
+    }
+  }
+  discovery_changed_.notify_all();
+}
+
+std::vector<TopicInfo> ParticipantImpl::collect_topics() const {
+  std::map<std::string, TopicInfo> by_name;
+  for (const auto& [guid, endpoint] : remote_endpoints_) {
+    TopicInfo& topic = by_name[endpoint.topic];
+    topic.name = endpoint.topic;
+    topic.type = endpoint.type;
+    if (endpoint.writer) {
+      ++topic.writers;
+      topic.writers_reliable = topic.writers_reliable && endpoint.reliable;
+      topic.writers_transient_local = topic.writers_transient_local && endpoint.transient_local;
+    } else {
+      ++topic.readers;
+    }
+  }
+  std::vector<TopicInfo> topics;
+  for (auto& entry : by_name) {
+    topics.push_back(std::move(entry.second));
+  }
+  return topics;
+}
+
+std::vector<TopicInfo> ParticipantImpl::discovered_topics() const {
+  std::lock_guard lock(discovery_mutex_);
+  return collect_topics();
+}
+
+std::optional<TopicInfo> ParticipantImpl::wait_for_topic(const std::string& topic,
+                                                         std::chrono::nanoseconds timeout) const {
+  std::optional<TopicInfo> found;
+  std::unique_lock lock(discovery_mutex_);
+  discovery_changed_.wait_for(lock, timeout, [&] {
+    for (auto& info : collect_topics()) {
+      if (info.name == topic) {
+        found = std::move(info);
+        return true;
+      }
+    }
+    return false;
+  });
+  return found;
+}
+
+}  // namespace detail
+
+Participant::Participant(const ParticipantOptions& options)
+    : impl_(std::make_unique<detail::ParticipantImpl>(options)) {}
+
+Participant::~Participant() = default;
+
+int Participant::domain_id() const { return impl_->domain_id; }
+const std::string& Participant::name() const { return impl_->name; }
+
+std::vector<TopicInfo> Participant::discovered_topics() const { return impl_->discovered_topics(); }
+
+std::optional<TopicInfo> Participant::wait_for_topic(const std::string& topic,
+                                                     std::chrono::nanoseconds timeout) const {
+  return impl_->wait_for_topic(topic, timeout);
+}
+
+}  // namespace wbi::dds

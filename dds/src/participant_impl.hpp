@@ -1,0 +1,79 @@
+// Internal: the Fast DDS entities of a Participant, shared by the endpoints.
+#pragma once
+
+#include <condition_variable>
+#include <map>
+#include <mutex>
+#include <string>
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TopicDataType.hpp>
+
+#include "wbi/dds/participant.hpp"
+
+namespace wbi::dds::detail {
+
+namespace fdds = eprosima::fastdds::dds;
+
+class ParticipantImpl : public fdds::DomainParticipantListener {
+ public:
+  explicit ParticipantImpl(const ParticipantOptions& options);
+  ~ParticipantImpl() override;
+
+  fdds::Publisher& publisher() { return *publisher_; }
+  fdds::Subscriber& subscriber() { return *subscriber_; }
+
+  // Registers the type if needed (takes ownership of type) and returns the
+  // topic, shared by every endpoint of this participant on that name.
+  fdds::Topic& acquire_topic(const std::string& name, fdds::TopicDataType* type);
+  void release_topic(const std::string& name);
+
+  fdds::DataWriterQos writer_qos(const std::string& profile) const;
+  fdds::DataReaderQos reader_qos(const std::string& profile) const;
+
+  std::vector<TopicInfo> discovered_topics() const;
+  std::optional<TopicInfo> wait_for_topic(const std::string& topic,
+                                          std::chrono::nanoseconds timeout) const;
+
+  int domain_id;
+  std::string name;
+
+ private:
+  void on_publisher_discovery(fdds::DomainParticipant* participant,
+                              eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override;
+  void on_subscriber_discovery(fdds::DomainParticipant* participant,
+                               eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) override;
+
+  std::vector<TopicInfo> collect_topics() const;  // caller holds discovery_mutex_
+
+  struct SharedTopic {
+    fdds::Topic* topic = nullptr;
+    int users = 0;
+  };
+  // What discovery has told us about one remote endpoint.
+  struct RemoteEndpoint {
+    std::string topic;
+    std::string type;
+    bool writer = false;
+    bool reliable = false;
+    bool transient_local = false;
+  };
+
+  fdds::DomainParticipant* participant_ = nullptr;
+  fdds::Publisher* publisher_ = nullptr;
+  fdds::Subscriber* subscriber_ = nullptr;
+  std::mutex topics_mutex_;
+  std::map<std::string, SharedTopic> topics_;
+
+  mutable std::mutex discovery_mutex_;
+  mutable std::condition_variable discovery_changed_;
+  std::map<std::string, RemoteEndpoint> remote_endpoints_;  // by GUID
+};
+
+}  // namespace wbi::dds::detail

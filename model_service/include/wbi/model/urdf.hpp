@@ -1,0 +1,40 @@
+// Building a Model from a URDF (urdfdom).
+//
+// - Free-floating by default; fixed base with `fixed_base = true`, and
+//   automatically when the root is a massless link named "world".
+// - revolute, continuous and prismatic joints move; fixed joints are lumped:
+//   the child's mass, CoM and rotational inertia are combined exactly with its
+//   parent body. Every link stays addressable as a frame.
+// - Links without <inertial> are massless. Mimic joints are independent joints
+//   (MimicInfo records the relation). <gazebo>, <transmission>, <sensor> and
+//   meshes are ignored. floating and planar joints are rejected.
+// - Reduced model: `joints` lists the joints to keep, in the order wanted for q
+//   and ν; every other movable joint is locked at `locked_positions[name]`
+//   (default 0) and lumped like a fixed joint.
+// - Joint order of a full model: depth-first from the root, children in the
+//   order their joints appear in the file.
+// Errors: std::runtime_error naming the file and what is wrong (missing or
+// empty file, XML error with line, several roots or a loop, zero axis, negative
+// mass, non-physical inertia, unsupported joint type); std::invalid_argument for
+// unknown joint names in the options.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "wbi/model/model.hpp"
+
+namespace wbi::model {
+
+struct LoadOptions {
+  bool fixed_base = false;
+  std::vector<std::string> joints;                // empty: all movable joints
+  std::map<std::string, double> locked_positions;  // for joints not kept
+};
+
+Model load_urdf_file(const std::string& path, const LoadOptions& options = {});
+Model load_urdf_string(const std::string& xml, const LoadOptions& options = {},
+                       const std::string& source = "<string>");
+
+}  // namespace wbi::model
