@@ -90,7 +90,7 @@ ARM7_COLLISION = set()
 # hip centres 0.485, root_link origin 0.555, torso joints 0.625,
 # shoulder centres 0.865, neck joints 0.925, top of head 1.09.
 # ===========================================================================
-FOOT_X = 0.01    # foot/sole centre ahead of the ankle axis
+FOOT_X = 0.005   # foot/sole centre ahead of the ankle axis (puts the CoM within 1 mm of the sole centres)
 CHEST_X = 0.015  # chest centre of mass ahead of the torso axes
 HUMANOID_NAME = "humanoid"
 HUMANOID = [
