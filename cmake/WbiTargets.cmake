@@ -34,6 +34,14 @@ function(wbi_add_executable)
   endif()
 endfunction()
 
+# Tests labelled "sanitize" (parsing and DDS) are rebuilt and rerun under
+# ASan/UBSan by scripts/test: `cmake --build B --target wbi_sanitize_targets`
+# builds exactly them and the helper programs they start (wbi_sanitize_also).
+add_custom_target(wbi_sanitize_targets)
+function(wbi_sanitize_also)
+  add_dependencies(wbi_sanitize_targets ${ARGN})
+endfunction()
+
 # Each test gets its own DDS domain id in WBI_DOMAIN_ID (1, 2, ... up to 230), so
 # that tests running in parallel never discover each other.
 set_property(GLOBAL PROPERTY WBI_NEXT_TEST_DOMAIN 1)
@@ -56,6 +64,9 @@ function(wbi_add_test)
   endif()
   math(EXPR next "${domain} + 1")
   set_property(GLOBAL PROPERTY WBI_NEXT_TEST_DOMAIN ${next})
+  if("sanitize" IN_LIST ARG_LABELS)
+    add_dependencies(wbi_sanitize_targets ${ARG_NAME})
+  endif()
   set_tests_properties(${ARG_NAME} PROPERTIES TIMEOUT ${ARG_TIMEOUT}
     LABELS "${ARG_LABELS}"
     ENVIRONMENT "WBI_SOURCE_DIR=${PROJECT_SOURCE_DIR};WBI_BINARY_DIR=${PROJECT_BINARY_DIR};WBI_DOMAIN_ID=${domain}")

@@ -9,6 +9,7 @@
 #include <fastdds/dds/subscriber/DataReader.hpp>
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/rtps/common/InstanceHandle.h>
 
 #include "participant_impl.hpp"
 
@@ -18,6 +19,59 @@ std::int64_t steady_now_ns() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(
              std::chrono::steady_clock::now().time_since_epoch())
       .count();
+}
+
+namespace {
+
+Guid to_guid(const eprosima::fastrtps::rtps::GUID_t& rtps) {
+  Guid guid{};
+  for (std::size_t i = 0; i < 12; ++i) {
+    guid[i] = rtps.guidPrefix.value[i];
+  }
+  for (std::size_t i = 0; i < 4; ++i) {
+    guid[12 + i] = rtps.entityId.value[i];
+  }
+  return guid;
+}
+
+int hex_value(char c) {
+  if (c >= '0' && c <= '9') {
+    return c - '0';
+  }
+  if (c >= 'a' && c <= 'f') {
+    return c - 'a' + 10;
+  }
+  if (c >= 'A' && c <= 'F') {
+    return c - 'A' + 10;
+  }
+  return -1;
+}
+
+}  // namespace
+
+std::string guid_hex(const Guid& guid) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string text(32, '0');
+  for (std::size_t i = 0; i < guid.size(); ++i) {
+    text[2 * i] = kDigits[guid[i] >> 4];
+    text[2 * i + 1] = kDigits[guid[i] & 0xF];
+  }
+  return text;
+}
+
+bool parse_guid_hex(const char* text, Guid& guid) {
+  if (text == nullptr) {
+    return false;
+  }
+  for (std::size_t i = 0; i < guid.size(); ++i) {
+    const int high = hex_value(text[2 * i]);
+    const int low = high < 0 ? -1 : hex_value(text[2 * i + 1]);
+    if (low < 0) {
+      return false;
+    }
+    guid[i] = static_cast<std::uint8_t>(high * 16 + low);
+  }
+  return text[32] == '\0';
 }
 
 namespace {
@@ -53,19 +107,27 @@ struct WriterImpl : fdds::DataWriterListener {
   ParticipantImpl& participant;
   std::string topic_name;
   fdds::DataWriter* writer = nullptr;
+  MatchObserver* observer = nullptr;
   MatchCounter matches;
 
-  WriterImpl(ParticipantImpl& p, std::string name) : participant(p), topic_name(std::move(name)) {}
+  WriterImpl(ParticipantImpl& p, std::string name, MatchObserver* o)
+      : participant(p), topic_name(std::move(name)), observer(o) {}
 
   void on_publication_matched(fdds::DataWriter* /*writer*/,
                               const fdds::PublicationMatchedStatus& status) override {
+    // Observer first: whoever waits on the count finds the observer up to date.
+    if (observer != nullptr && status.current_count_change != 0) {
+      observer->on_match_changed(
+          to_guid(eprosima::fastrtps::rtps::iHandle2GUID(status.last_subscription_handle)),
+          status.current_count_change > 0);
+    }
     matches.set(status.current_count);
   }
 };
 
 Writer::Writer(Participant& participant, const std::string& topic, fdds::TopicDataType* type,
-               const std::string& profile)
-    : impl_(std::make_unique<WriterImpl>(participant.impl(), topic)) {
+               const std::string& profile, MatchObserver* observer)
+    : impl_(std::make_unique<WriterImpl>(participant.impl(), topic, observer)) {
   const fdds::DataWriterQos qos = impl_->participant.writer_qos(profile);  // before taking the topic
   fdds::Topic& dds_topic = impl_->participant.acquire_topic(topic, type);
   impl_->writer = impl_->participant.publisher().create_datawriter(
@@ -86,6 +148,12 @@ bool Writer::write(const void* sample) {
   return impl_->writer->write(const_cast<void*>(sample));  // Fast DDS 2.x takes void*, reads only
 }
 
+bool Writer::wait_acknowledged(std::chrono::nanoseconds timeout) {
+  const auto seconds = std::chrono::duration<double>(timeout).count();
+  return impl_->writer->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(seconds)) ==
+         ReturnCode_t::RETCODE_OK;
+}
+
 int Writer::matched() const { return impl_->matches.get(); }
 
 bool Writer::wait_matched(int count, std::chrono::nanoseconds timeout) const {
@@ -93,6 +161,8 @@ bool Writer::wait_matched(int count, std::chrono::nanoseconds timeout) const {
 }
 
 const std::string& Writer::topic() const { return impl_->topic_name; }
+
+Guid Writer::guid() const { return to_guid(impl_->writer->guid()); }
 
 struct ReaderImpl : fdds::DataReaderListener {
   ParticipantImpl& participant;
@@ -153,5 +223,7 @@ bool Reader::wait_matched(int count, std::chrono::nanoseconds timeout) const {
 }
 
 const std::string& Reader::topic() const { return impl_->topic_name; }
+
+Guid Reader::guid() const { return to_guid(impl_->reader->guid()); }
 
 }  // namespace wbi::dds::detail

@@ -256,6 +256,12 @@ std::optional<TopicInfo> ParticipantImpl::wait_for_topic(const std::string& topi
 Participant::Participant(const ParticipantOptions& options)
     : impl_(std::make_unique<detail::ParticipantImpl>(options)) {}
 
+Participant::Participant(const std::string& name) : Participant([&] {
+  ParticipantOptions options;
+  options.name = name;
+  return options;
+}()) {}
+
 Participant::~Participant() = default;
 
 int Participant::domain_id() const { return impl_->domain_id; }

@@ -59,6 +59,8 @@ struct TopicInfo {
 class Participant {
  public:
   explicit Participant(const ParticipantOptions& options = {});
+  // Default options (domain from WBI_DOMAIN_ID, localhost discovery) with this name.
+  explicit Participant(const std::string& name);
   ~Participant();
   Participant(const Participant&) = delete;
   Participant& operator=(const Participant&) = delete;

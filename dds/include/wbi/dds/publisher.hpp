@@ -14,10 +14,23 @@ template <Message T>
 class Publisher {
  public:
   Publisher(Participant& participant, const std::string& topic, const std::string& qos_profile)
-      : writer_(participant, topic, new typename MessageTraits<T>::TypeSupport(), qos_profile) {}
+      : writer_(participant, topic, new typename MessageTraits<T>::TypeSupport(), qos_profile),
+        bounded_(typename MessageTraits<T>::TypeSupport().is_bounded()) {}
 
-  // Returns false when DDS refused the sample (e.g. history full of unacknowledged samples).
-  bool publish(const T& sample) { return writer_.write(&sample); }
+  // Returns false when the sample was not sent: larger than the largest
+  // sample the IDL bounds allow (Fast DDS would send it anyway), or refused
+  // by DDS (e.g. a reliable history full of unacknowledged samples). Sizes
+  // of single sequences against the robot are checked by the components.
+  bool publish(const T& sample) {
+    if (bounded_ && T::getCdrSerializedSize(sample) > T::getMaxCdrSerializedSize()) {
+      return false;
+    }
+    return writer_.write(&sample);
+  }
+
+  // Reliable profiles: waits until every matched reader acknowledged every
+  // sample written so far. False on timeout.
+  bool wait_acknowledged(std::chrono::nanoseconds timeout) { return writer_.wait_acknowledged(timeout); }
 
   // Remote and local readers currently matched.
   int matched() const { return writer_.matched(); }
@@ -28,6 +41,7 @@ class Publisher {
 
  private:
   detail::Writer writer_;
+  bool bounded_;  // every sequence of T has a bound, so a maximum size exists
 };
 
 }  // namespace wbi::dds

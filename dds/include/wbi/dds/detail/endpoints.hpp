@@ -2,6 +2,7 @@
 // Fast DDS entities; the typed templates own the samples.
 #pragma once
 
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -26,6 +27,21 @@ struct SampleInfo {
   std::int64_t received_ns = 0;       // steady-clock time of arrival
 };
 
+// The 16-byte RTPS GUID of an endpoint (participant prefix, then entity id).
+using Guid = std::array<std::uint8_t, 16>;
+
+// 32 lower-case hex digits.
+std::string guid_hex(const Guid& guid);
+// Parses the 32 hex digits of guid_hex (either case); false when text is not that.
+bool parse_guid_hex(const char* text, Guid& guid);
+
+// Told when a remote endpoint matches or unmatches a local writer (on a DDS thread).
+class MatchObserver {
+ public:
+  virtual ~MatchObserver() = default;
+  virtual void on_match_changed(const Guid& remote, bool matched) = 0;
+};
+
 // Where a reader puts what it takes: the typed side owns the storage.
 class ReaderSink {
  public:
@@ -43,17 +59,21 @@ struct ReaderOverrides {
 
 class Writer {
  public:
-  // Takes ownership of type.
+  // Takes ownership of type. The observer, when given, must outlive the writer;
+  // it hears every remote reader that matches or unmatches.
   Writer(Participant& participant, const std::string& topic,
-         eprosima::fastdds::dds::TopicDataType* type, const std::string& profile);
+         eprosima::fastdds::dds::TopicDataType* type, const std::string& profile,
+         MatchObserver* observer = nullptr);
   ~Writer();
   Writer(const Writer&) = delete;
   Writer& operator=(const Writer&) = delete;
 
   bool write(const void* sample);
+  bool wait_acknowledged(std::chrono::nanoseconds timeout);
   int matched() const;
   bool wait_matched(int count, std::chrono::nanoseconds timeout) const;
   const std::string& topic() const;
+  Guid guid() const;
 
  private:
   std::unique_ptr<WriterImpl> impl_;
@@ -72,6 +92,7 @@ class Reader {
   int matched() const;
   bool wait_matched(int count, std::chrono::nanoseconds timeout) const;
   const std::string& topic() const;
+  Guid guid() const;
 
  private:
   std::unique_ptr<ReaderImpl> impl_;

@@ -1,0 +1,100 @@
+// The `wbi` command line as a user meets it: help, version, exit codes, clear
+// errors, and `wbi topic list|echo` against a real publisher process.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "child_process.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using wbi::test::ChildProcess;
+
+struct Run {
+  int code;
+  std::string output;
+};
+
+Run wbi_cli(const std::vector<std::string>& args, std::chrono::milliseconds timeout = 30s) {
+  ChildProcess process(wbi::test::binary_dir() / "bin" / "wbi", args);
+  const auto code = process.wait(timeout);
+  return {code.value_or(-1), process.output()};
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+TEST(Cli, HelpListsEveryVerb) {
+  const auto run = wbi_cli({"--help"});
+  EXPECT_EQ(run.code, 0);
+  for (const char* verb : {"launch", "record", "play", "bag", "topic", "model", "estimate"}) {
+    EXPECT_TRUE(contains(run.output, std::string("\n  ") + verb + " ")) << verb << "\n" << run.output;
+  }
+}
+
+TEST(Cli, NoVerbPrintsHelpAndFails) {
+  const auto run = wbi_cli({});
+  EXPECT_EQ(run.code, 1);
+  EXPECT_TRUE(contains(run.output, "usage: wbi")) << run.output;
+}
+
+TEST(Cli, VersionIsPrinted) {
+  const auto run = wbi_cli({"--version"});
+  EXPECT_EQ(run.code, 0);
+  EXPECT_TRUE(contains(run.output, "wbi 0.")) << run.output;
+}
+
+TEST(Cli, UnknownVerbFailsWithMessage) {
+  const auto run = wbi_cli({"frobnicate"});
+  EXPECT_EQ(run.code, 1);
+  EXPECT_TRUE(contains(run.output, "unknown verb 'frobnicate'")) << run.output;
+}
+
+TEST(Cli, EveryVerbHasHelp) {
+  for (const char* verb : {"topic"}) {
+    const auto run = wbi_cli({verb, "--help"});
+    EXPECT_EQ(run.code, 0) << verb << ": " << run.output;
+    EXPECT_TRUE(contains(run.output, "usage: wbi")) << run.output;
+  }
+}
+
+TEST(Cli, UnknownOptionIsNamed) {
+  const auto run = wbi_cli({"topic", "list", "--bogus"});
+  EXPECT_EQ(run.code, 1);
+  EXPECT_TRUE(contains(run.output, "unknown option --bogus")) << run.output;
+}
+
+TEST(Cli, EchoOfMissingTopicTimesOut) {
+  const auto run = wbi_cli({"topic", "echo", "wbi/nobody/sensors", "--timeout", "0.3"});
+  EXPECT_EQ(run.code, 1);
+  EXPECT_TRUE(contains(run.output, "'wbi/nobody/sensors' not found")) << run.output;
+}
+
+TEST(Cli, TopicListAndEchoSeeAnotherProcess) {
+  ChildProcess talker(wbi::test::binary_dir() / "tests" / "wbi_test_talker", {"cli", "0"});
+  ASSERT_TRUE(talker.wait_for_output("talker: ready", 20s)) << talker.output();
+
+  const auto list = wbi_cli({"topic", "list", "--wait", "1.5"});
+  EXPECT_EQ(list.code, 0) << list.output;
+  EXPECT_TRUE(contains(list.output, "wbi/cli/sensors  [wbi::msg::SensorSample]  writers: 1"))
+      << list.output;
+
+  const auto echo = wbi_cli({"topic", "echo", "wbi/cli/sensors", "--count", "2"});
+  EXPECT_EQ(echo.code, 0) << echo.output;
+  EXPECT_TRUE(contains(echo.output, "robot: \"cli\"")) << echo.output;
+  EXPECT_TRUE(contains(echo.output, "encoder_position: [")) << echo.output;
+  std::size_t separators = 0;
+  for (std::size_t at = echo.output.find("---"); at != std::string::npos;
+       at = echo.output.find("---", at + 3)) {
+    ++separators;
+  }
+  EXPECT_EQ(separators, 2u) << echo.output;
+  EXPECT_EQ(talker.stop(), 0);
+}
+
+}  // namespace

@@ -1,0 +1,59 @@
+// Test helper: publishes COUNT pattern sensor samples on wbi/<ROBOT>/sensors
+// once a subscriber has matched, each acknowledged before the next (so none
+// is lost to the writer's bounded history), and exits 0. With COUNT = 0 it
+// publishes at 100 Hz, best effort, until SIGTERM.
+// usage: wbi_test_talker ROBOT COUNT
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <iostream>
+#include <thread>
+
+#include <wbi/dds/publisher.hpp>
+#include <wbi/dds/topics.hpp>
+
+#include "sample_pattern.hpp"
+
+namespace {
+std::atomic<bool> stop_requested{false};
+extern "C" void on_signal(int /*signal*/) { stop_requested = true; }
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 3) {
+    std::cerr << "usage: wbi_test_talker ROBOT COUNT\n";
+    return 2;
+  }
+  std::signal(SIGTERM, on_signal);
+  std::signal(SIGINT, on_signal);
+  const std::string robot = argv[1];
+  const long count = std::atol(argv[2]);
+  wbi::dds::Participant participant("talker");
+  wbi::dds::Publisher<wbi::msg::SensorSample> publisher(
+      participant, wbi::dds::topics::sensors(robot),
+      count > 0 ? wbi::dds::qos::kCommand : wbi::dds::qos::kStream);
+  std::cout << "talker: ready" << std::endl;
+  wbi::msg::SensorSample sample;
+  if (count > 0) {
+    if (!publisher.wait_for_subscribers(1, std::chrono::seconds(20))) {
+      std::cerr << "talker: no subscriber within 20 s\n";
+      return 1;
+    }
+    for (long seq = 0; seq < count && !stop_requested; ++seq) {
+      wbi::test::fill_pattern(sample, robot, static_cast<std::uint64_t>(seq));
+      if (!publisher.publish(sample) || !publisher.wait_acknowledged(std::chrono::seconds(5))) {
+        std::cerr << "talker: sample " << seq << " not delivered\n";
+        return 1;
+      }
+    }
+    std::cout << "talker: done" << std::endl;
+    return 0;
+  }
+  for (std::uint64_t seq = 0; !stop_requested; ++seq) {
+    wbi::test::fill_pattern(sample, robot, seq);
+    publisher.publish(sample);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return 0;
+}

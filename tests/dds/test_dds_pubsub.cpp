@@ -1,0 +1,148 @@
+// The typed DDS layer between two participants of one process: samples arrive
+// intact and in order, latched samples reach late joiners, the latest sample
+// carries its stamps, and bad settings are refused with a clear error.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <stdexcept>
+
+#include <wbi/dds/publisher.hpp>
+#include <wbi/dds/subscriber.hpp>
+#include <wbi/dds/topics.hpp>
+
+#include "sample_pattern.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using wbi::dds::Participant;
+using wbi::dds::Publisher;
+using wbi::dds::Subscriber;
+namespace qos = wbi::dds::qos;
+namespace topics = wbi::dds::topics;
+
+TEST(DdsPubSub, ReliableSamplesArriveIntactAndInOrder) {
+  Participant a("a");
+  Participant b("b");
+  Publisher<wbi::msg::SensorSample> publisher(a, topics::sensors("robot"), qos::kCommand);
+  std::vector<std::uint64_t> seen;
+  std::string first_mismatch;
+  Subscriber<wbi::msg::SensorSample> subscriber(
+      b, topics::sensors("robot"), qos::kCommand,
+      [&](const wbi::msg::SensorSample& sample, const wbi::dds::detail::SampleInfo&) {
+        seen.push_back(sample.header().seq());
+        if (first_mismatch.empty()) {
+          first_mismatch = wbi::test::pattern_mismatch(sample, "robot");
+        }
+      });
+  ASSERT_TRUE(publisher.wait_for_subscribers(1, 10s));
+  ASSERT_TRUE(subscriber.wait_for_publishers(1, 10s));
+
+  constexpr std::uint64_t kCount = 50;
+  wbi::msg::SensorSample sample;
+  for (std::uint64_t seq = 0; seq < kCount; ++seq) {
+    wbi::test::fill_pattern(sample, "robot", seq);
+    ASSERT_TRUE(publisher.publish(sample));
+    ASSERT_TRUE(publisher.wait_acknowledged(5s));
+  }
+  wbi::dds::Received<wbi::msg::SensorSample> last;
+  ASSERT_TRUE(subscriber.wait_newer(last, kCount - 1, 5s));
+  EXPECT_EQ(last.sample.header().seq(), kCount - 1);
+  EXPECT_EQ(first_mismatch, "");
+  ASSERT_EQ(seen.size(), kCount);
+  for (std::uint64_t i = 0; i < kCount; ++i) {
+    EXPECT_EQ(seen[i], i);
+  }
+}
+
+TEST(DdsPubSub, LatestCarriesStampsAndAge) {
+  Participant a("a");
+  Participant b("b");
+  Publisher<wbi::msg::SensorSample> publisher(a, topics::sensors("stamped"), qos::kCommand);
+  Subscriber<wbi::msg::SensorSample> subscriber(b, topics::sensors("stamped"), qos::kCommand);
+  EXPECT_FALSE(subscriber.latest().has_value());
+  ASSERT_TRUE(publisher.wait_for_subscribers(1, 10s));
+  wbi::msg::SensorSample sample;
+  wbi::test::fill_pattern(sample, "stamped", 7);
+  const auto before = wbi::dds::detail::steady_now_ns();
+  ASSERT_TRUE(publisher.publish(sample));
+  wbi::dds::Received<wbi::msg::SensorSample> got;
+  ASSERT_TRUE(subscriber.wait_newer(got, 0, 5s));
+  EXPECT_EQ(got.sample.header().seq(), 7u);
+  EXPECT_EQ(got.count, 1u);
+  EXPECT_GE(got.received_ns, before);
+  EXPECT_GT(got.source_stamp_ns, 0);
+  EXPECT_GE(got.age_s(), 0.0);
+  EXPECT_LT(got.age_s(), 60.0);
+}
+
+TEST(DdsPubSub, LatchedDescriptionReachesLateJoiner) {
+  Participant a("a");
+  Publisher<wbi::msg::RobotDescription> publisher(a, topics::description("late"), qos::kLatched);
+  wbi::msg::RobotDescription description;
+  description.header().robot("late");
+  description.joint_names({"j0", "j1", "j2"});
+  ASSERT_TRUE(publisher.publish(description));
+
+  Participant b("b");  // joins after the sample was written
+  Subscriber<wbi::msg::RobotDescription> subscriber(b, topics::description("late"), qos::kLatched);
+  wbi::dds::Received<wbi::msg::RobotDescription> got;
+  ASSERT_TRUE(subscriber.wait_newer(got, 0, 10s));
+  ASSERT_EQ(got.sample.joint_names().size(), 3u);
+  EXPECT_EQ(got.sample.joint_names()[2], "j2");
+}
+
+TEST(DdsPubSub, WaitTimesOutWithoutPublisher) {
+  Participant a("a");
+  Subscriber<wbi::msg::StateEstimate> subscriber(a, topics::state("nobody"), qos::kStream);
+  wbi::dds::Received<wbi::msg::StateEstimate> got;
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_FALSE(subscriber.wait_newer(got, 0, 200ms));
+  EXPECT_GE(std::chrono::steady_clock::now() - start, 200ms);
+}
+
+TEST(DdsPubSub, SampleBeyondItsBoundIsNotPublished) {
+  Participant a("a");
+  Publisher<wbi::msg::SensorSample> publisher(a, topics::sensors("bounded"), qos::kStream);
+  wbi::msg::SensorSample sample;
+  const std::vector<double> too_many(wbi::msg::MAX_JOINTS * 4, 1.0);
+  sample.encoder_position(too_many);
+  sample.joint_torque(too_many);
+  sample.motor_pwm(too_many);
+  EXPECT_FALSE(publisher.publish(sample));
+  sample.encoder_position(std::vector<double>(wbi::msg::MAX_JOINTS, 1.0));
+  sample.joint_torque({});
+  sample.motor_pwm({});
+  EXPECT_TRUE(publisher.publish(sample));
+}
+
+TEST(DdsPubSub, UnknownQosProfileIsNamed) {
+  Participant a("a");
+  try {
+    Publisher<wbi::msg::SensorSample> publisher(a, topics::sensors("x"), "wbi.no_such_profile");
+    FAIL() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("wbi.no_such_profile"), std::string::npos) << e.what();
+  }
+}
+
+TEST(DdsPubSub, TopicWithAnotherTypeIsRefused) {
+  Participant a("a");
+  Publisher<wbi::msg::SensorSample> sensors(a, "wbi/typed/topic", qos::kStream);
+  EXPECT_THROW(Publisher<wbi::msg::StateEstimate>(a, "wbi/typed/topic", qos::kStream),
+               std::invalid_argument);
+}
+
+TEST(DdsPubSub, BadDomainIdIsRefused) {
+  wbi::dds::ParticipantOptions options;
+  options.domain_id = 500;
+  EXPECT_THROW(Participant{options}, std::invalid_argument);
+  const char* saved = std::getenv("WBI_DOMAIN_ID");
+  const std::string restore = saved != nullptr ? saved : "";
+  setenv("WBI_DOMAIN_ID", "seven", 1);
+  EXPECT_THROW(wbi::dds::domain_id_from_environment(), std::invalid_argument);
+  setenv("WBI_DOMAIN_ID", restore.c_str(), 1);
+}
+
+}  // namespace
