@@ -13,7 +13,7 @@ std::span<const Verb> verbs() {
       {"record", "record DDS topics to an MCAP file", nullptr},
       {"play", "replay an MCAP recording onto DDS", nullptr},
       {"bag", "inspect MCAP recordings (info)", nullptr},
-      {"topic", "list and echo the topics on the DDS domain", run_topic},
+      {"topic", "list, echo and measure the topics on the DDS domain", run_topic},
       {"model", "inspect and evaluate robot models (info, eval, bench)", nullptr},
       {"estimate", "estimate joint velocities and accelerations offline from a CSV file", nullptr},
   }};

@@ -9,6 +9,7 @@
 #include <wbi/msg/all_types.hpp>
 
 #include "dynamic_printer.hpp"
+#include "reader_matching.hpp"
 #include "wbi/dds/detail/endpoints.hpp"
 
 namespace wbi::dds {
@@ -61,13 +62,9 @@ struct TopicEcho::Impl : detail::ReaderSink {
 
 TopicEcho::TopicEcho(Participant& participant, const TopicInfo& topic, Callback callback)
     : impl_(std::make_unique<Impl>(dynamic_type_of(topic.type), std::move(callback))) {
-  detail::ReaderOverrides overrides;
-  overrides.set = true;
-  overrides.reliable = topic.writers > 0 && topic.writers_reliable;
-  overrides.transient_local = topic.writers > 0 && topic.writers_transient_local;
   impl_->reader = std::make_unique<detail::Reader>(
       participant, topic.name, new types::DynamicPubSubType(impl_->type), qos::kStream, *impl_,
-      overrides);
+      detail::matching_writers_of(topic));
 }
 
 TopicEcho::~TopicEcho() = default;

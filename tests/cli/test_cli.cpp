@@ -94,6 +94,15 @@ TEST(Cli, TopicListAndEchoSeeAnotherProcess) {
     ++separators;
   }
   EXPECT_EQ(separators, 2u) << echo.output;
+
+  // The talker publishes every 10 ms; a loaded machine may stretch that, never to nothing.
+  const auto hz = wbi_cli({"topic", "hz", "wbi/cli/sensors", "--window", "1", "--duration", "2"});
+  EXPECT_EQ(hz.code, 0) << hz.output;
+  const auto at = hz.output.rfind("rate: ");
+  ASSERT_NE(at, std::string::npos) << hz.output;
+  const double rate = std::stod(hz.output.substr(at + 6));
+  EXPECT_GT(rate, 20.0) << hz.output;
+  EXPECT_LT(rate, 200.0) << hz.output;
   EXPECT_EQ(talker.stop(), 0);
 }
 

@@ -8,16 +8,17 @@
 
 namespace wbi::test {
 
-// The source tree, from WBI_SOURCE_DIR (set by ctest for every test).
+// The source tree: WBI_SOURCE_DIR (set by ctest for every test), else the
+// one this test was built from (so a test binary also runs by hand).
 inline std::filesystem::path source_dir() {
   const char* dir = std::getenv("WBI_SOURCE_DIR");
-  return dir != nullptr ? std::filesystem::path(dir) : std::filesystem::current_path();
+  return dir != nullptr ? std::filesystem::path(dir) : std::filesystem::path(WBI_BUILT_SOURCE_DIR);
 }
 
-// The build tree, from WBI_BINARY_DIR (set by ctest for every test).
+// The build tree: WBI_BINARY_DIR (set by ctest), else the one this test was built in.
 inline std::filesystem::path binary_dir() {
   const char* dir = std::getenv("WBI_BINARY_DIR");
-  return dir != nullptr ? std::filesystem::path(dir) : std::filesystem::current_path();
+  return dir != nullptr ? std::filesystem::path(dir) : std::filesystem::path(WBI_BUILT_BINARY_DIR);
 }
 
 // A URDF the project ships, e.g. project_model("arm7.urdf").

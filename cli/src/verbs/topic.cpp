@@ -1,4 +1,5 @@
 // `wbi topic list|echo`: what is on the DDS domain, for debugging.
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -9,6 +10,7 @@
 #include <thread>
 
 #include <wbi/dds/participant.hpp>
+#include <wbi/dds/raw_subscriber.hpp>
 #include <wbi/dds/topic_echo.hpp>
 
 #include "../options.hpp"
@@ -58,6 +60,22 @@ int run_list(Args args) {
 std::atomic<bool> interrupted{false};
 extern "C" void on_echo_interrupt(int /*signal*/) { interrupted = true; }
 
+void stop_on_signals() {
+  std::signal(SIGINT, on_echo_interrupt);
+  std::signal(SIGTERM, on_echo_interrupt);
+}
+
+dds::TopicInfo find_topic(dds::Participant& participant, const std::string& name,
+                          const Options& options) {
+  auto topic = participant.wait_for_topic(name, seconds(options.get_double("timeout")));
+  if (!topic) {
+    throw std::runtime_error("topic '" + name + "' not found on domain " +
+                             std::to_string(participant.domain_id()) + " within " +
+                             options.get("timeout") + " s");
+  }
+  return *topic;
+}
+
 int run_echo(Args args) {
   Options options("wbi topic echo TOPIC [options]",
                   "Prints every sample of TOPIC as YAML, separated by '---'. The topic's type\n"
@@ -75,16 +93,11 @@ int run_echo(Args args) {
     throw UsageError("--count must be >= 0");
   }
   dds::Participant participant(participant_options(options));
-  const auto topic = participant.wait_for_topic(topic_name, seconds(options.get_double("timeout")));
-  if (!topic) {
-    throw std::runtime_error("topic '" + topic_name + "' not found on domain " +
-                             std::to_string(participant.domain_id()) + " within " +
-                             options.get("timeout") + " s");
-  }
+  const auto topic = find_topic(participant, topic_name, options);
   std::mutex mutex;
   std::condition_variable done;
   long printed = 0;
-  dds::TopicEcho echo(participant, *topic, [&](const std::string& yaml) {
+  dds::TopicEcho echo(participant, topic, [&](const std::string& yaml) {
     std::lock_guard lock(mutex);
     if (wanted != 0 && printed >= wanted) {
       return;
@@ -93,11 +106,78 @@ int run_echo(Args args) {
     ++printed;
     done.notify_all();
   });
-  std::signal(SIGINT, on_echo_interrupt);
-  std::signal(SIGTERM, on_echo_interrupt);
+  stop_on_signals();
   std::unique_lock lock(mutex);
   while (!interrupted && (wanted == 0 || printed < wanted)) {
     done.wait_for(lock, std::chrono::milliseconds(100));  // also polls the signal flag
+  }
+  return interrupted ? kExitInterrupted : kExitOk;
+}
+
+// Rate statistics of one reporting window, from arrival times.
+struct RateWindow {
+  std::uint64_t count = 0;
+  std::uint64_t bytes = 0;
+  std::int64_t first_ns = 0;
+  std::int64_t last_ns = 0;
+  double max_gap_s = 0.0;
+
+  void add(std::int64_t received_ns, std::size_t size) {
+    if (count > 0) {
+      max_gap_s = std::max(max_gap_s, 1e-9 * static_cast<double>(received_ns - last_ns));
+    } else {
+      first_ns = received_ns;
+    }
+    last_ns = received_ns;
+    ++count;
+    bytes += size;
+  }
+};
+
+int run_hz(Args args) {
+  Options options("wbi topic hz TOPIC [options]",
+                  "Prints the rate at which samples of TOPIC arrive, once per window:\n"
+                  "rate, largest gap between samples, bandwidth. Works for any type.");
+  options.positional("TOPIC", "topic name, e.g. wbi/arm/sensors");
+  add_domain_option(options);
+  options.option("window", "SECONDS", "length of a reporting window", "1.0");
+  options.option("duration", "SECONDS", "stop after this long (0: until Ctrl-C)", "0");
+  options.option("timeout", "SECONDS", "give up when the topic is not found within this time", "5");
+  if (!options.parse(args)) {
+    return kExitOk;
+  }
+  const double window_s = options.get_double("window");
+  const double duration_s = options.get_double("duration");
+  if (window_s <= 0.0 || duration_s < 0.0) {
+    throw UsageError("--window must be > 0 and --duration >= 0");
+  }
+  dds::Participant participant(participant_options(options));
+  const auto topic = find_topic(participant, options.get("TOPIC"), options);
+  std::mutex mutex;
+  RateWindow window;
+  dds::RawSubscriber subscriber(participant, topic, [&](const dds::RawSample& sample) {
+    std::lock_guard lock(mutex);
+    window.add(sample.received_ns, sample.cdr.size());
+  });
+  stop_on_signals();
+  const auto start = std::chrono::steady_clock::now();
+  auto next_report = start;
+  while (!interrupted) {
+    next_report += seconds(window_s);
+    std::this_thread::sleep_until(next_report);  // a reporting period, not a synchronisation
+    RateWindow done;
+    {
+      std::lock_guard lock(mutex);
+      std::swap(done, window);
+    }
+    const double span_s = 1e-9 * static_cast<double>(done.last_ns - done.first_ns);
+    const double rate = done.count > 1 && span_s > 0 ? static_cast<double>(done.count - 1) / span_s : 0.0;
+    std::cout << "rate: " << rate << " Hz  samples: " << done.count << "  max gap: "
+              << 1e3 * done.max_gap_s << " ms  bandwidth: "
+              << static_cast<double>(done.bytes) / window_s / 1024.0 << " KiB/s" << std::endl;
+    if (duration_s > 0 && std::chrono::steady_clock::now() - start >= seconds(duration_s)) {
+      break;
+    }
   }
   return interrupted ? kExitInterrupted : kExitOk;
 }
@@ -106,9 +186,10 @@ int run_echo(Args args) {
 
 int run_topic(Args args) {
   const std::string usage =
-      "usage: wbi topic {list,echo} [--help]\n\n"
+      "usage: wbi topic {list,echo,hz} [--help]\n\n"
       "  list   list the topics on the domain\n"
-      "  echo   print the samples of a topic\n";
+      "  echo   print the samples of a topic\n"
+      "  hz     measure the rate of a topic\n";
   if (args.empty() || args[0] == "--help" || args[0] == "-h") {
     std::cout << usage;
     return args.empty() ? kExitError : kExitOk;
@@ -118,6 +199,9 @@ int run_topic(Args args) {
   }
   if (args[0] == "echo") {
     return run_echo(args.subspan(1));
+  }
+  if (args[0] == "hz") {
+    return run_hz(args.subspan(1));
   }
   throw UsageError("unknown sub-command '" + args[0] + "'");
 }

@@ -1,0 +1,33 @@
+#include "wbi/dds/raw_subscriber.hpp"
+
+#include "raw_type.hpp"
+#include "reader_matching.hpp"
+#include "wbi/dds/detail/endpoints.hpp"
+
+namespace wbi::dds {
+
+struct RawSubscriber::Impl : detail::ReaderSink {
+  detail::RawBuffer buffer;
+  Callback callback;
+  std::unique_ptr<detail::Reader> reader;
+
+  explicit Impl(Callback cb) : callback(std::move(cb)) {}
+  ~Impl() override { reader.reset(); }  // no sample may arrive once buffer is gone
+
+  void* storage() override { return &buffer; }
+
+  void on_sample(const detail::SampleInfo& info) override {
+    callback({buffer.bytes, info.source_stamp_ns, info.received_ns});
+  }
+};
+
+RawSubscriber::RawSubscriber(Participant& participant, const TopicInfo& topic, Callback callback)
+    : impl_(std::make_unique<Impl>(std::move(callback))) {
+  impl_->reader = std::make_unique<detail::Reader>(participant, topic.name,
+                                                   new detail::RawType(topic.type), qos::kStream,
+                                                   *impl_, detail::matching_writers_of(topic));
+}
+
+RawSubscriber::~RawSubscriber() = default;
+
+}  // namespace wbi::dds
