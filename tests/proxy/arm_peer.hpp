@@ -1,0 +1,110 @@
+// A robot peer for proxy and controller tests: the 7-joint arm as DDS sees it
+// (description, sensor and state streams; command and parameter readers),
+// made of real DDS endpoints in the test's process.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <wbi/dds/publisher.hpp>
+#include <wbi/dds/subscriber.hpp>
+#include <wbi/dds/topics.hpp>
+#include <wbi/dds_interface.hpp>
+
+#include "test_support.hpp"
+
+namespace wbi::test {
+
+using namespace std::chrono_literals;
+namespace topics = wbi::dds::topics;
+namespace qos = wbi::dds::qos;
+
+inline const std::vector<std::string> kArmJoints{"joint_1", "joint_2", "joint_3", "joint_4",
+                                          "joint_5", "joint_6", "joint_7"};
+
+// Robot r's joint j position in the peer's samples.
+inline double arm_position(std::size_t j) { return 0.1 * static_cast<double>(j + 1); }
+inline double arm_velocity(std::size_t j) { return -0.01 * static_cast<double>(j + 1); }
+
+// The robot side, as DDS sees it: description, sensor and state streams, a
+// command and a parameter reader. Streams are published at 200 Hz while running.
+class ArmPeer {
+ public:
+  explicit ArmPeer(const std::string& robot)
+      : participant_("robot"),
+        description_(participant_, topics::description(robot), qos::kLatched),
+        sensors_(participant_, topics::sensors(robot), qos::kStream),
+        state_(participant_, topics::state(robot), qos::kStream),
+        commands_(participant_, topics::commands(robot), qos::kCommand),
+        parameters_(participant_, topics::control_parameters(robot), qos::kCommand),
+        robot_(robot) {
+    wbi::msg::RobotDescription description;
+    description.header().robot(robot);
+    for (const auto& joint : kArmJoints) {
+      description.joint_names().push_back(joint);
+    }
+    description_.publish(description);
+    thread_ = std::thread([this] { run(); });
+  }
+
+  ~ArmPeer() { stop(); }
+
+  void stop() {
+    running_ = false;
+    if (thread_.joinable()) {
+      thread_.join();
+    }
+  }
+
+  wbi::dds::Subscriber<wbi::msg::ActuatorCommand>& commands() { return commands_; }
+  wbi::dds::Subscriber<wbi::msg::ControlParameters>& parameters() { return parameters_; }
+
+ private:
+  void run() {
+    wbi::msg::SensorSample sample;
+    wbi::msg::StateEstimate state;
+    sample.header().robot(robot_);
+    state.header().robot(robot_);
+    for (std::size_t j = 0; j < kArmJoints.size(); ++j) {
+      sample.encoder_position().push_back(arm_position(j));
+      state.q().push_back(arm_position(j));
+      state.dq().push_back(arm_velocity(j));
+      state.ddq().push_back(0.0);
+      state.tau().push_back(0.0);
+    }
+    state.base_pose().orientation().w(1.0);
+    state.base_pose().position().z(0.25);
+    for (std::uint64_t seq = 0; running_; ++seq) {
+      sample.header().seq(seq);
+      sample.header().stamp_ns(static_cast<std::int64_t>(seq) * 5'000'000);
+      state.header() = sample.header();
+      sensors_.publish(sample);
+      state_.publish(state);
+      std::this_thread::sleep_for(5ms);  // the robot's rate, not a synchronisation
+    }
+  }
+
+  wbi::dds::Participant participant_;
+  wbi::dds::Publisher<wbi::msg::RobotDescription> description_;
+  wbi::dds::Publisher<wbi::msg::SensorSample> sensors_;
+  wbi::dds::Publisher<wbi::msg::StateEstimate> state_;
+  wbi::dds::Subscriber<wbi::msg::ActuatorCommand> commands_;
+  wbi::dds::Subscriber<wbi::msg::ControlParameters> parameters_;
+  std::string robot_;
+  std::atomic<bool> running_{true};
+  std::thread thread_;
+};
+
+inline wbi::DdsInterfaceOptions arm_options(const std::string& robot) {
+  wbi::DdsInterfaceOptions options;
+  options.robot = robot;
+  options.controller = "test_controller";
+  options.urdf = wbi::test::project_model("arm7.urdf").string();
+  options.max_age_s = 0.5;
+  return options;
+}
+
+}  // namespace wbi::test

@@ -1,0 +1,206 @@
+// The whole-body interface over DDS, against a robot peer made of real DDS
+// endpoints in this process: init names what is missing, reads map the
+// robot's joint order to the controller's, stale data is refused, commands
+// and parameters reach the robot with the robot's joint indices, and the
+// model over a subset of joints agrees with the full model.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <thread>
+
+#include <wbi/model/algorithms.hpp>
+
+#include "arm_peer.hpp"
+
+namespace {
+
+using namespace wbi::test;
+
+TEST(DdsInterface, InitNamesEveryMissingComponent) {
+  auto robot = wbi::make_dds_interface(arm_options("absent"));
+  robot->add_joints({"joint_1"});
+  try {
+    robot->init(300ms);
+    FAIL() << "init succeeded without a robot";
+  } catch (const wbi::TimeoutError& e) {
+    const std::string text = e.what();
+    EXPECT_NE(text.find("robot description"), std::string::npos) << text;
+    EXPECT_NE(text.find("sensor samples on wbi/absent/sensors"), std::string::npos) << text;
+    EXPECT_NE(text.find("state estimates"), std::string::npos) << text;
+    EXPECT_NE(text.find("actuator component"), std::string::npos) << text;
+  }
+}
+
+TEST(DdsInterface, BadOptionsAndJointsAreNamed) {
+  wbi::DdsInterfaceOptions options = arm_options("");
+  EXPECT_THROW(wbi::make_dds_interface(options), wbi::Error);
+  options = arm_options("arm");
+  options.urdf.clear();
+  EXPECT_THROW(wbi::make_dds_interface(options), wbi::Error);
+
+  ArmPeer peer("arm_bad");
+  auto robot = wbi::make_dds_interface(arm_options("arm_bad"));
+  EXPECT_THROW(robot->add_joints({"joint_1", "joint_1"}), wbi::Error);
+  robot->add_joints({"joint_9"});
+  try {
+    robot->init(10s);
+    FAIL() << "unknown joint accepted";
+  } catch (const wbi::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'joint_9' is not a joint of robot 'arm_bad'"),
+              std::string::npos)
+        << e.what();
+  }
+  Eigen::VectorXd q(1);
+  EXPECT_THROW(robot->read_sensors(wbi::SensorKind::encoder_position, q), wbi::Error);
+}
+
+TEST(DdsInterface, ReadsFollowTheControllersJointOrder) {
+  ArmPeer peer("arm_read");
+  auto robot = wbi::make_dds_interface(arm_options("arm_read"));
+  robot->add_joints({"joint_4", "joint_1", "joint_6"});
+  robot->init(10s);
+  ASSERT_EQ(robot->dofs(), 3);
+
+  Eigen::VectorXd q(3);
+  const wbi::Stamp stamp = robot->read_sensors(wbi::SensorKind::encoder_position, q,
+                                               wbi::ReadMode::blocking);
+  EXPECT_DOUBLE_EQ(q[0], arm_position(3));
+  EXPECT_DOUBLE_EQ(q[1], arm_position(0));
+  EXPECT_DOUBLE_EQ(q[2], arm_position(5));
+  EXPECT_GE(stamp.age_s, 0.0);
+
+  Eigen::VectorXd dq(3);
+  robot->read_estimates(wbi::EstimateKind::joint_velocity, dq, wbi::ReadMode::blocking);
+  EXPECT_DOUBLE_EQ(dq[0], arm_velocity(3));
+  EXPECT_DOUBLE_EQ(dq[2], arm_velocity(5));
+  Eigen::VectorXd one(1);
+  robot->read_estimate(wbi::EstimateKind::joint_velocity, 1, one);
+  EXPECT_DOUBLE_EQ(one[0], arm_velocity(0));
+
+  wbi::Transform world_H_base;
+  robot->read_base_pose(world_H_base);
+  EXPECT_DOUBLE_EQ(world_H_base(2, 3), 0.25);
+  EXPECT_TRUE((world_H_base.topLeftCorner<3, 3>().isIdentity()));
+
+  // Blocking reads return a newer sample each time.
+  const auto first = robot->read_sensors(wbi::SensorKind::encoder_position, q, wbi::ReadMode::blocking);
+  const auto second = robot->read_sensors(wbi::SensorKind::encoder_position, q, wbi::ReadMode::blocking);
+  EXPECT_GT(second.seq, first.seq);
+
+  Eigen::VectorXd wrong(2);
+  try {
+    robot->read_sensors(wbi::SensorKind::encoder_position, wrong);
+    FAIL() << "wrong size accepted";
+  } catch (const wbi::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("has size 2, expected 3"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(robot->read_sensors(wbi::SensorKind::joint_torque, q), wbi::Error);  // none sent
+}
+
+TEST(DdsInterface, StaleDataIsRefused) {
+  ArmPeer peer("arm_stale");
+  auto options = arm_options("arm_stale");
+  options.max_age_s = 0.05;
+  options.blocking_read_timeout = 200ms;
+  auto robot = wbi::make_dds_interface(options);
+  robot->add_joints({"joint_2"});
+  robot->init(10s);
+  Eigen::VectorXd q(1);
+  robot->read_sensors(wbi::SensorKind::encoder_position, q, wbi::ReadMode::blocking);
+  robot->read_estimates(wbi::EstimateKind::joint_position, q, wbi::ReadMode::blocking);
+  peer.stop();
+  // Once the robot is silent, the newest sample only ages: a latest read fails
+  // after max_age, a blocking read times out.
+  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  bool refused = false;
+  while (!refused && std::chrono::steady_clock::now() < deadline) {
+    try {
+      robot->read_sensors(wbi::SensorKind::encoder_position, q);
+      std::this_thread::sleep_for(10ms);  // polling an ageing sample: there is no event to await
+    } catch (const wbi::StaleDataError& e) {
+      refused = true;
+      EXPECT_NE(std::string(e.what()).find("old (limit"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_TRUE(refused);
+  EXPECT_THROW(robot->read_estimates(wbi::EstimateKind::joint_position, q, wbi::ReadMode::blocking),
+               wbi::TimeoutError);
+}
+
+TEST(DdsInterface, CommandsCarryTheRobotsJointIndices) {
+  ArmPeer peer("arm_cmd");
+  auto robot = wbi::make_dds_interface(arm_options("arm_cmd"));
+  robot->add_joints({"joint_7", "joint_3"});
+  robot->init(10s);
+
+  robot->set_control_mode(wbi::ControlMode::torque);
+  Eigen::Vector2d tau(1.5, -2.5);
+  robot->set_control_reference(tau);
+  wbi::dds::Received<wbi::msg::ActuatorCommand> command;
+  ASSERT_TRUE(peer.commands().wait_newer(command, 1, 5s));
+  const auto& c = command.sample;
+  EXPECT_EQ(c.controller(), "test_controller");
+  ASSERT_EQ(c.joints().size(), 2u);
+  EXPECT_EQ(c.joints()[0], 6);
+  EXPECT_EQ(c.joints()[1], 2);
+  EXPECT_EQ(c.modes()[0], wbi::msg::ControlMode::TORQUE);
+  EXPECT_DOUBLE_EQ(c.references()[0], 1.5);
+  EXPECT_DOUBLE_EQ(c.references()[1], -2.5);
+
+  // Switching one joint to position control holds it where it is measured.
+  robot->set_control_mode(wbi::ControlMode::position, 1);
+  ASSERT_TRUE(peer.commands().wait_newer(command, 2, 5s));
+  EXPECT_EQ(command.sample.modes()[0], wbi::msg::ControlMode::TORQUE);
+  EXPECT_EQ(command.sample.modes()[1], wbi::msg::ControlMode::POSITION);
+  EXPECT_DOUBLE_EQ(command.sample.references()[1], arm_position(2));
+
+  robot->set_control_parameter(wbi::ControlParameter::kp, Eigen::Vector2d(100.0, 200.0));
+  wbi::dds::Received<wbi::msg::ControlParameters> parameters;
+  ASSERT_TRUE(peer.parameters().wait_newer(parameters, 0, 5s));
+  EXPECT_DOUBLE_EQ(parameters.sample.kp()[1], 200.0);
+  EXPECT_TRUE(std::isnan(parameters.sample.kd()[0]));  // untouched parameters travel as NaN
+}
+
+TEST(DdsInterface, ModelOverASubsetAgreesWithTheFullModel) {
+  ArmPeer peer("arm_model");
+  auto robot = wbi::make_dds_interface(arm_options("arm_model"));
+  robot->add_joints({"joint_4", "joint_2"});
+  robot->init(10s);
+
+  // The full fixed-base model at the robot's measured posture.
+  const auto full = wbi::model::load_urdf_file(wbi::test::project_model("arm7.urdf").string());
+  wbi::model::Data data(full);
+  Eigen::VectorXd q_full(full.nq);
+  for (std::size_t j = 0; j < kArmJoints.size(); ++j) {
+    q_full[full.joint_q_index[static_cast<std::size_t>(full.joint_id(kArmJoints[j]))]] = arm_position(j);
+  }
+  const Eigen::Vector3d gravity(0, 0, -9.81);
+  const Eigen::VectorXd g_full = wbi::model::gravity_forces(full, data, q_full, gravity);
+  const Eigen::MatrixXd M_full = wbi::model::mass_matrix(full, data, q_full);
+
+  const Eigen::Vector2d q(arm_position(3), arm_position(1));
+  const wbi::Transform world_H_base = wbi::Transform::Identity();
+  Eigen::VectorXd g(8);
+  robot->gravity_forces(q, world_H_base, gravity, g);
+  Eigen::MatrixXd M(8, 8);
+  robot->mass_matrix(q, world_H_base, M);
+  const int v4 = full.joint_v_index[static_cast<std::size_t>(full.joint_id("joint_4"))];
+  const int v2 = full.joint_v_index[static_cast<std::size_t>(full.joint_id("joint_2"))];
+  EXPECT_NEAR(g[6], g_full[v4], 1e-9);
+  EXPECT_NEAR(g[7], g_full[v2], 1e-9);
+  EXPECT_NEAR(M(6, 7), M_full(v4, v2), 1e-9);
+  EXPECT_NEAR(M(7, 7), M_full(v2, v2), 1e-9);
+  EXPECT_TRUE(g.head<6>().isZero());  // fixed base: the base does not move
+
+  const int ee = robot->frame_index("ee_link");
+  wbi::Transform pose;
+  robot->frame_pose(q, world_H_base, ee, pose);
+  wbi::model::forward_kinematics(full, data, q_full);
+  EXPECT_TRUE(pose.isApprox(wbi::model::frame_pose(full, data, full.frame_id("ee_link")), 1e-12));
+  EXPECT_THROW(robot->frame_index("no_such_frame"), wbi::Error);
+}
+
+}  // namespace

@@ -1,0 +1,41 @@
+// The DDS implementation of the whole-body interface: a thin proxy that
+// reads sensors and state from the robot's topics, publishes actuator
+// commands, and evaluates the model locally from the URDF (no round trip) or
+// asks the robot's model service. Which one is configuration only.
+#pragma once
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <string>
+
+#include <wbi/dds/participant.hpp>
+
+#include "wbi/whole_body_interface.hpp"
+
+namespace wbi {
+
+struct DdsInterfaceOptions {
+  std::string robot;                      // robot name: topics wbi/<robot>/…
+  std::string controller = "controller";  // sender name in commands (one owner per joint)
+
+  enum class ModelSource { local, remote };
+  ModelSource model_source = ModelSource::local;
+  std::string urdf;  // local model: the robot's URDF
+
+  // Positions of the robot's joints outside the controlled list, for the model.
+  // A joint not listed here is locked where init() measures it.
+  std::map<std::string, double> locked_positions;
+
+  double max_age_s = 0.1;  // reads fail on samples older than this
+  std::chrono::milliseconds blocking_read_timeout{1000};
+  std::chrono::milliseconds model_timeout{200};  // deadline of a remote model call
+
+  dds::ParticipantOptions participant;  // domain, discovery, QoS file
+};
+
+// Throws Error naming what is wrong in the options (e.g. no robot name, no URDF
+// for a local model, a URDF that does not load).
+std::unique_ptr<WholeBodyInterface> make_dds_interface(const DdsInterfaceOptions& options);
+
+}  // namespace wbi

@@ -1,0 +1,31 @@
+// The State element: measured or estimated quantities of the robot.
+#pragma once
+
+#include <string>
+
+#include "wbi/types.hpp"
+
+namespace wbi {
+
+class State {
+ public:
+  virtual ~State() = default;
+
+  // All values of a kind, stacked (see EstimateKind for the sizes), or one
+  // (a joint, or an F/T sensor). Throws StaleDataError when there is no
+  // estimate, or it is too old.
+  virtual Stamp read_estimates(EstimateKind kind, VectorRef values,
+                               ReadMode mode = ReadMode::latest) = 0;
+  virtual Stamp read_estimate(EstimateKind kind, int index, VectorRef values,
+                              ReadMode mode = ReadMode::latest) = 0;
+
+  // The base pose as a homogeneous transform.
+  virtual Stamp read_base_pose(Transform& world_H_base, ReadMode mode = ReadMode::latest) = 0;
+
+  // Changes a parameter of the estimator (e.g. "velocity_window", or
+  // "fixed_link" with the link's index in frame_list()). Throws Error naming an
+  // unknown parameter.
+  virtual void set_estimation_parameter(const std::string& name, double value) = 0;
+};
+
+}  // namespace wbi

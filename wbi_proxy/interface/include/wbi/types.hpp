@@ -1,0 +1,91 @@
+// Vocabulary of the whole-body interface: joint lists, control modes, sensor
+// and estimate kinds, read modes, stamps and errors.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace wbi {
+
+// A list of joint (or sensor, or frame) names: the original WBI's IDList. The
+// order of a controller's list is the order of every joint vector it reads or writes.
+using IdList = std::vector<std::string>;
+
+using VectorRef = Eigen::Ref<Eigen::VectorXd>;
+using ConstVectorRef = Eigen::Ref<const Eigen::VectorXd>;
+using MatrixRef = Eigen::Ref<Eigen::MatrixXd>;
+using Transform = Eigen::Matrix4d;  // homogeneous transform, e.g. world_H_base
+
+enum class ControlMode {
+  idle,             // no control: zero torque
+  position,         // reference [rad or m] reached by a minimum-jerk trajectory at the reference speed
+  position_direct,  // reference [rad or m] tracked directly by the joint PID (streaming)
+  velocity,         // reference [rad/s or m/s] (streaming)
+  torque,           // reference [N m or N] (streaming)
+  pwm,              // duty cycle reference [-1, 1] (streaming)
+};
+
+// Low-level control parameters, per joint.
+enum class ControlParameter { kp, ki, kd, reference_speed };
+
+// What the Sensors element measures. Values per sensor (stacked in this order
+// when all sensors of a kind are read):
+enum class SensorKind {
+  encoder_position,      // 1 per controlled joint [rad or m]
+  encoder_velocity,      // 1 per controlled joint [rad/s] (from the state estimate when the robot has no speed sensor)
+  encoder_acceleration,  // 1 per controlled joint [rad/s^2] (likewise)
+  joint_torque,          // 1 per controlled joint [N m]
+  motor_pwm,             // 1 per controlled joint, duty cycle
+  imu,                   // 10 per IMU: orientation (w, x, y, z), gyro [rad/s], accelerometer [m/s^2], IMU axes
+  force_torque,          // 6 per sensor: force [N], torque [N m], sensor frame
+  accelerometer,         // 3 per IMU [m/s^2], IMU axes, gravity included
+  gyroscope,             // 3 per IMU [rad/s], IMU axes
+};
+
+// What the State element estimates:
+enum class EstimateKind {
+  joint_position,      // 1 per controlled joint
+  joint_velocity,      // 1 per controlled joint
+  joint_acceleration,  // 1 per controlled joint
+  joint_torque,        // 1 per controlled joint, filtered
+  base_pose,           // 7: position [m], quaternion (w, x, y, z), world frame
+  base_velocity,       // 6: mixed representation (ṗ_B, ω_B), world axes
+  base_acceleration,   // 6: time derivative of base_velocity
+  force_torque,        // 6 per F/T sensor, filtered
+};
+
+enum class ReadMode {
+  latest,    // the newest sample received (fails when older than the age limit)
+  blocking,  // waits for a sample newer than the previous read of the same kind
+};
+
+// When and how fresh the data of a read is.
+struct Stamp {
+  std::int64_t source_ns = 0;  // source stamp of the sample (the robot's clock)
+  std::uint64_t seq = 0;       // sequence number of the sample
+  double age_s = 0.0;          // time since the sample arrived in this process
+};
+
+// Any failure of the interface: names what was wrong.
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A read found no data, or data older than the configured limit.
+class StaleDataError : public Error {
+ public:
+  using Error::Error;
+};
+
+// A component did not answer in time (init, model requests, blocking reads).
+class TimeoutError : public Error {
+ public:
+  using Error::Error;
+};
+
+}  // namespace wbi
