@@ -9,7 +9,7 @@ namespace wbi::cli {
 
 std::span<const Verb> verbs() {
   static const std::array<Verb, 7> table{{
-      {"launch", "start, watch and stop the processes of a deploy file", nullptr},
+      {"launch", "start, watch and stop the processes of a deploy file", run_launch},
       {"record", "record DDS topics to an MCAP file", nullptr},
       {"play", "replay an MCAP recording onto DDS", nullptr},
       {"bag", "inspect MCAP recordings (info)", nullptr},

@@ -1,5 +1,6 @@
 #include "dynamic_printer.hpp"
 
+#include <charconv>
 #include <iomanip>
 #include <map>
 #include <string>
@@ -21,6 +22,14 @@ types::DynamicType_ptr resolve_alias(types::DynamicType_ptr type) {
   return type;
 }
 
+// The shortest text that reads back as the same value.
+template <class Float>
+std::string shortest(Float value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
 bool is_scalar(types::TypeKind kind) {
   return kind != types::TK_STRUCTURE && kind != types::TK_SEQUENCE && kind != types::TK_ARRAY;
 }
@@ -38,8 +47,8 @@ void print_scalar(std::ostream& out, types::DynamicData& data, types::TypeKind k
     case types::TK_UINT32: out << data.get_uint32_value(id); break;
     case types::TK_INT64: out << data.get_int64_value(id); break;
     case types::TK_UINT64: out << data.get_uint64_value(id); break;
-    case types::TK_FLOAT32: out << data.get_float32_value(id); break;
-    case types::TK_FLOAT64: out << std::setprecision(17) << data.get_float64_value(id); break;
+    case types::TK_FLOAT32: out << shortest(data.get_float32_value(id)); break;
+    case types::TK_FLOAT64: out << shortest(data.get_float64_value(id)); break;
     case types::TK_STRING8: out << std::quoted(data.get_string_value(id)); break;
     case types::TK_ENUM: {
       std::string name;

@@ -1,0 +1,34 @@
+// `wbi launch FILE`: runs the processes of a deploy file (see deploy/README.md).
+#include <iostream>
+
+#include <wbi/launch/launcher.hpp>
+
+#include "../options.hpp"
+#include "verbs.hpp"
+
+namespace wbi::cli {
+
+int run_launch(Args args) {
+  Options options("wbi launch FILE [options]",
+                  "Starts the processes of a deploy file, each once the topics it waits for\n"
+                  "exist; prefixes their output with their name; restarts them by their\n"
+                  "respawn policy; stops them all on Ctrl-C/SIGTERM (SIGKILL after the grace\n"
+                  "period), after --duration, or when a required process fails. Exits 1 when a\n"
+                  "required process failed, 130 when interrupted.");
+  options.positional("FILE", "deploy file (YAML)");
+  options.option("duration", "SECONDS", "stop everything after this long (0: no limit)", "0");
+  options.option("grace", "SECONDS", "time between SIGTERM and SIGKILL when stopping", "5");
+  if (!options.parse(args)) {
+    return kExitOk;
+  }
+  launch::LaunchOptions launch_options;
+  launch_options.duration_s = options.get_double("duration");
+  launch_options.stop_grace_s = options.get_double("grace");
+  if (launch_options.duration_s < 0 || launch_options.stop_grace_s < 0) {
+    throw UsageError("--duration and --grace must be >= 0");
+  }
+  const auto deploy = launch::load_deploy_file(options.get("FILE"));
+  return launch::run_launch(deploy, launch_options, std::cout);
+}
+
+}  // namespace wbi::cli

@@ -1,0 +1,64 @@
+// A deploy file: which processes run, what each hosts, how they start, stop
+// and restart. YAML; every error names the file, the line and the field.
+//
+//   domain_id: 7                      # optional: else WBI_DOMAIN_ID, else 0
+//   qos_file: my_qos.xml              # optional, relative to the deploy file
+//   environment: {KEY: value}         # for every process
+//   summary: {process: controller, match: "final max joint error"}
+//   processes:
+//     - name: robot
+//       command: [wbi_host, robot.yaml]    # argv; or components: (run by wbi_host)
+//       environment: {KEY: value}
+//       required: true                     # its failure fails the launch (default true)
+//       respawn: {enabled: false, delay: 1.0, max_retries: 3}
+//       wait_for: {topics: [wbi/arm/sensors], timeout: 10}   # start once these exist
+//       shutdown_on_exit: false            # true: when it exits, the launch stops
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace wbi::launch {
+
+struct RespawnPolicy {
+  bool enabled = false;
+  double delay_s = 1.0;  // between an exit and the restart
+  int max_retries = 3;   // restarts allowed in all
+};
+
+struct ProcessSpec {
+  std::string name;
+  std::vector<std::string> command;  // argv; argv[0] is looked up next to `wbi`, then on PATH
+  bool hosts_components = false;     // command is wbi_host running this process's components
+  std::map<std::string, std::string> environment;
+  bool required = true;
+  RespawnPolicy respawn;
+  std::vector<std::string> wait_for_topics;  // start only once these topics exist on the domain
+  double wait_timeout_s = 10.0;
+  bool shutdown_on_exit = false;  // its exit (any code) stops the whole launch
+};
+
+// The launch repeats, as its last line, the last line of `process` that
+// contains `match` (e.g. the demo's "final max joint error: X rad").
+struct SummarySpec {
+  std::string process;
+  std::string match;
+};
+
+struct DeployFile {
+  std::filesystem::path path;
+  std::optional<int> domain_id;
+  std::filesystem::path qos_file;  // empty: the built-in profiles
+  std::map<std::string, std::string> environment;
+  std::vector<ProcessSpec> processes;
+  std::optional<SummarySpec> summary;
+};
+
+// Reads and checks a deploy file. Throws std::runtime_error "FILE:LINE: …"
+// naming the field (e.g. processes[1].respawn.delay) and what is wrong.
+DeployFile load_deploy_file(const std::filesystem::path& path);
+
+}  // namespace wbi::launch

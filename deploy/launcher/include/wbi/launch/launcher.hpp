@@ -1,0 +1,23 @@
+// Runs the processes of a deploy file: starts them in order (each once the
+// topics it waits for exist), prefixes their output with their name, restarts
+// them by their respawn policy, and stops them all — SIGTERM, then SIGKILL
+// after a grace period — on Ctrl-C/SIGTERM, after a duration, when a process
+// marked shutdown_on_exit ends, or when a required process fails.
+#pragma once
+
+#include <ostream>
+
+#include "wbi/launch/deploy_file.hpp"
+
+namespace wbi::launch {
+
+struct LaunchOptions {
+  double duration_s = 0.0;    // stop after this long; 0: until something else stops the launch
+  double stop_grace_s = 5.0;  // SIGTERM → SIGKILL delay
+};
+
+// Returns the exit code: 0, 1 when a required process failed or could not
+// start, 130 when interrupted. Installs SIGINT/SIGTERM handlers while running.
+int run_launch(const DeployFile& deploy, const LaunchOptions& options, std::ostream& out);
+
+}  // namespace wbi::launch

@@ -1,0 +1,120 @@
+// Deploy files: a good one is read completely; every mistake is reported
+// with the file, the line and the field.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <wbi/launch/deploy_file.hpp>
+
+namespace {
+
+class DeployFileTest : public ::testing::Test {
+ protected:
+  std::filesystem::path write(const std::string& text) {
+    const auto path = dir_ / ("deploy_" + std::to_string(count_++) + ".yaml");
+    std::ofstream(path) << text;
+    return path;
+  }
+
+  // The message of the error loading `text` raises.
+  std::string error_of(const std::string& text) {
+    const auto path = write(text);
+    try {
+      wbi::launch::load_deploy_file(path);
+    } catch (const std::runtime_error& e) {
+      const std::string message = e.what();
+      EXPECT_EQ(message.rfind(path.string(), 0), 0u) << "error does not start with the file: " << message;
+      return message.substr(path.string().size());
+    }
+    ADD_FAILURE() << "no error for:\n" << text;
+    return {};
+  }
+
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("wbi_deploy_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+            "_" + std::to_string(reinterpret_cast<std::uintptr_t>(this)));
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  std::filesystem::path dir_;
+  int count_ = 0;
+};
+
+TEST_F(DeployFileTest, ReadsEveryField) {
+  std::ofstream(dir_ / "qos.xml") << "<dds/>";
+  const auto deploy = wbi::launch::load_deploy_file(write(R"(
+domain_id: 42
+qos_file: qos.xml
+environment: {A: "1"}
+summary: {process: controller, match: "final max joint error"}
+processes:
+  - name: robot
+    components:
+      - {type: sim, name: sim}
+    respawn: {enabled: true, delay: 0.5, max_retries: 2}
+  - name: controller
+    command: [wbi_pd, --rate, "1000"]
+    environment: {B: two}
+    required: false
+    shutdown_on_exit: true
+    wait_for: {topics: [wbi/arm/state], timeout: 3}
+)"));
+  EXPECT_EQ(deploy.domain_id, 42);
+  EXPECT_EQ(deploy.qos_file, dir_ / "qos.xml");
+  EXPECT_EQ(deploy.environment.at("A"), "1");
+  ASSERT_EQ(deploy.processes.size(), 2u);
+  const auto& robot = deploy.processes[0];
+  EXPECT_TRUE(robot.hosts_components);
+  EXPECT_EQ(robot.command.front(), "wbi_host");
+  EXPECT_EQ(robot.command.back(), "robot");
+  EXPECT_TRUE(robot.respawn.enabled);
+  EXPECT_DOUBLE_EQ(robot.respawn.delay_s, 0.5);
+  EXPECT_EQ(robot.respawn.max_retries, 2);
+  EXPECT_TRUE(robot.required);
+  const auto& controller = deploy.processes[1];
+  EXPECT_EQ(controller.command, (std::vector<std::string>{"wbi_pd", "--rate", "1000"}));
+  EXPECT_EQ(controller.environment.at("B"), "two");
+  EXPECT_FALSE(controller.required);
+  EXPECT_TRUE(controller.shutdown_on_exit);
+  EXPECT_EQ(controller.wait_for_topics, std::vector<std::string>{"wbi/arm/state"});
+  EXPECT_DOUBLE_EQ(controller.wait_timeout_s, 3.0);
+  ASSERT_TRUE(deploy.summary.has_value());
+  EXPECT_EQ(deploy.summary->process, "controller");
+}
+
+TEST_F(DeployFileTest, MistakesNameFileLineAndField) {
+  EXPECT_EQ(error_of("processes: []\n"), ":1: processes: expected a non-empty list of processes");
+  EXPECT_EQ(error_of("processes:\n  - name: a\n    command: [x]\n    colour: red\n"),
+            ":4: processes[0].colour: unknown key (known: command, components, environment, "
+            "name, required, respawn, shutdown_on_exit, wait_for)");
+  EXPECT_EQ(error_of("processes:\n  - name: a\n    command: [x]\n    respawn: {delay: soon}\n"),
+            ":4: processes[0].respawn.delay: expected a number of seconds, got 'soon'");
+  EXPECT_EQ(error_of("processes:\n  - name: a\n    command: [x]\n    components: [{type: sim}]\n"),
+            ":2: processes[0]: needs exactly one of 'command' or 'components'");
+  EXPECT_EQ(error_of("processes:\n  - {name: a, command: [x]}\n  - {name: a, command: [y]}\n"),
+            ":3: processes[1].name: 'a' is used twice");
+  EXPECT_EQ(error_of("summary: {process: b, match: x}\nprocesses:\n  - {name: a, command: [x]}\n"),
+            ":1: summary.process: no process named 'b'");
+  EXPECT_EQ(error_of("domain_id: 900\nprocesses:\n  - {name: a, command: [x]}\n"),
+            ":1: domain_id: must be in [0, 232]");
+  EXPECT_EQ(error_of("processes:\n  - {name: a, command: [x], wait_for: {timeout: -1}}\n"),
+            ":2: processes[0].wait_for.timeout: must be > 0");
+  const std::string syntax = error_of("processes:\n  - name: [unclosed\n");
+  EXPECT_NE(syntax.find("YAML syntax error"), std::string::npos) << syntax;
+  EXPECT_EQ(syntax.rfind(":3", 0), 0u) << syntax;
+}
+
+TEST_F(DeployFileTest, MissingFileIsNamed) {
+  try {
+    wbi::launch::load_deploy_file(dir_ / "absent.yaml");
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("absent.yaml: cannot open the deploy file"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace

@@ -1,0 +1,133 @@
+// `wbi launch` with real processes: start order by readiness, prefixed
+// output, summary line, respawn, failure of a required process, duration,
+// Ctrl-C, and SIGKILL of a process that ignores SIGTERM.
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+
+#include "child_process.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using wbi::test::ChildProcess;
+
+class LaunchTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() / ("wbi_launch_test_" + std::to_string(getpid()));
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  std::filesystem::path write(const std::string& name, const std::string& text) {
+    const auto path = dir_ / name;
+    std::ofstream(path) << text;
+    return path;
+  }
+
+  static std::filesystem::path wbi_exe() { return wbi::test::binary_dir() / "bin" / "wbi"; }
+  static std::string talker() { return (wbi::test::binary_dir() / "tests" / "wbi_test_talker").string(); }
+
+  std::filesystem::path dir_;
+};
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+std::string last_line(const std::string& text) {
+  auto end = text.find_last_not_of('\n');
+  auto start = text.rfind('\n', end);
+  return text.substr(start == std::string::npos ? 0 : start + 1, end - (start == std::string::npos ? 0 : start + 1) + 1);
+}
+
+TEST_F(LaunchTest, StartsByReadinessPrefixesOutputAndEndsWithTheSummary) {
+  const auto deploy = write("ok.yaml", "summary: {process: listener, match: \"seq:\"}\n"
+                                       "processes:\n"
+                                       "  - name: talker\n"
+                                       "    command: [" + talker() + ", launchtest, \"0\"]\n"
+                                       "  - name: listener\n"
+                                       "    command: [wbi, topic, echo, wbi/launchtest/sensors, --count, \"3\"]\n"
+                                       "    wait_for: {topics: [wbi/launchtest/sensors], timeout: 20}\n"
+                                       "    shutdown_on_exit: true\n");
+  ChildProcess launch(wbi_exe(), {"launch", deploy.string()});
+  const auto code = launch.wait(90s);
+  ASSERT_TRUE(code.has_value()) << launch.output();
+  const std::string out = launch.output();
+  EXPECT_EQ(*code, 0) << out;
+  EXPECT_TRUE(contains(out, "[launch] listener: waiting for wbi/launchtest/sensors")) << out;
+  EXPECT_LT(out.find("[launch] talker: started"), out.find("[launch] listener: started")) << out;
+  EXPECT_TRUE(contains(out, "[talker] talker: ready")) << out;
+  EXPECT_TRUE(contains(out, "[listener]   seq: ")) << out;
+  EXPECT_TRUE(contains(out, "talker: stopped")) << out;
+  EXPECT_EQ(last_line(out).rfind("  seq: ", 0), 0u) << "last line: '" << last_line(out) << "'";
+}
+
+TEST_F(LaunchTest, RespawnsThenFailsWhenARequiredProcessKeepsFailing) {
+  const auto deploy = write("fail.yaml", "processes:\n"
+                                         "  - name: flaky\n"
+                                         "    command: [sh, -c, \"echo run; exit 3\"]\n"
+                                         "    respawn: {enabled: true, delay: 0.05, max_retries: 2}\n");
+  ChildProcess launch(wbi_exe(), {"launch", deploy.string()});
+  const auto code = launch.wait(60s);
+  ASSERT_TRUE(code.has_value());
+  const std::string out = launch.output();
+  EXPECT_EQ(*code, 1) << out;
+  std::size_t runs = 0;
+  for (auto at = out.find("[flaky] run"); at != std::string::npos; at = out.find("[flaky] run", at + 1)) {
+    ++runs;
+  }
+  EXPECT_EQ(runs, 3u) << out;
+  EXPECT_TRUE(contains(out, "flaky: failed with exit code 3")) << out;
+  EXPECT_TRUE(contains(out, "flaky: exit code 3, 2 restart(s)")) << out;
+}
+
+TEST_F(LaunchTest, OptionalProcessFailureDoesNotStopTheLaunch) {
+  const auto deploy = write("optional.yaml", "processes:\n"
+                                             "  - {name: helper, command: [sh, -c, \"exit 5\"], required: false}\n"
+                                             "  - {name: sleeper, command: [sleep, \"30\"]}\n");
+  ChildProcess launch(wbi_exe(), {"launch", deploy.string(), "--duration", "1.5"});
+  const auto code = launch.wait(60s);
+  ASSERT_TRUE(code.has_value());
+  const std::string out = launch.output();
+  EXPECT_EQ(*code, 0) << out;
+  EXPECT_TRUE(contains(out, "duration of 1.5")) << out;
+  EXPECT_TRUE(contains(out, "sleeper: stopped")) << out;
+}
+
+TEST_F(LaunchTest, CtrlCStopsEverything) {
+  const auto deploy = write("sigint.yaml", "processes:\n  - {name: sleeper, command: [sleep, \"30\"]}\n");
+  ChildProcess launch(wbi_exe(), {"launch", deploy.string()});
+  ASSERT_TRUE(launch.wait_for_output("sleeper: started", 30s)) << launch.output();
+  kill(launch.pid(), SIGINT);
+  const auto code = launch.wait(30s);
+  ASSERT_TRUE(code.has_value()) << launch.output();
+  EXPECT_EQ(*code, 130) << launch.output();
+  EXPECT_TRUE(contains(launch.output(), "interrupted (SIGINT)")) << launch.output();
+}
+
+TEST_F(LaunchTest, ProcessIgnoringSigtermIsKilled) {
+  const auto deploy = write("stubborn.yaml",
+                            "processes:\n"
+                            "  - {name: stubborn, command: [sh, -c, \"trap '' TERM; echo armed; sleep 30\"]}\n");
+  ChildProcess launch(wbi_exe(), {"launch", deploy.string(), "--duration", "1", "--grace", "0.5"});
+  const auto code = launch.wait(60s);
+  ASSERT_TRUE(code.has_value()) << launch.output();
+  EXPECT_EQ(*code, 0) << launch.output();
+  EXPECT_TRUE(contains(launch.output(), "stubborn: did not stop within")) << launch.output();
+}
+
+TEST_F(LaunchTest, BadDeployFileFailsWithItsName) {
+  const auto deploy = write("bad.yaml", "processes: 3\n");
+  ChildProcess launch(wbi_exe(), {"launch", deploy.string()});
+  const auto code = launch.wait(30s);
+  ASSERT_TRUE(code.has_value());
+  EXPECT_EQ(*code, 1);
+  EXPECT_TRUE(contains(launch.output(), "bad.yaml:1: processes: expected a non-empty list")) << launch.output();
+}
+
+}  // namespace
