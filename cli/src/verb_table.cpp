@@ -15,7 +15,8 @@ std::span<const Verb> verbs() {
       {"bag", "inspect MCAP recordings (info)", nullptr},
       {"topic", "list, echo and measure the topics on the DDS domain", run_topic},
       {"model", "inspect and evaluate robot models (info, eval, bench)", nullptr},
-      {"estimate", "estimate joint velocities and accelerations offline from a CSV file", nullptr},
+      {"estimate", "estimate joint velocities and accelerations offline from a CSV file",
+       run_estimate},
   }};
   return table;
 }

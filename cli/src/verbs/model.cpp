@@ -472,8 +472,19 @@ int run_bench(Args args) {
     nu.push_back(v);
     tau.push_back(t);
   }
-  // the frame for the Jacobian: the last frame, i.e. deep in the tree
-  const int frame = m.n_frames() - 1;
+  // the frame for the Jacobian: the first frame on a deepest body (a hand or a foot)
+  int frame = 0;
+  int deepest = -1;
+  for (int f = 0; f < m.n_frames(); ++f) {
+    int depth = 0;
+    for (int i = m.frame_body[static_cast<std::size_t>(f)]; i > 0; i = m.parent[static_cast<std::size_t>(i)]) {
+      ++depth;
+    }
+    if (depth > deepest) {
+      deepest = depth;
+      frame = f;
+    }
+  }
   const Eigen::Vector3d g(0.0, 0.0, -9.81);
   const int S = static_cast<int>(states);
   const int B = static_cast<int>(batch);
@@ -519,7 +530,7 @@ int run_bench(Args args) {
 
 int run_model(Args args) {
   if (args.empty()) {
-    throw UsageError("wbi model: missing sub-verb (info, eval or bench)");
+    throw UsageError("missing sub-verb: info, eval or bench");
   }
   const std::string& sub = args[0];
   if (sub == "--help" || sub == "-h") {
@@ -536,7 +547,7 @@ int run_model(Args args) {
   if (sub == "bench") {
     return run_bench(rest);
   }
-  throw UsageError("wbi model: unknown sub-verb '" + sub + "' (expected info, eval or bench)");
+  throw UsageError("unknown sub-verb '" + sub + "' (expected info, eval or bench)");
 }
 
 }  // namespace wbi::cli

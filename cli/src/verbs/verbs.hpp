@@ -5,6 +5,7 @@
 
 namespace wbi::cli {
 
+int run_estimate(Args args);
 int run_launch(Args args);
 int run_topic(Args args);
 

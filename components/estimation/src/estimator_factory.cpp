@@ -26,11 +26,11 @@ std::vector<MethodInfo> build_methods() {
   const BackwardDifferenceParameters difference;
   return {
       {"kalman",
-       "Kalman filter on a constant-jerk (or constant-acceleration) model, tuned from the "
-       "encoder resolution and sample rate",
+       "Kalman filter on a constant-jerk model (by default), its gain computed from the "
+       "encoder resolution, the sample rate and the process noise",
        with_stream_parameters({
-           {"model-order", "M", static_cast<double>(kalman.model_order), 2, 3, true,
-            "highest modelled derivative: 3 constant jerk, 2 constant acceleration"},
+           {"model-order", "M", static_cast<double>(kalman.model_order), 2, 4, true,
+            "model order: 2 constant acceleration, 3 constant jerk, 4 constant snap"},
            {"resolution", "COUNTS", kalman.resolution_counts, 2, 1e12, false,
             "encoder counts per revolution (quantisation noise)"},
            {"process-noise", "SIGMA", kalman.process_noise, 1e-12, 1e15, false,

@@ -53,7 +53,10 @@ SampleStatus StampMonitor::check(std::int64_t stamp_ns, double& dt_s) {
     ++counters_.out_of_order;
     return SampleStatus::out_of_order;
   }
-  const double dt = 1e-9 * static_cast<double>(stamp_ns - last_stamp_ns_);
+  // Unsigned difference: well defined even for stamps far apart.
+  const std::uint64_t interval_ns =
+      static_cast<std::uint64_t>(stamp_ns) - static_cast<std::uint64_t>(last_stamp_ns_);
+  const double dt = 1e-9 * static_cast<double>(interval_ns);
   last_stamp_ns_ = stamp_ns;
   ++counters_.accepted;
   if (dt > max_gap_s_) {

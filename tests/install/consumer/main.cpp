@@ -1,30 +1,27 @@
-// Uses the installed wbi: publishes a sensor sample and reads it back.
-#include <chrono>
+// Uses the installed wbi as a controller project would: the whole-body
+// interface through the DDS proxy, and the PD + gravity controller. With no
+// robot running, init() must time out naming the missing components.
 #include <iostream>
 
-#include <wbi/dds/publisher.hpp>
-#include <wbi/dds/subscriber.hpp>
-#include <wbi/dds/topics.hpp>
+#include <wbi/controllers/pd_gravity.hpp>
+#include <wbi/dds_interface.hpp>
 
-int main() {
-  wbi::dds::Participant participant("consumer");
-  wbi::dds::Publisher<wbi::msg::SensorSample> publisher(
-      participant, wbi::dds::topics::sensors("consumer"), wbi::dds::qos::kCommand);
-  wbi::dds::Subscriber<wbi::msg::SensorSample> subscriber(
-      participant, wbi::dds::topics::sensors("consumer"), wbi::dds::qos::kCommand);
-  if (!publisher.wait_for_subscribers(1, std::chrono::seconds(10))) {
-    std::cerr << "consumer: no match\n";
-    return 1;
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::cerr << "usage: consumer URDF\n";
+    return 2;
   }
-  wbi::msg::SensorSample sample;
-  sample.encoder_position({0.5, 1.5});
-  publisher.publish(sample);
-  wbi::dds::Received<wbi::msg::SensorSample> got;
-  if (!subscriber.wait_newer(got, 0, std::chrono::seconds(10)) ||
-      got.sample.encoder_position().size() != 2) {
-    std::cerr << "consumer: sample lost\n";
-    return 1;
+  wbi::DdsInterfaceOptions options;
+  options.robot = "nobody";
+  options.urdf = argv[1];
+  auto robot = wbi::make_dds_interface(options);
+  robot->add_joints({"joint_1", "joint_2"});
+  try {
+    robot->init(std::chrono::milliseconds(200));
+  } catch (const wbi::TimeoutError& e) {
+    std::cout << "consumer: ok (" << e.what() << ")\n";
+    return 0;
   }
-  std::cout << "consumer: ok\n";
-  return 0;
+  std::cerr << "consumer: init succeeded without a robot\n";
+  return 1;
 }
