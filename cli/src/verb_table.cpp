@@ -14,7 +14,7 @@ std::span<const Verb> verbs() {
       {"play", "replay an MCAP recording onto DDS", nullptr},
       {"bag", "inspect MCAP recordings (info)", nullptr},
       {"topic", "list, echo and measure the topics on the DDS domain", run_topic},
-      {"model", "inspect and evaluate robot models (info, eval, bench)", nullptr},
+      {"model", "inspect and evaluate robot models (info, eval, bench)", run_model},
       {"estimate", "estimate joint velocities and accelerations offline from a CSV file",
        run_estimate},
   }};

@@ -7,6 +7,7 @@ namespace wbi::cli {
 
 int run_estimate(Args args);
 int run_launch(Args args);
+int run_model(Args args);
 int run_topic(Args args);
 
 }  // namespace wbi::cli

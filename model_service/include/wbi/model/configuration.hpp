@@ -32,7 +32,7 @@ Eigen::VectorXd integrate(const Model& model, const Eigen::VectorXd& q, const Ei
                           double dt);
 
 // A random q: base position in [−1,1]³, random unit quaternion, joints uniform in
-// their limits (in [−π, π] or [−1, 1] m when unlimited).
+// their limits intersected with [−π, π] (revolute) or [−1, 1] m (prismatic).
 Eigen::VectorXd random_configuration(const Model& model, std::mt19937& rng);
 
 }  // namespace wbi::model

@@ -16,6 +16,9 @@
 
 namespace wbi::model {
 
+// Read-only view of q, ν, ν̇ or τ: binds to an Eigen::VectorXd or a segment without copying.
+using ConstVectorRef = Eigen::Ref<const Eigen::VectorXd>;
+
 struct Data {
   explicit Data(const Model& model);
 
@@ -23,10 +26,13 @@ struct Data {
   std::vector<Matrix3d> R_WB;  // [n_bodies] rotation of body i in the world
   std::vector<Vector3d> p_WB;  // [n_bodies] origin of body i in the world
   std::vector<Vector6d> S;     // [n_bodies] motion axis of the joint of body i, world, entry 0 unused
+  std::vector<int> support;    // [n_bodies] frame_jacobian(q): bodies from the frame body to the root
 
   // ---- inertias: world_inertias() (called by crba, rnea, aba, centroidal, com) ----
   std::vector<SpatialInertia> I_W;  // [n_bodies] body inertia, world axes about world origin
   std::vector<SpatialInertia> I_C;  // [n_bodies] composite inertia of the subtree (crba, centroidal, com)
+  Eigen::Matrix<double, 6, Eigen::Dynamic> F;  // [6×n_bodies] crba: I_C[j] S_j (col 0 unused)
+  Eigen::RowVectorXd M_row;                    // [n_bodies] crba: one row of M in body order
 
   // ---- velocity / acceleration stage: forward_velocity_kinematics(), rnea, aba ----
   std::vector<Vector6d> v;  // [n_bodies] spatial velocity of body i

@@ -54,12 +54,21 @@ struct Model {
   std::vector<Matrix3d> body_inertia_c;   // lumped rotational inertia about the CoM, body axes
   std::vector<SpatialInertia> body_inertia;  // same, as spatial inertia about the body origin
   std::vector<int> body_joint;            // joint index of body i (−1 for the root)
+  std::vector<int> body_subtree_size;     // bodies in the subtree of i, which are i … i + size − 1
+  bool joint_order_is_body_order = true;  // joint k moves body k + 1 (false for a reordered reduced model)
 
   // ---- joint of body i (size n_bodies, entry 0 unused) ----
   std::vector<Matrix3d> joint_R_PJ;  // rotation of the joint frame in the parent body frame (q = 0)
   std::vector<Vector3d> joint_p_PJ;  // origin of the joint frame in the parent body frame
   std::vector<JointType> body_joint_type;
   std::vector<Vector3d> body_joint_axis;  // unit axis in the joint frame (= body frame)
+  // Derived at load time, for speed (joint.hpp): the axis as ±e_k (k = 0,1,2) when it
+  // is a coordinate axis, else k = −1; whether R_PJ is the identity; q and ν indices.
+  std::vector<int> body_joint_axis_index;
+  std::vector<double> body_joint_axis_sign;
+  std::vector<bool> joint_R_PJ_identity;
+  std::vector<int> body_q_index;  // index in q of the joint of body i (−1 for the root)
+  std::vector<int> body_v_index;  // index in ν of the joint of body i (−1 for the root)
 
   // ---- joints, in ν order (size n_joints) ----
   std::vector<std::string> joint_name;

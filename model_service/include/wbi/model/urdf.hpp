@@ -15,7 +15,7 @@
 //   order their joints appear in the file.
 // Errors: std::runtime_error naming the file and what is wrong (missing or
 // empty file, XML error with line, several roots or a loop, zero axis, negative
-// mass, non-physical inertia, unsupported joint type); std::invalid_argument for
+// mass, non-physical inertia (see LoadOptions::strict_inertia), unsupported joint type); std::invalid_argument for
 // unknown joint names in the options.
 #pragma once
 
@@ -31,6 +31,11 @@ struct LoadOptions {
   bool fixed_base = false;
   std::vector<std::string> joints;                // empty: all movable joints
   std::map<std::string, double> locked_positions;  // for joints not kept
+  // Inertia checks. Always: mass ≥ 0, finite values, ixx, iyy, izz ≥ 0.
+  // strict_inertia also requires a positive semi-definite inertia satisfying the
+  // triangle inequality; it is off by default because published models break it
+  // (GRiD's Atlas feet are indefinite, TALOS grippers break the triangle inequality).
+  bool strict_inertia = false;
 };
 
 Model load_urdf_file(const std::string& path, const LoadOptions& options = {});

@@ -1,0 +1,55 @@
+#include "wbi/model/crba.hpp"
+
+#include "../checks.hpp"
+#include "../inertias.hpp"
+#include "wbi/model/kinematics.hpp"
+
+namespace wbi::model {
+
+const Eigen::MatrixXd& mass_matrix(const Model& model, Data& data, const ConstVectorRef& q) {
+  forward_kinematics(model, data, q);
+  detail::world_inertias(model, data);
+  detail::composite_inertias(model, data);
+  Eigen::MatrixXd& M = data.M;
+  auto& F = data.F;
+  const int nb = model.base_nv;
+  M.setZero();  // entries of joints on different branches are 0
+  // F_j = I_C[j] S_j (world-origin force per unit q̇_j)
+  for (int j = 1; j < model.n_bodies; ++j) {
+    F.col(j) = data.I_C[j] * data.S[j];
+  }
+  // M_ij = S_iᵀ F_j for j in the subtree of i (bodies i … i + n − 1, contiguous by construction)
+  for (int i = 1; i < model.n_bodies; ++i) {
+    const int n = model.body_subtree_size[i];
+    const int vi = model.body_v_index[i];
+    if (model.joint_order_is_body_order) {
+      M.block(vi, vi, 1, n).noalias() = data.S[i].transpose() * F.middleCols(i, n);
+      M.block(vi + 1, vi, n - 1, 1) = M.block(vi, vi + 1, 1, n - 1).transpose();
+    } else {
+      data.M_row.segment(i, n).noalias() = data.S[i].transpose() * F.middleCols(i, n);
+      for (int j = i; j < i + n; ++j) {
+        M(vi, model.body_v_index[j]) = M(model.body_v_index[j], vi) = data.M_row[j];
+      }
+    }
+  }
+  if (nb == 6) {
+    // base rows: S_Bᵀ F_j = (f, n_O − p_B × f); base block: S_Bᵀ I_C[0] S_B
+    const Vector3d& p_B = data.p_WB[0];
+    for (int j = 1; j < model.n_bodies; ++j) {
+      const int vj = model.body_v_index[j];
+      M.block<3, 1>(0, vj) = F.col(j).head<3>();
+      M.block<3, 1>(3, vj) = F.col(j).tail<3>() - p_B.cross(F.col(j).head<3>());
+    }
+    Matrix6d M_BB;
+    for (int k = 0; k < 6; ++k) {
+      Vector6d e = Vector6d::Zero();
+      e[k] = 1.0;
+      M_BB.col(k) = detail::base_force(p_B, data.I_C[0] * detail::base_motion(p_B, e));
+    }
+    M.topLeftCorner<6, 6>() = 0.5 * (M_BB + M_BB.transpose());  // exactly symmetric
+    M.block(nb, 0, model.n_joints, 6) = M.block(0, nb, 6, model.n_joints).transpose();
+  }
+  return M;
+}
+
+}  // namespace wbi::model

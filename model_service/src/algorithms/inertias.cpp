@@ -1,0 +1,50 @@
+#include "../inertias.hpp"
+
+namespace wbi::model::detail {
+
+void world_inertias(const Model& model, Data& data) {
+  // c = p + R c_B;  I_O = R I_c Rᵀ + m [c]×ᵀ[c]×
+  for (int i = 0; i < model.n_bodies; ++i) {
+    const double m = model.body_mass[i];
+    const Matrix3d& R = data.R_WB[i];
+    const Vector3d c = data.p_WB[i] + R * model.body_com[i];
+    SpatialInertia& I = data.I_W[i];
+    I.m = m;
+    I.h = m * c;
+    // R I_c Rᵀ, symmetric: T = R I_c, then the 6 unique entries of T Rᵀ
+    Matrix3d T;
+    T.noalias() = R * model.body_inertia_c[i];
+    const double cc = c.squaredNorm();
+    for (int a = 0; a < 3; ++a) {
+      for (int b = a; b < 3; ++b) {
+        I.I(a, b) = I.I(b, a) = T.row(a).dot(R.row(b)) + m * ((a == b ? cc : 0.0) - c[a] * c[b]);
+      }
+    }
+  }
+}
+
+void composite_inertias(const Model& model, Data& data) {
+  // I_C[i] = I_W[i] + Σ_children I_C[c], leaves to root
+  for (int i = 0; i < model.n_bodies; ++i) {
+    data.I_C[i] = data.I_W[i];
+  }
+  for (int i = model.n_bodies - 1; i > 0; --i) {
+    data.I_C[model.parent[i]] += data.I_C[i];
+  }
+}
+
+void composite_mass_moments(const Model& model, Data& data) {
+  // m_C[i] = Σ_subtree m,  h_C[i] = Σ_subtree m c
+  for (int i = 0; i < model.n_bodies; ++i) {
+    const double m = model.body_mass[i];
+    data.I_C[i].m = m;
+    data.I_C[i].h = m * (data.p_WB[i] + data.R_WB[i] * model.body_com[i]);
+  }
+  for (int i = model.n_bodies - 1; i > 0; --i) {
+    const int lambda = model.parent[i];
+    data.I_C[lambda].m += data.I_C[i].m;
+    data.I_C[lambda].h += data.I_C[i].h;
+  }
+}
+
+}  // namespace wbi::model::detail

@@ -1,0 +1,460 @@
+// URDF → Model. The XML is first read with tinyxml2 to report syntax errors
+// with their line and to check the tree structure (one root, no loops, no
+// dangling links); urdfdom then provides the values.
+#include "wbi/model/urdf.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <tinyxml2.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include "joint.hpp"
+
+namespace wbi::model {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct Placement {
+  Matrix3d R = Matrix3d::Identity();
+  Vector3d p = Vector3d::Zero();
+  Placement operator*(const Placement& o) const { return {R * o.R, p + R * o.p}; }
+};
+
+Placement to_placement(const urdf::Pose& pose) {
+  Placement x;
+  x.p = Vector3d(pose.position.x, pose.position.y, pose.position.z);
+  x.R = Eigen::Quaterniond(pose.rotation.w, pose.rotation.x, pose.rotation.y, pose.rotation.z)
+            .normalized()
+            .toRotationMatrix();
+  return x;
+}
+
+class Error {
+ public:
+  explicit Error(std::string source) : source_(std::move(source)) {}
+  [[noreturn]] void fail(const std::string& what) const {
+    throw std::runtime_error("URDF '" + source_ + "': " + what);
+  }
+
+ private:
+  std::string source_;
+};
+
+std::string line_of(const tinyxml2::XMLElement* e) {
+  return " (line " + std::to_string(e->GetLineNum()) + ")";
+}
+
+// What the raw XML says about one joint.
+struct RawJoint {
+  std::string parent, child, type;
+  int order = 0;  // position in the file
+  int line = 0;
+};
+
+// Structure checks on the raw XML; returns the joints by name.
+std::map<std::string, RawJoint> check_structure(const std::string& xml, const Error& err) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
+    err.fail("XML error at line " + std::to_string(doc.ErrorLineNum()) + ": " + doc.ErrorStr());
+  }
+  const tinyxml2::XMLElement* robot = doc.RootElement();
+  if (robot == nullptr || std::string(robot->Name()) != "robot") {
+    err.fail("the root element is not <robot>");
+  }
+  std::map<std::string, int> link_line;
+  for (auto* l = robot->FirstChildElement("link"); l != nullptr; l = l->NextSiblingElement("link")) {
+    const char* name = l->Attribute("name");
+    if (name == nullptr) {
+      err.fail("<link> without a name" + line_of(l));
+    }
+    if (!link_line.emplace(name, l->GetLineNum()).second) {
+      err.fail("link '" + std::string(name) + "' is defined twice" + line_of(l));
+    }
+  }
+  if (link_line.empty()) {
+    err.fail("no <link> in <robot>");
+  }
+  std::map<std::string, RawJoint> joints;
+  std::map<std::string, std::string> parent_joint;  // child link → joint
+  int order = 0;
+  for (auto* j = robot->FirstChildElement("joint"); j != nullptr;
+       j = j->NextSiblingElement("joint")) {
+    const char* name = j->Attribute("name");
+    if (name == nullptr) {
+      err.fail("<joint> without a name" + line_of(j));
+    }
+    RawJoint raw;
+    raw.order = order++;
+    raw.line = j->GetLineNum();
+    raw.type = j->Attribute("type") != nullptr ? j->Attribute("type") : "";
+    const auto* p = j->FirstChildElement("parent");
+    const auto* c = j->FirstChildElement("child");
+    if (p == nullptr || p->Attribute("link") == nullptr || c == nullptr ||
+        c->Attribute("link") == nullptr) {
+      err.fail("joint '" + std::string(name) + "' needs <parent link=…> and <child link=…>" +
+               line_of(j));
+    }
+    raw.parent = p->Attribute("link");
+    raw.child = c->Attribute("link");
+    for (const std::string& l : {raw.parent, raw.child}) {
+      if (link_line.count(l) == 0) {
+        err.fail("joint '" + std::string(name) + "' refers to unknown link '" + l + "'" + line_of(j));
+      }
+    }
+    if (raw.parent == raw.child) {
+      err.fail("joint '" + std::string(name) + "' connects link '" + raw.parent + "' to itself" +
+               line_of(j));
+    }
+    if (auto it = parent_joint.find(raw.child); it != parent_joint.end()) {
+      err.fail("link '" + raw.child + "' is the child of two joints ('" + it->second + "' and '" +
+               name + "'): kinematic loop" + line_of(j));
+    }
+    parent_joint[raw.child] = name;
+    // the axis, checked on the raw text: a zero axis cannot be normalised
+    if (const auto* axis = j->FirstChildElement("axis");
+        axis != nullptr && raw.type != "fixed" && axis->Attribute("xyz") != nullptr) {
+      std::istringstream in(axis->Attribute("xyz"));
+      double x = 0, y = 0, z = 0;
+      if (!(in >> x >> y >> z) || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) {
+        err.fail("joint '" + std::string(name) + "' has a malformed axis" + line_of(axis));
+      }
+      if (std::sqrt(x * x + y * y + z * z) < 1e-12) {
+        err.fail("joint '" + std::string(name) + "' has a zero axis" + line_of(axis));
+      }
+    }
+    if (!joints.emplace(name, raw).second) {
+      err.fail("joint '" + std::string(name) + "' is defined twice" + line_of(j));
+    }
+  }
+  std::vector<std::string> roots;
+  for (const auto& [link, line] : link_line) {
+    if (parent_joint.count(link) == 0) {
+      roots.push_back(link);
+    }
+  }
+  if (roots.empty()) {
+    err.fail("no root link: the joints form a kinematic loop");
+  }
+  if (roots.size() > 1) {
+    std::string list;
+    for (const auto& r : roots) {
+      list += (list.empty() ? "'" : ", '") + r + "'";
+    }
+    err.fail("several root links (" + list + "): the links do not form one tree");
+  }
+  // every link reachable from the root, else a loop
+  std::map<std::string, std::vector<std::string>> children;
+  for (const auto& [name, raw] : joints) {
+    children[raw.parent].push_back(raw.child);
+  }
+  std::set<std::string> seen{roots.front()};
+  std::vector<std::string> stack{roots.front()};
+  while (!stack.empty()) {
+    const std::string l = stack.back();
+    stack.pop_back();
+    for (const auto& c : children[l]) {
+      if (seen.insert(c).second) {
+        stack.push_back(c);
+      }
+    }
+  }
+  if (seen.size() != link_line.size()) {
+    for (const auto& [link, line] : link_line) {
+      if (seen.count(link) == 0) {
+        err.fail("link '" + link + "' (line " + std::to_string(line) +
+                 ") is not reachable from the root: kinematic loop");
+      }
+    }
+  }
+  return joints;
+}
+
+void check_inertial(const urdf::Link& link, bool strict, const Error& err) {
+  if (!link.inertial) {
+    return;
+  }
+  const urdf::Inertial& in = *link.inertial;
+  const double m = in.mass;
+  if (!std::isfinite(m) || m < 0.0) {
+    err.fail("link '" + link.name + "' has a negative or non-finite mass (" + std::to_string(m) + ")");
+  }
+  Matrix3d I;
+  I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+  if (!I.allFinite()) {
+    err.fail("link '" + link.name + "' has a non-finite inertia");
+  }
+  // always: no negative moment of inertia about the inertial axes
+  if (I.diagonal().minCoeff() < 0.0) {
+    std::ostringstream msg;
+    msg << "link '" << link.name << "' has a non-physical inertia (negative moment: ixx " << in.ixx
+        << ", iyy " << in.iyy << ", izz " << in.izz << ")";
+    err.fail(msg.str());
+  }
+  if (!strict) {
+    return;
+  }
+  // strict: positive semi-definite and triangle inequality λ1 + λ2 ≥ λ3
+  const Vector3d e = Eigen::SelfAdjointEigenSolver<Matrix3d>(I, Eigen::EigenvaluesOnly).eigenvalues();
+  const double tol = 1e-9 * std::max(1e-9, e.cwiseAbs().maxCoeff());
+  if (e[0] < -tol || e[0] + e[1] < e[2] - tol) {
+    std::ostringstream msg;
+    msg << "link '" << link.name << "' has a non-physical inertia (principal moments " << e[0]
+        << ", " << e[1] << ", " << e[2] << ")";
+    err.fail(msg.str());
+  }
+}
+
+struct Builder {
+  const urdf::ModelInterface& urdf;
+  const std::map<std::string, RawJoint>& raw;
+  const LoadOptions& options;
+  const Error& err;
+  Model model;
+  std::vector<SpatialInertia> acc;  // per body, about the body origin, body axes
+  std::set<std::string> kept;       // joints that move (reduced model), empty: all
+  std::map<std::string, int> joint_to_body;
+
+  bool moves(const urdf::Joint& j) const {
+    const bool movable = j.type == urdf::Joint::REVOLUTE || j.type == urdf::Joint::CONTINUOUS ||
+                         j.type == urdf::Joint::PRISMATIC;
+    return movable && (options.joints.empty() || kept.count(j.name) > 0);
+  }
+
+  void add_link(const urdf::Link& link, int body, const Placement& X_BL) {
+    model.frame_name.push_back(link.name);
+    model.frame_body.push_back(body);
+    model.frame_R_BF.push_back(X_BL.R);
+    model.frame_p_BF.push_back(X_BL.p);
+    if (link.inertial && link.inertial->mass > 0.0) {
+      const urdf::Inertial& in = *link.inertial;
+      const Placement X_BI = X_BL * to_placement(in.origin);
+      Matrix3d I;
+      I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+      acc[body] += SpatialInertia::from_com(in.mass, X_BI.p, X_BI.R * I * X_BI.R.transpose());
+    }
+    // children in file order
+    std::vector<const urdf::Joint*> joints;
+    for (const auto& j : link.child_joints) {
+      joints.push_back(j.get());
+    }
+    std::sort(joints.begin(), joints.end(), [&](const urdf::Joint* a, const urdf::Joint* b) {
+      return raw.at(a->name).order < raw.at(b->name).order;
+    });
+    for (const urdf::Joint* j : joints) {
+      const urdf::LinkConstSharedPtr child = urdf.getLink(j->child_link_name);
+      const Placement X_BJ = X_BL * to_placement(j->parent_to_joint_origin_transform);
+      if (moves(*j)) {
+        const int b = new_body(*j, body, X_BJ);
+        add_link(*child, b, Placement{});
+      } else {
+        Placement X_JC;
+        if (j->type != urdf::Joint::FIXED) {  // locked movable joint
+          double q = 0.0;
+          if (auto it = options.locked_positions.find(j->name); it != options.locked_positions.end()) {
+            q = it->second;
+          }
+          const detail::JointCalc jc = detail::joint_calc(type_of(*j), axis_of(*j), q);
+          X_JC = Placement{jc.R, jc.p};
+          model.locked_joint_name.push_back(j->name);
+          model.locked_joint_position.push_back(q);
+        }
+        add_link(*child, body, X_BJ * X_JC);
+      }
+    }
+  }
+
+  static JointType type_of(const urdf::Joint& j) {
+    return j.type == urdf::Joint::PRISMATIC ? JointType::kPrismatic : JointType::kRevolute;
+  }
+  Vector3d axis_of(const urdf::Joint& j) const {
+    const Vector3d a(j.axis.x, j.axis.y, j.axis.z);
+    if (!(a.norm() > 1e-12)) {
+      err.fail("joint '" + j.name + "' has a zero axis");
+    }
+    return a.normalized();
+  }
+
+  int new_body(const urdf::Joint& j, int parent, const Placement& X_PJ) {
+    const int b = static_cast<int>(model.parent.size());
+    model.parent.push_back(parent);
+    model.body_name.push_back(j.child_link_name);
+    model.joint_R_PJ.push_back(X_PJ.R);
+    model.joint_p_PJ.push_back(X_PJ.p);
+    model.body_joint_type.push_back(type_of(j));
+    model.body_joint_axis.push_back(axis_of(j));
+    acc.emplace_back();
+    joint_to_body[j.name] = b;
+    return b;
+  }
+};
+
+}  // namespace
+
+Model load_urdf_string(const std::string& xml, const LoadOptions& options,
+                       const std::string& source) {
+  const Error err(source);
+  if (xml.find_first_not_of(" \t\r\n") == std::string::npos) {
+    err.fail("the file is empty");
+  }
+  const std::map<std::string, RawJoint> raw = check_structure(xml, err);
+  urdf::ModelInterfaceSharedPtr urdf;
+  try {
+    urdf = urdf::parseURDF(xml);
+  } catch (const std::exception& e) {
+    err.fail(std::string("urdfdom: ") + e.what());
+  }
+  if (!urdf) {
+    err.fail("urdfdom could not build the model (see its message above)");
+  }
+  for (const auto& [name, link] : urdf->links_) {
+    check_inertial(*link, options.strict_inertia, err);
+  }
+  for (const auto& [name, joint] : urdf->joints_) {
+    if (joint->type == urdf::Joint::FLOATING || joint->type == urdf::Joint::PLANAR ||
+        joint->type == urdf::Joint::UNKNOWN) {
+      err.fail("joint '" + name + "' has type '" + raw.at(name).type +
+               "', which is not supported (revolute, continuous, prismatic, fixed)");
+    }
+  }
+
+  Builder b{*urdf, raw, options, err, Model{}, {}, {}, {}};
+  for (const std::string& j : options.joints) {
+    const auto joint = urdf->getJoint(j);
+    if (!joint) {
+      throw std::invalid_argument("URDF '" + source + "': unknown joint '" + j + "'");
+    }
+    if (joint->type == urdf::Joint::FIXED) {
+      throw std::invalid_argument("URDF '" + source + "': joint '" + j + "' is fixed");
+    }
+    if (!b.kept.insert(j).second) {
+      throw std::invalid_argument("URDF '" + source + "': joint '" + j + "' is listed twice");
+    }
+  }
+  for (const auto& [j, q] : options.locked_positions) {
+    if (!urdf->getJoint(j)) {
+      throw std::invalid_argument("URDF '" + source + "': unknown locked joint '" + j + "'");
+    }
+  }
+
+  const urdf::LinkConstSharedPtr root = urdf->getRoot();
+  const bool massless_root = !root->inertial || root->inertial->mass <= 0.0;
+  Model& m = b.model;
+  m.name = urdf->getName();
+  m.source = source;
+  m.floating_base = !(options.fixed_base || (root->name == "world" && massless_root));
+  m.base_nv = m.floating_base ? 6 : 0;
+  m.base_nq = m.floating_base ? 7 : 0;
+  // body 0: the root
+  m.parent.push_back(-1);
+  m.body_name.push_back(root->name);
+  m.joint_R_PJ.push_back(Matrix3d::Identity());
+  m.joint_p_PJ.push_back(Vector3d::Zero());
+  m.body_joint_type.push_back(JointType::kRevolute);
+  m.body_joint_axis.push_back(Vector3d::UnitZ());
+  b.acc.emplace_back();
+  b.add_link(*root, 0, Placement{});
+
+  m.n_bodies = static_cast<int>(m.parent.size());
+  m.n_joints = m.n_bodies - 1;
+  m.nv = m.base_nv + m.n_joints;
+  m.nq = m.base_nq + m.n_joints;
+  // inertias: mass, CoM, inertia about the CoM, from the accumulated sums
+  for (const SpatialInertia& I : b.acc) {
+    const Vector3d c = I.m > 0.0 ? Vector3d(I.h / I.m) : Vector3d::Zero();
+    m.body_mass.push_back(I.m);
+    m.body_com.push_back(c);
+    m.body_inertia_c.push_back(I.I - I.m * (c.squaredNorm() * Matrix3d::Identity() - c * c.transpose()));
+    m.body_inertia.push_back(I);
+    m.total_mass += I.m;
+  }
+  // joint order: list order for a reduced model, else body order
+  std::vector<int> order;  // bodies in ν order
+  if (options.joints.empty()) {
+    for (int i = 1; i < m.n_bodies; ++i) {
+      order.push_back(i);
+    }
+  } else {
+    for (const std::string& j : options.joints) {
+      order.push_back(b.joint_to_body.at(j));
+    }
+  }
+  m.body_subtree_size.assign(static_cast<std::size_t>(m.n_bodies), 1);
+  for (int i = m.n_bodies - 1; i > 0; --i) {
+    m.body_subtree_size[m.parent[i]] += m.body_subtree_size[i];
+  }
+  for (int k = 0; k < m.n_joints; ++k) {
+    m.joint_order_is_body_order = m.joint_order_is_body_order && order[static_cast<std::size_t>(k)] == k + 1;
+  }
+  m.body_joint.assign(static_cast<std::size_t>(m.n_bodies), -1);
+  m.body_q_index.assign(static_cast<std::size_t>(m.n_bodies), -1);
+  m.body_v_index.assign(static_cast<std::size_t>(m.n_bodies), -1);
+  for (int i = 0; i < m.n_bodies; ++i) {
+    const Vector3d& a = m.body_joint_axis[i];
+    int k = -1;
+    double sign = 1.0;
+    for (int c = 0; c < 3; ++c) {
+      if (std::abs(std::abs(a[c]) - 1.0) == 0.0 && a.squaredNorm() == 1.0) {
+        k = c;
+        sign = a[c] > 0 ? 1.0 : -1.0;
+      }
+    }
+    m.body_joint_axis_index.push_back(k);
+    m.body_joint_axis_sign.push_back(sign);
+    m.joint_R_PJ_identity.push_back(m.joint_R_PJ[i] == Matrix3d::Identity());
+  }
+  for (int k = 0; k < m.n_joints; ++k) {
+    const int body = order[static_cast<std::size_t>(k)];
+    std::string name;
+    for (const auto& [jn, jb] : b.joint_to_body) {
+      if (jb == body) {
+        name = jn;
+      }
+    }
+    const urdf::Joint& j = *urdf->getJoint(name);
+    m.body_joint[body] = k;
+    m.body_q_index[body] = m.base_nq + k;
+    m.body_v_index[body] = m.base_nv + k;
+    m.joint_name.push_back(name);
+    m.joint_body.push_back(body);
+    m.joint_q_index.push_back(m.base_nq + k);
+    m.joint_v_index.push_back(m.base_nv + k);
+    m.joint_type.push_back(Builder::type_of(j));
+    const bool continuous = j.type == urdf::Joint::CONTINUOUS;
+    m.joint_continuous.push_back(continuous);
+    m.joint_lower.push_back(continuous || !j.limits ? -kInf : j.limits->lower);
+    m.joint_upper.push_back(continuous || !j.limits ? kInf : j.limits->upper);
+    m.joint_velocity_limit.push_back(j.limits && j.limits->velocity > 0 ? j.limits->velocity : kInf);
+    m.joint_effort_limit.push_back(j.limits && j.limits->effort > 0 ? j.limits->effort : kInf);
+    MimicInfo mimic;
+    if (j.mimic) {
+      mimic.joint = j.mimic->joint_name;
+      mimic.multiplier = j.mimic->multiplier;
+      mimic.offset = j.mimic->offset;
+    }
+    m.joint_mimic.push_back(mimic);
+  }
+  return m;
+}
+
+Model load_urdf_file(const std::string& path, const LoadOptions& options) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw std::runtime_error("URDF '" + path + "': cannot open the file (missing or unreadable)");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return load_urdf_string(text.str(), options, path);
+}
+
+}  // namespace wbi::model
