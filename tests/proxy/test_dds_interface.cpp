@@ -162,6 +162,17 @@ TEST(DdsInterface, CommandsCarryTheRobotsJointIndices) {
   ASSERT_TRUE(peer.parameters().wait_newer(parameters, 0, 5s));
   EXPECT_DOUBLE_EQ(parameters.sample.kp()[1], 200.0);
   EXPECT_TRUE(std::isnan(parameters.sample.kd()[0]));  // untouched parameters travel as NaN
+
+  wbi::dds::Participant estimator("estimator");
+  wbi::dds::Subscriber<wbi::msg::EstimatorParameter> estimator_parameters(
+      estimator, topics::estimator_parameters("arm_cmd"), qos::kCommand);
+  ASSERT_TRUE(estimator_parameters.wait_for_publishers(1, 10s));
+  robot->set_estimation_parameter("fixed_link", robot->frame_index("ee_link"));
+  wbi::dds::Received<wbi::msg::EstimatorParameter> parameter;
+  ASSERT_TRUE(estimator_parameters.wait_newer(parameter, 0, 5s));
+  EXPECT_EQ(parameter.sample.name(), "fixed_link");
+  EXPECT_EQ(parameter.sample.text(), "ee_link");
+  EXPECT_THROW(robot->set_estimation_parameter("fixed_link", 1e6), wbi::Error);
 }
 
 TEST(DdsInterface, ModelOverASubsetAgreesWithTheFullModel) {

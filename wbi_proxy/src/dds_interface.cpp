@@ -102,7 +102,9 @@ class DdsInterface final : public WholeBodyInterface {
                    dds::topics::state(options.robot)),
         commands_(participant_, dds::topics::commands(options.robot), dds::qos::kCommand),
         parameters_(participant_, dds::topics::control_parameters(options.robot),
-                    dds::qos::kCommand) {}
+                    dds::qos::kCommand),
+        estimator_parameters_(participant_, dds::topics::estimator_parameters(options.robot),
+                              dds::qos::kCommand) {}
 
   // ---- WholeBodyInterface ----
 
@@ -241,9 +243,23 @@ class DdsInterface final : public WholeBodyInterface {
     return state_.stamp();
   }
 
-  void set_estimation_parameter(const std::string& name, double /*value*/) override {
-    throw Error("estimator parameter '" + name +
-                "' cannot be set: the estimator of this build has no parameter service");
+  // Sent to the estimator on wbi/<robot>/state/parameters; "fixed_link" takes
+  // the link's index in frame_list().
+  void set_estimation_parameter(const std::string& name, double value) override {
+    require_init();
+    wbi::msg::EstimatorParameter parameter;
+    parameter.header().robot(options_.robot);
+    parameter.header().stamp_ns(system_now_ns());
+    parameter.name(name);
+    parameter.value(value);
+    if (name == "fixed_link") {
+      const int frame = static_cast<int>(value);
+      check_index("fixed_link frame", frame, static_cast<int>(frame_list().size()));
+      parameter.text(frame_list()[static_cast<std::size_t>(frame)]);
+    }
+    if (!estimator_parameters_.publish(parameter)) {
+      throw Error("estimator parameter '" + name + "' for robot '" + options_.robot + "' not sent");
+    }
   }
 
   // ---- Model ----
@@ -597,6 +613,7 @@ class DdsInterface final : public WholeBodyInterface {
   Stream<wbi::msg::StateEstimate, kEstimateKinds> state_;
   dds::Publisher<wbi::msg::ActuatorCommand> commands_;
   dds::Publisher<wbi::msg::ControlParameters> parameters_;
+  dds::Publisher<wbi::msg::EstimatorParameter> estimator_parameters_;
 
   IdList controlled_;
   bool initialized_ = false;

@@ -18,6 +18,12 @@ inline std::string control_parameters(const std::string& robot) {
   return robot_topic(robot, "control_parameters");
 }
 inline std::string state(const std::string& robot) { return robot_topic(robot, "state"); }
+inline std::string estimator_parameters(const std::string& robot) {
+  return robot_topic(robot, "state/parameters");
+}
+// The model service of a robot (request/reply, see rpc.hpp): its topics are
+// model_request(robot) and model_reply(robot).
+inline std::string model_service(const std::string& robot) { return robot_topic(robot, "model"); }
 inline std::string model_request(const std::string& robot) { return robot_topic(robot, "model/request"); }
 inline std::string model_reply(const std::string& robot) { return robot_topic(robot, "model/reply"); }
 

@@ -22,9 +22,9 @@ class State {
   // The base pose as a homogeneous transform.
   virtual Stamp read_base_pose(Transform& world_H_base, ReadMode mode = ReadMode::latest) = 0;
 
-  // Changes a parameter of the estimator (e.g. "velocity_window", or
-  // "fixed_link" with the link's index in frame_list()). Throws Error naming an
-  // unknown parameter.
+  // Changes a parameter of the estimator: "fixed_link" (value: the link's
+  // index in frame_list()), "reset", or a parameter of its method (e.g.
+  // "process_noise"). The estimator reports a parameter it rejects.
   virtual void set_estimation_parameter(const std::string& name, double value) = 0;
 };
 
