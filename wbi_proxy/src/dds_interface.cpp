@@ -7,6 +7,7 @@
 // calls need no mapping.
 #include "wbi/dds_interface.hpp"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -451,7 +452,10 @@ class DdsInterface final : public WholeBodyInterface {
     auto& header = command_.header();
     header.stamp_ns(system_now_ns());
     header.seq(command_seq_++);
-    command_.tick(sensors_.received.sample.header().seq());  // the tick this command answers
+    // Lockstep: the tick this command answers is the newest sample the controller read
+    // (sensor and state samples carry the robot's tick as their sequence number).
+    command_.tick(std::max(sensors_.received.sample.header().seq(),
+                           state_.received.sample.header().seq()));
     for (std::size_t k = 0; k < modes_.size(); ++k) {
       command_.modes()[k] = to_message(modes_[k]);
       command_.references()[k] = references_[static_cast<Eigen::Index>(k)];
