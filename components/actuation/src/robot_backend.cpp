@@ -1,0 +1,132 @@
+#include "wbi/actuation/robot_backend.hpp"
+
+#include <stdexcept>
+
+namespace wbi::actuation {
+
+const char* to_string(LifecycleState state) {
+  switch (state) {
+    case LifecycleState::kUnconfigured:
+      return "UNCONFIGURED";
+    case LifecycleState::kInactive:
+      return "INACTIVE";
+    case LifecycleState::kActive:
+      return "ACTIVE";
+    case LifecycleState::kFinalized:
+      return "FINALIZED";
+  }
+  return "?";
+}
+
+int BackendDescription::joint_index(const std::string& name) const {
+  for (std::size_t i = 0; i < joint_names.size(); ++i) {
+    if (joint_names[i] == name) {
+      return static_cast<int>(i);
+    }
+  }
+  throw std::invalid_argument("robot '" + robot + "': unknown joint '" + name + "'");
+}
+
+void SensorReadings::resize(const BackendDescription& description) {
+  const auto n = static_cast<Eigen::Index>(description.n_joints());
+  position = Eigen::VectorXd::Zero(n);
+  velocity = Eigen::VectorXd::Zero(n);
+  torque = Eigen::VectorXd::Zero(n);
+  pwm = Eigen::VectorXd::Zero(n);
+  imus.assign(description.imu_names.size(), ImuReading{});
+  force_torque.assign(description.ft_names.size(), ForceTorqueReading{});
+}
+
+void JointCommands::resize(int n_joints) {
+  mode.assign(static_cast<std::size_t>(n_joints), OutputMode::kIdle);
+  value = Eigen::VectorXd::Zero(n_joints);
+}
+
+void JointCommands::set_idle() {
+  for (auto& m : mode) {
+    m = OutputMode::kIdle;
+  }
+  value.setZero();
+}
+
+namespace {
+void require(LifecycleState actual, LifecycleState wanted, const char* what) {
+  if (actual != wanted) {
+    throw std::logic_error(std::string("robot backend: ") + what + " needs state " +
+                           to_string(wanted) + ", the backend is " + to_string(actual));
+  }
+}
+}  // namespace
+
+void RobotBackend::configure() {
+  require(state_, LifecycleState::kUnconfigured, "configure()");
+  BackendDescription d = on_configure();
+  const std::size_t n = d.joint_names.size();
+  if (d.position_lower.size() != n || d.position_upper.size() != n ||
+      d.velocity_limit.size() != n || d.effort_limit.size() != n ||
+      d.imu_frames.size() != d.imu_names.size() || d.ft_frames.size() != d.ft_names.size()) {
+    throw std::logic_error("robot backend '" + d.robot +
+                           "': on_configure() returned a description with inconsistent sizes");
+  }
+  description_ = std::move(d);
+  readings_.resize(description_);
+  commands_.resize(description_.n_joints());
+  idle_.resize(description_.n_joints());
+  state_ = LifecycleState::kInactive;
+}
+
+void RobotBackend::activate() {
+  require(state_, LifecycleState::kInactive, "activate()");
+  on_activate();
+  commands_.set_idle();
+  state_ = LifecycleState::kActive;
+}
+
+void RobotBackend::deactivate() {
+  require(state_, LifecycleState::kActive, "deactivate()");
+  on_deactivate();
+  commands_.set_idle();
+  state_ = LifecycleState::kInactive;
+}
+
+void RobotBackend::cleanup() {
+  require(state_, LifecycleState::kInactive, "cleanup()");
+  on_cleanup();
+  state_ = LifecycleState::kUnconfigured;
+}
+
+void RobotBackend::shutdown() {
+  if (state_ == LifecycleState::kFinalized) {
+    return;
+  }
+  if (state_ == LifecycleState::kActive) {
+    on_deactivate();
+    commands_.set_idle();
+  }
+  on_shutdown();
+  state_ = LifecycleState::kFinalized;
+}
+
+void RobotBackend::read(Time time, Duration period) {
+  if (state_ != LifecycleState::kInactive && state_ != LifecycleState::kActive) {
+    require(state_, LifecycleState::kInactive, "read()");
+  }
+  on_read(time, period, readings_);
+}
+
+void RobotBackend::write(Time time, Duration period) {
+  if (state_ == LifecycleState::kActive) {
+    const auto n = static_cast<std::size_t>(description_.n_joints());
+    if (commands_.mode.size() != n || static_cast<std::size_t>(commands_.value.size()) != n) {
+      throw std::invalid_argument("robot backend '" + description_.robot +
+                                  "': commands have the wrong size (expected " +
+                                  std::to_string(n) + " joints)");
+    }
+    on_write(time, period, commands_);
+    return;
+  }
+  require(state_, LifecycleState::kInactive, "write()");
+  on_write(time, period, idle_);
+}
+
+}  // namespace wbi::actuation

@@ -1,0 +1,109 @@
+// SimBackend — the simulated robot behind the RobotBackend interface.
+//
+// Plant: forward dynamics (ABA of wbi::model) integrated with semi-implicit
+// (symplectic) Euler at h = step/substeps,
+//   ν_{k+1} = ν_k + h ν̇(q_k, ν_k, τ_k),   q_{k+1} = q_k ⊕ h ν_{k+1}
+// where ⊕ moves the base position by h ṗ and rotates the base quaternion by
+// exp(h ω) on the left (ω in world axes, mixed representation), renormalised.
+// τ_k = actuator torque (commands held over the step) + joint limit springs +
+// joint damping and friction; external wrenches = ground contacts + pushes.
+// See components/sim/README.md for every model and parameter.
+//
+// Use: construct with a SimConfig, then the RobotBackend lifecycle
+// (configure/activate). Each control period: read(t, h_c) → compute commands →
+// write(t, h_c) → step(). time() is the simulation time (step() adds h_c).
+// step() and read()/write() never allocate.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "wbi/actuation/robot_backend.hpp"
+#include "wbi/model/data.hpp"
+#include "wbi/model/model.hpp"
+#include "wbi/sim/sim_config.hpp"
+
+namespace wbi::sim {
+
+using actuation::Duration;
+using actuation::Time;
+
+// One contact point and its state.
+struct ContactPoint {
+  int link = 0;  // index into GroundTruth::contact_links
+  int frame = 0;  // model frame of the link
+  Eigen::Vector3d p_F = Eigen::Vector3d::Zero();  // position in the link frame
+  // state (ground truth)
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();      // world position
+  Eigen::Vector3d force_W = Eigen::Vector3d::Zero();  // ground → robot force, world axes
+  Eigen::Vector2d anchor = Eigen::Vector2d::Zero();   // stick anchor (x, y) on the ground
+  bool in_contact = false;
+  bool slipping = false;
+};
+
+// Exact state of the simulation, for tests and benchmarks.
+struct GroundTruth {
+  double time = 0.0;     // [s]
+  Eigen::VectorXd q;     // [nq] (base p, quaternion w,x,y,z, joints) or joints
+  Eigen::VectorXd nu;    // [nv] mixed velocity (ṗ_B, ω_B world axes, q̇)
+  Eigen::VectorXd dnu;   // [nv] ν̇ of the last substep
+  Eigen::VectorXd tau;   // [n] total joint torque of the last substep (actuators + limits + friction)
+  Eigen::VectorXd tau_actuator;  // [n] actuator torque of the last substep
+  Eigen::Vector3d base_position = Eigen::Vector3d::Zero();
+  Eigen::Vector4d base_orientation{1.0, 0.0, 0.0, 0.0};  // w, x, y, z
+  Eigen::Matrix<double, 6, 1> base_velocity = Eigen::Matrix<double, 6, 1>::Zero();  // (ṗ, ω), world
+  Eigen::Matrix<double, 6, 1> base_acceleration = Eigen::Matrix<double, 6, 1>::Zero();  // (p̈, ω̇)
+  std::vector<std::string> contact_links;  // links with contact points
+  // [n_contact_links] total ground wrench on each contact link: (force, moment
+  // about the link frame origin), world axes.
+  std::vector<Eigen::Matrix<double, 6, 1>> contact_wrenches;
+  std::vector<ContactPoint> contact_points;
+};
+
+class SimBackend final : public actuation::RobotBackend {
+ public:
+  explicit SimBackend(SimConfig config);
+  ~SimBackend() override;
+
+  // Advance the plant by one control period (config().step), in `substeps`
+  // integration steps, with the commands of the last write(). Any state.
+  // Needs configure().
+  void step();
+
+  const SimConfig& config() const { return config_; }
+  double time() const { return time_; }
+  Time stamp() const;  // time() in ns
+  const GroundTruth& ground_truth() const { return truth_; }
+  const model::Model& model() const;  // after configure()
+
+  // Test helpers (allocate; not for the loop): overwrite the state.
+  void set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& nu);
+  // Total mechanical energy T + V (kinetic + gravitational) of the current state.
+  double mechanical_energy();
+
+ protected:
+  actuation::BackendDescription on_configure() override;
+  void on_activate() override;
+  void on_deactivate() override;
+  void on_cleanup() override;  // releases the model and the state
+  void on_read(Time time, Duration period, actuation::SensorReadings& out) override;
+  void on_write(Time time, Duration period, const actuation::JointCommands& in) override;
+
+ private:
+  struct Impl;
+  void substep(double h);
+  void compute_contacts();
+  void compute_sensors_after_step();
+
+  SimConfig config_;
+  std::unique_ptr<Impl> impl_;
+  double time_ = 0.0;
+  std::int64_t step_count_ = 0;
+  GroundTruth truth_;
+};
+
+}  // namespace wbi::sim

@@ -1,0 +1,88 @@
+// No heap allocation per tick: the sim, actuation and model sources are compiled
+// again into this test with EIGEN_RUNTIME_NO_MALLOC and without NDEBUG (so that
+// Eigen's malloc check is live), and the global operator new counts every other
+// allocation. The loop runs read → submit → update → write → step on the humanoid
+// with contacts, IMU, F/T sensors, a push and noise.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <new>
+
+#include "sim_test_common.hpp"
+
+namespace {
+std::atomic<long> g_allocations{0};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size == 0 ? 1 : size)) {
+    return p;
+  }
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace wbi::sim::test {
+namespace {
+
+#ifndef EIGEN_RUNTIME_NO_MALLOC
+#error "this test must be built with EIGEN_RUNTIME_NO_MALLOC"
+#endif
+
+void run_without_allocation(SimConfig c, ControlMode mode) {
+  c.encoders.position_noise = 1e-4;
+  c.imus[0].gyro_noise = 1e-3;
+  c.pushes.push_back({"root_link", 0.01, 0.02, Eigen::Vector3d(5, 0, 0), Eigen::Vector3d::Zero()});
+  SimBackend sim(c);
+  sim.configure();
+  sim.activate();
+  const auto& d = sim.description();
+  JointControllerConfig cc;
+  cc.gains = stiff_gains(d);
+  JointController ctl(d, cc);
+  const Eigen::VectorXd q_j0 = sim.ground_truth().q.tail(d.n_joints());
+  const JointCommandBatch batch = all_joints(d.n_joints(), mode, mode == ControlMode::kTorque ? Eigen::VectorXd::Zero(d.n_joints()) : q_j0);
+  ctl.submit(batch, sim.stamp());
+  tick(sim, ctl);  // first tick outside (nothing should allocate there either)
+
+  const long before = g_allocations.load();
+  Eigen::internal::set_is_malloc_allowed(false);
+  for (int k = 0; k < 100; ++k) {
+    const auto t = sim.stamp();
+    const Duration period(1000000);
+    sim.read(t, period);
+    ctl.submit(batch, t);
+    ctl.update(t, period, sim.readings(), sim.commands());
+    sim.write(t, period);
+    sim.step();
+  }
+  Eigen::internal::set_is_malloc_allowed(true);
+  EXPECT_EQ(g_allocations.load() - before, 0) << "operator new called in the loop";
+  EXPECT_TRUE(sim.ground_truth().q.allFinite());
+}
+
+// The check itself is live in this build (not compiled out by NDEBUG).
+TEST(SimNoMallocDeathTest, EigenCheckIsLive) {
+  EXPECT_DEATH(
+      {
+        Eigen::internal::set_is_malloc_allowed(false);
+        Eigen::VectorXd v = Eigen::VectorXd::Zero(100);
+        std::printf("%g\n", v.sum());
+      },
+      "");
+}
+
+TEST(SimNoMalloc, HumanoidLoopDoesNotAllocate) {
+  run_without_allocation(humanoid_config(), ControlMode::kPositionDirect);
+  SimConfig c = humanoid_config();
+  c.contact.tangential = ContactConfig::Tangential::kRegularized;
+  run_without_allocation(c, ControlMode::kPosition);
+  run_without_allocation(humanoid_config(), ControlMode::kTorque);
+}
+
+}  // namespace
+}  // namespace wbi::sim::test
