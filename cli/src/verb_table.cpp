@@ -12,7 +12,7 @@ std::span<const Verb> verbs() {
       {"launch", "start, watch and stop the processes of a deploy file", run_launch},
       {"record", "record DDS topics to an MCAP file", nullptr},
       {"play", "replay an MCAP recording onto DDS", nullptr},
-      {"bag", "inspect MCAP recordings (info)", nullptr},
+      {"bag", "inspect MCAP recordings (info)", run_bag},
       {"topic", "list, echo and measure the topics on the DDS domain", run_topic},
       {"model", "inspect and evaluate robot models (info, eval, bench)", run_model},
       {"estimate", "estimate joint velocities and accelerations offline from a CSV file",

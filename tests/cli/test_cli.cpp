@@ -56,7 +56,7 @@ TEST(Cli, UnknownVerbFailsWithMessage) {
 }
 
 TEST(Cli, EveryVerbHasHelp) {
-  for (const char* verb : {"topic"}) {
+  for (const char* verb : {"topic", "model", "estimate", "bag", "launch"}) {
     const auto run = wbi_cli({verb, "--help"});
     EXPECT_EQ(run.code, 0) << verb << ": " << run.output;
     EXPECT_TRUE(contains(run.output, "usage: wbi")) << run.output;

@@ -1,9 +1,11 @@
 // `wbi bag info`: what an MCAP recording holds (duration, size, compression,
 // and per topic its type, message count and rate). The work is in wbi::mcap.
+#include <algorithm>
 #include <cstdint>
 #include <ctime>
 #include <iomanip>
 #include <iostream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>

@@ -5,6 +5,7 @@
 
 namespace wbi::cli {
 
+int run_bag(Args args);
 int run_estimate(Args args);
 int run_launch(Args args);
 int run_model(Args args);
