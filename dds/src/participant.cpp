@@ -67,6 +67,14 @@ void load_qos_profiles(const std::string& requested_file) {
 fdds::DomainParticipantQos participant_qos(const ParticipantOptions& options) {
   fdds::DomainParticipantQos qos = fdds::PARTICIPANT_QOS_DEFAULT;
   qos.name(options.name);
+  // A participant that starts announces itself at once, but learns of the
+  // participants already running only from their periodic announcements: with
+  // Fast DDS's default 3 s period a new client often waited ~3 s to connect to
+  // a running service. 250 ms keeps discovery well under a second. A lease of
+  // 5 s (default 20 s) forgets a killed process sooner.
+  auto& discovery = qos.wire_protocol().builtin.discovery_config;
+  discovery.leaseDuration_announcementperiod = eprosima::fastrtps::Duration_t(0, 250'000'000);
+  discovery.leaseDuration = eprosima::fastrtps::Duration_t(5, 0);
   if (options.discovery == Discovery::localhost) {
     // Shared memory for data, UDP on 127.0.0.1 for discovery: with a unicast
     // metatraffic locator and initial peers set, Fast DDS sends no multicast.
@@ -119,6 +127,14 @@ ParticipantImpl::~ParticipantImpl() {
 
 fdds::Topic& ParticipantImpl::acquire_topic(const std::string& topic_name,
                                             fdds::TopicDataType* type) {
+  // No TypeObject or TypeInformation in discovery data: every receiving
+  // participant would build a dynamic type from it on its discovery thread,
+  // racing with the generated message constructors, which re-register their
+  // TypeObjects in the (not thread-safe) TypeObjectFactory: a crash seen with
+  // several processes starting together. Tools that need a type by name
+  // (TopicEcho) register the wbi types locally.
+  type->auto_fill_type_object(false);
+  type->auto_fill_type_information(false);
   fdds::TypeSupport support(type);  // owns type; freed here unless registered
   std::lock_guard lock(topics_mutex_);
   auto& shared = topics_[topic_name];

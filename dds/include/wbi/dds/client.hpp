@@ -12,10 +12,13 @@
 // One call in flight per client: calls from several threads are serialised;
 // give each thread its own client for concurrency. The blocking call() suits
 // tools and setup code; a periodic update() uses send() + poll(), which never
-// block. After warm-up (reply sequences grown to size) a call allocates only
+// block (and never resend: a lost sample makes that call time out). A blocking
+// call resends its request while no reply comes (ClientOptions::resend_period).
+// After warm-up (reply sequences grown to size) a call allocates only
 // inside Fast DDS for unbounded members.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -32,6 +35,13 @@ namespace wbi::dds {
 
 struct ClientOptions {
   std::string qos_profile = qos::kRequestReply;
+  // call()/try_call() send the request again (same id and sequence number)
+  // when no reply came within this period, until the deadline: a reliable
+  // KEEP_LAST history drops unacknowledged samples when it overflows (many
+  // clients, a busy reader), so a sample can be lost for good. Handlers must
+  // be idempotent (a duplicate is answered again; the client keeps the first
+  // reply). 0: never resend.
+  std::chrono::nanoseconds resend_period = std::chrono::milliseconds(100);
 };
 
 template <class Req, class Rep>
@@ -41,6 +51,7 @@ class Client : private detail::ReaderSink {
   // service: the service name, e.g. topics::model_service("icub").
   Client(Participant& participant, std::string service, const ClientOptions& options = {})
       : service_(std::move(service)),
+        resend_period_(options.resend_period),
         request_writer_(participant, topics::service_request(service_),
                         new typename MessageTraits<Req>::TypeSupport(), options.qos_profile),
         reply_reader_(participant, topics::service_reply(service_),
@@ -65,10 +76,17 @@ class Client : private detail::ReaderSink {
 
   // Sends request (its client_id, seq and, if it has one, deadline_ns are set
   // here) and waits for the reply, at most `timeout` in all (waiting to be
-  // connected included). Returns ok with the reply in `reply`, or why not.
+  // connected included). Returns ok with the reply in `reply`, or why not
+  // (busy while a send() is in flight and not yet polled or expired).
   CallStatus try_call(Req& request, Rep& reply, std::chrono::nanoseconds timeout) {
     std::lock_guard call_lock(call_mutex_);
     const auto deadline = std::chrono::steady_clock::now() + timeout;
+    {
+      std::lock_guard lock(mutex_);
+      if (ready_ || (awaited_ != 0 && std::chrono::steady_clock::now() < call_deadline_)) {
+        return CallStatus::busy;  // a send() is in flight: poll() it first
+      }
+    }
     if (!wait_connected_until(deadline)) {
       return CallStatus::not_connected;
     }
@@ -77,9 +95,18 @@ class Client : private detail::ReaderSink {
       return sent;
     }
     std::unique_lock lock(mutex_);
-    if (!replied_.wait_until(lock, deadline, [&] { return ready_; })) {
-      awaited_ = 0;  // a late reply is dropped
-      return CallStatus::no_reply;
+    auto resend_at = resend_period_.count() > 0 ? std::chrono::steady_clock::now() + resend_period_
+                                                : deadline;
+    while (!replied_.wait_until(lock, std::min(deadline, resend_at), [&] { return ready_; })) {
+      if (std::chrono::steady_clock::now() >= deadline) {
+        awaited_ = 0;  // a late reply is dropped
+        return CallStatus::no_reply;
+      }
+      lock.unlock();
+      request_writer_.write(&request);  // same id and seq: whichever reply comes first is taken
+      lock.lock();
+      ++resent_;
+      resend_at += resend_period_;
     }
     take(reply);
     return CallStatus::ok;
@@ -142,6 +169,11 @@ class Client : private detail::ReaderSink {
     std::lock_guard lock(mutex_);
     return dropped_;
   }
+  // Requests sent again for want of a reply (see ClientOptions::resend_period).
+  std::uint64_t resent_requests() const {
+    std::lock_guard lock(mutex_);
+    return resent_;
+  }
 
  private:
   bool wait_connected_until(std::chrono::steady_clock::time_point deadline) const {
@@ -200,6 +232,7 @@ class Client : private detail::ReaderSink {
   }
 
   std::string service_;
+  std::chrono::nanoseconds resend_period_;
   std::mutex call_mutex_;  // one call in flight
   std::uint64_t next_seq_ = 0;
   std::uint64_t last_seq_ = 0;
@@ -211,6 +244,7 @@ class Client : private detail::ReaderSink {
   bool ready_ = false;         // slot_ holds its reply
   std::chrono::steady_clock::time_point call_deadline_{};
   std::uint64_t dropped_ = 0;
+  std::uint64_t resent_ = 0;
   Rep slot_;
   Rep incoming_;  // written only on the DDS thread that takes samples
 

@@ -24,6 +24,11 @@ inline std::string estimator_parameters(const std::string& robot) {
 // The model service of a robot (request/reply, see rpc.hpp): its topics are
 // model_request(robot) and model_reply(robot).
 inline std::string model_service(const std::string& robot) { return robot_topic(robot, "model"); }
+// The model service's own description: the joint order of its model, which
+// may differ from the robot's (wbi/<robot>/description, sent by the robot).
+inline std::string model_description(const std::string& robot) {
+  return robot_topic(robot, "model/description");
+}
 inline std::string model_request(const std::string& robot) { return robot_topic(robot, "model/request"); }
 inline std::string model_reply(const std::string& robot) { return robot_topic(robot, "model/reply"); }
 

@@ -1,0 +1,76 @@
+// The component interface: a managed lifecycle (as ROS 2 managed nodes) and a
+// periodic read → update → write cycle, run by a ComponentRunner (runner.hpp).
+//
+// States and what each allows:
+//   UNCONFIGURED  created; no communication, no resources.
+//   INACTIVE      configured (on_configure): parameters read, DDS endpoints
+//                 created, buffers sized; reading allowed, no commands sent,
+//                 no periodic cycle.
+//   ACTIVE        running (on_activate): the periodic cycle runs at the
+//                 configured rate; commands are sent/accepted.
+//   FINALIZED     shut down (on_shutdown); ready to be destroyed.
+// Transitions: configure (UNCONFIGURED → INACTIVE), activate (INACTIVE →
+// ACTIVE), deactivate (ACTIVE → INACTIVE), cleanup (INACTIVE → UNCONFIGURED),
+// shutdown (any → FINALIZED). A hook that throws leaves the state unchanged
+// (shutdown excepted) and becomes the component's last error.
+//
+// The cycle runs on the runner's loop thread, only while ACTIVE:
+//   read(t, period) → update(t, period) → write(t, period)
+// update() must be real-time safe: no heap allocation, no blocking on DDS
+// (use Subscriber::latest_into, Publisher::publish, Client::send/poll), no
+// locks held by other threads for long. Size every buffer in on_configure.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "wbi/runtime/clock.hpp"
+#include "wbi/runtime/parameters.hpp"
+
+namespace wbi::dds {
+class Participant;
+}
+
+namespace wbi::runtime {
+
+enum class LifecycleState { unconfigured, inactive, active, finalized };
+
+const char* to_string(LifecycleState state);
+
+// What a component is given when it is configured.
+struct ComponentContext {
+  std::string instance;            // unique name in the deploy, e.g. "model"
+  std::string type;                // registered type, e.g. "model_service"
+  dds::Participant* participant;   // the process's participant
+  Clock* clock;                    // the time of the periodic cycle and of stamps
+};
+
+class Component {
+ public:
+  virtual ~Component() = default;
+  Component(const Component&) = delete;
+  Component& operator=(const Component&) = delete;
+
+  // UNCONFIGURED → INACTIVE. Reads parameters (every key the component knows:
+  // unknown keys are then rejected), creates endpoints, sizes buffers.
+  virtual void on_configure(const Parameters& parameters, const ComponentContext& context) = 0;
+  // INACTIVE → ACTIVE.
+  virtual void on_activate() {}
+  // ACTIVE → INACTIVE.
+  virtual void on_deactivate() {}
+  // INACTIVE → UNCONFIGURED: release what on_configure made.
+  virtual void on_cleanup() {}
+  // any → FINALIZED.
+  virtual void on_shutdown() {}
+
+  // The periodic cycle (ACTIVE only). time_ns: the clock's time at the start of
+  // the cycle; period_ns: the nominal period.
+  virtual void read(std::int64_t /*time_ns*/, std::int64_t /*period_ns*/) {}
+  virtual void update(std::int64_t /*time_ns*/, std::int64_t /*period_ns*/) {}
+  virtual void write(std::int64_t /*time_ns*/, std::int64_t /*period_ns*/) {}
+
+ protected:
+  Component() = default;
+};
+
+}  // namespace wbi::runtime

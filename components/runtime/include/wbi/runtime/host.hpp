@@ -1,0 +1,75 @@
+// Host: runs the components a YAML host file lists, in one process, sharing
+// one DDS participant and one clock.
+//
+//   # robot.yaml
+//   domain_id: 3              # optional; default WBI_DOMAIN_ID (else 0)
+//   clock: system             # system | simulation (wbi/clock)
+//   status_period_s: 1.0      # heartbeat period on wbi/status
+//   components:
+//     - name: model           # instance name, unique
+//       type: model_service   # a registered type
+//       rate_hz: 0            # periodic cycle rate; 0 / absent: none
+//       parameters:           # the component's own parameters
+//         urdf: models/humanoid.urdf
+//
+// Every error names the file and line: unknown keys, wrong types, missing or
+// duplicate names, unknown types, and the components' own parameter errors.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "wbi/runtime/parameters.hpp"
+#include "wbi/runtime/registry.hpp"
+#include "wbi/runtime/runner.hpp"
+
+namespace wbi::dds {
+class Participant;
+}
+
+namespace wbi::runtime {
+
+class Host {
+ public:
+  // Reads the file and creates the participant, the clock and the components
+  // (UNCONFIGURED). Throws ParameterError (bad file) or std::invalid_argument.
+  Host(const std::string& file, const Registry& registry);
+  // The components of one process of a deploy file (deploy/README.md): the
+  // entry of `processes` named `process`, its `components` list in the format
+  // above. Errors still name the deploy file and its lines.
+  Host(const std::string& deploy_file, const std::string& process, const Registry& registry);
+  // Same, from YAML text; `file` names it in messages.
+  static std::unique_ptr<Host> from_string(const std::string& yaml, const Registry& registry,
+                                           const std::string& file = "<string>");
+  ~Host();  // stop()
+  Host(const Host&) = delete;
+  Host& operator=(const Host&) = delete;
+
+  // Configures then activates every component in file order. On a failure,
+  // stops those already started and throws TransitionError / ParameterError.
+  void start();
+  // Deactivates, cleans up and shuts down every component, in reverse order.
+  // Never throws; returns the errors met, one line each.
+  std::vector<std::string> stop();
+
+  std::size_t size() const { return components_.size(); }
+  ComponentRunner& component(const std::string& instance);
+  dds::Participant& participant() { return *participant_; }
+  Clock& clock() { return *clock_; }
+
+ private:
+  struct Entry {
+    std::unique_ptr<ComponentRunner> runner;
+    Parameters parameters;
+  };
+  Host() = default;
+  void load(const std::string& yaml_or_file, bool is_text, const std::string& file,
+            const Registry& registry, const std::string& process = "");
+
+  std::unique_ptr<dds::Participant> participant_;
+  std::unique_ptr<Clock> clock_;
+  std::vector<Entry> components_;
+};
+
+}  // namespace wbi::runtime

@@ -1,0 +1,94 @@
+// ComponentRunner: owns one component, drives its lifecycle, runs its periodic
+// cycle on a loop thread at a given rate on a Clock, measures the loop's timing
+// and publishes the component's status on wbi/status (from its own thread,
+// so the cycle never waits on DDS).
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#include "wbi/runtime/component.hpp"
+
+namespace wbi::runtime {
+
+// A transition that is not allowed from the current state, or whose hook failed.
+class TransitionError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct RunnerOptions {
+  double rate_hz = 0.0;         // periodic cycle rate; 0: no cycle (event-driven component)
+  double status_period_s = 1.0;  // heartbeat period on wbi/status; 0: on transitions only
+};
+
+// Timing of the periodic cycle since the last activation.
+struct LoopStats {
+  std::uint64_t iterations = 0;
+  std::uint64_t overruns = 0;       // cycles that ended after the next cycle's start (those ticks are skipped)
+  std::uint64_t errors = 0;         // cycles whose read/update/write threw
+  double period_mean_s = 0.0;       // measured start-to-start period
+  double period_jitter_s = 0.0;     // its standard deviation
+  double period_max_s = 0.0;
+  double cycle_mean_s = 0.0;        // time spent in read + update + write
+  double cycle_max_s = 0.0;
+};
+
+class ComponentRunner {
+ public:
+  // context.participant and context.clock must outlive the runner.
+  ComponentRunner(std::unique_ptr<Component> component, ComponentContext context,
+                  RunnerOptions options = {});
+  ~ComponentRunner();  // shuts the component down if needed
+  ComponentRunner(const ComponentRunner&) = delete;
+  ComponentRunner& operator=(const ComponentRunner&) = delete;
+
+  // Transitions. Throw TransitionError naming the component when not allowed
+  // from the current state or when the hook throws (state then unchanged).
+  void configure(const Parameters& parameters);
+  void activate();
+  void deactivate();
+  void cleanup();
+  void shutdown();  // from any state; always ends FINALIZED
+
+  LifecycleState state() const { return state_.load(); }
+  LoopStats stats() const;
+  std::string last_error() const;
+  const ComponentContext& context() const { return context_; }
+  const RunnerOptions& options() const { return options_; }
+  Component& component() { return *component_; }
+
+  // Publishes the status now (also done every status_period_s and on transitions).
+  void publish_status();
+
+ private:
+  void require(LifecycleState from, const char* transition) const;
+  void fail(const char* transition, const std::exception& error);
+  void set_state(LifecycleState state);
+  void run_loop();
+  void stop_loop();
+  void run_heartbeat();
+
+  std::unique_ptr<Component> component_;
+  ComponentContext context_;
+  RunnerOptions options_;
+  std::atomic<LifecycleState> state_{LifecycleState::unconfigured};
+
+  mutable std::mutex mutex_;  // guards stats_, last_error_
+  LoopStats stats_;
+  std::string last_error_;
+
+  std::atomic<bool> loop_stop_{false};
+  std::thread loop_;
+
+  struct Status;
+  std::unique_ptr<Status> status_;  // publisher and heartbeat thread
+};
+
+}  // namespace wbi::runtime

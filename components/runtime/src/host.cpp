@@ -1,0 +1,250 @@
+#include "wbi/runtime/host.hpp"
+
+#include <set>
+#include <stdexcept>
+
+#include <yaml-cpp/yaml.h>
+
+#include <wbi/dds/participant.hpp>
+
+namespace wbi::runtime {
+
+namespace {
+
+std::string at(const std::string& file, const YAML::Node& node) {
+  return file + ":" + std::to_string(node.Mark().line + 1);
+}
+
+// Rejects keys of `map` outside `known`.
+void check_keys(const std::string& file, const YAML::Node& map, const std::set<std::string>& known,
+                const std::string& context) {
+  for (const auto& entry : map) {
+    const std::string key = entry.first.Scalar();
+    if (known.count(key) == 0) {
+      std::string list;
+      for (const auto& name : known) {
+        list += list.empty() ? "" : ", ";
+        list += name;
+      }
+      throw ParameterError(at(file, entry.first) + ": " + context + ": unknown key '" + key +
+                           "' (known: " + list + ")");
+    }
+  }
+}
+
+template <class T>
+T scalar(const std::string& file, const YAML::Node& map, const std::string& key, const T& fallback,
+         const std::string& context, const char* kind) {
+  const YAML::Node node = map[key];
+  if (!node) {
+    return fallback;
+  }
+  try {
+    if (!node.IsScalar()) {
+      throw YAML::Exception(node.Mark(), "not a scalar");
+    }
+    return node.as<T>();
+  } catch (const YAML::Exception&) {
+    throw ParameterError(at(file, node) + ": " + context + ": '" + key + "' must be " + kind);
+  }
+}
+
+}  // namespace
+
+Host::Host(const std::string& file, const Registry& registry) { load(file, false, file, registry); }
+
+Host::Host(const std::string& deploy_file, const std::string& process, const Registry& registry) {
+  load(deploy_file, false, deploy_file, registry, process);
+}
+
+namespace {
+
+// The host-file view of one process of a deploy file: its components, and the
+// deploy's domain id. The nodes keep their marks, so errors name deploy lines.
+YAML::Node process_of_deploy(const std::string& file, const YAML::Node& deploy,
+                             const std::string& process) {
+  const YAML::Node processes = deploy["processes"];
+  if (processes && processes.IsSequence()) {
+    for (const auto& entry : processes) {
+      if (entry.IsMap() && entry["name"] && entry["name"].IsScalar() &&
+          entry["name"].Scalar() == process) {
+        if (!entry["components"]) {
+          throw ParameterError(file + ":" + std::to_string(entry.Mark().line + 1) + ": process '" +
+                               process + "' has no 'components' to host");
+        }
+        YAML::Node host;
+        host["components"] = entry["components"];
+        if (deploy["domain_id"]) {
+          host["domain_id"] = deploy["domain_id"];
+        }
+        return host;
+      }
+    }
+  }
+  throw ParameterError(file + ": no process named '" + process + "' in the deploy file");
+}
+
+}  // namespace
+
+std::unique_ptr<Host> Host::from_string(const std::string& yaml, const Registry& registry,
+                                        const std::string& file) {
+  std::unique_ptr<Host> host(new Host());
+  host->load(yaml, true, file, registry);
+  return host;
+}
+
+void Host::load(const std::string& source, bool is_text, const std::string& file,
+                const Registry& registry, const std::string& process) {
+  YAML::Node root;
+  try {
+    root = is_text ? YAML::Load(source) : YAML::LoadFile(source);
+  } catch (const YAML::BadFile&) {
+    throw ParameterError(file + ": cannot read the host file");
+  } catch (const YAML::Exception& error) {
+    throw ParameterError(file + ":" + std::to_string(error.mark.line + 1) + ": " + error.msg);
+  }
+  if (!root.IsMap()) {
+    throw ParameterError(file + ": a host file is a map with a 'components' list");
+  }
+  if (!process.empty()) {
+    root = process_of_deploy(file, root, process);
+  }
+  const std::string context = "host file";
+  check_keys(file, root, {"domain_id", "clock", "status_period_s", "components"}, context);
+
+  dds::ParticipantOptions options;
+  options.domain_id = scalar<int>(file, root, "domain_id", options.domain_id, context,
+                                  "an integer in [0, 232]");
+  if (options.domain_id < 0 || options.domain_id > 232) {
+    throw ParameterError(at(file, root["domain_id"]) + ": host file: 'domain_id' must be in [0, 232]");
+  }
+  const std::string clock = scalar<std::string>(file, root, "clock", "system", context, "a string");
+  const double status_period_s =
+      scalar<double>(file, root, "status_period_s", 1.0, context, "a number of seconds");
+  if (status_period_s < 0.0) {
+    throw ParameterError(at(file, root["status_period_s"]) +
+                         ": host file: 'status_period_s' must be >= 0");
+  }
+  const YAML::Node list = root["components"];
+  if (!list || !list.IsSequence()) {
+    throw ParameterError((list ? at(file, list) : file) +
+                         ": host file: 'components' must be a list of components");
+  }
+
+  // Check every entry before creating anything.
+  struct Spec {
+    std::string name;
+    std::string type;
+    double rate_hz;
+    YAML::Node parameters;
+  };
+  std::vector<Spec> specs;
+  std::set<std::string> names;
+  for (const auto& item : list) {
+    if (!item.IsMap()) {
+      throw ParameterError(at(file, item) + ": host file: a component is a map with name and type");
+    }
+    check_keys(file, item, {"name", "type", "rate_hz", "parameters"}, "component");
+    std::string name;
+    std::string type;
+    name = scalar<std::string>(file, item, "name", "", "component", "a string");
+    if (name.empty()) {
+      throw ParameterError(at(file, item) + ": component: missing 'name'");
+    }
+    const std::string who = "component '" + name + "'";
+    type = scalar<std::string>(file, item, "type", "", who, "a string");
+    if (type.empty()) {
+      throw ParameterError(at(file, item) + ": " + who + ": missing 'type'");
+    }
+    if (!registry.contains(type)) {
+      try {
+        (void)registry.create(type);
+      } catch (const std::invalid_argument& error) {
+        throw ParameterError(at(file, item["type"]) + ": " + who + ": " + error.what());
+      }
+    }
+    const double rate_hz = scalar<double>(file, item, "rate_hz", 0.0, who, "a number [Hz]");
+    if (!(rate_hz >= 0.0)) {
+      throw ParameterError(at(file, item["rate_hz"]) + ": " + who + ": 'rate_hz' must be >= 0");
+    }
+    if (!names.insert(name).second) {
+      throw ParameterError(at(file, item) + ": " + who + ": the name is used twice");
+    }
+    // Copy-constructed: assigning a YAML::Node aliases it (and throws for a missing key).
+    specs.push_back(Spec{name, type, rate_hz, item["parameters"]});
+  }
+
+  options.name = "wbi_host";
+  participant_ = std::make_unique<dds::Participant>(options);
+  if (clock == "system") {
+    clock_ = std::make_unique<SystemClock>();
+  } else if (clock == "simulation") {
+    clock_ = std::make_unique<SimulationClock>(*participant_);
+  } else {
+    throw ParameterError(at(file, root["clock"]) + ": host file: 'clock' must be system or simulation, got '" +
+                         clock + "'");
+  }
+  for (const auto& spec : specs) {
+    RunnerOptions runner_options;
+    runner_options.rate_hz = spec.rate_hz;
+    runner_options.status_period_s = status_period_s;
+    ComponentContext component_context{spec.name, spec.type, participant_.get(), clock_.get()};
+    Entry entry{std::make_unique<ComponentRunner>(registry.create(spec.type), component_context,
+                                                 runner_options),
+                Parameters(spec.parameters, file, "component '" + spec.name + "'")};
+    components_.push_back(std::move(entry));
+  }
+}
+
+Host::~Host() { stop(); }
+
+void Host::start() {
+  for (auto& entry : components_) {
+    try {
+      entry.runner->configure(entry.parameters);
+      entry.runner->activate();
+    } catch (...) {
+      stop();
+      throw;
+    }
+  }
+}
+
+std::vector<std::string> Host::stop() {
+  std::vector<std::string> errors;
+  for (auto it = components_.rbegin(); it != components_.rend(); ++it) {
+    ComponentRunner& runner = *it->runner;
+    try {
+      if (runner.state() == LifecycleState::active) {
+        runner.deactivate();
+      }
+      if (runner.state() == LifecycleState::inactive) {
+        runner.cleanup();
+      }
+      if (runner.state() != LifecycleState::finalized) {
+        runner.shutdown();
+      }
+    } catch (const std::exception& error) {
+      errors.emplace_back(error.what());
+      if (runner.state() != LifecycleState::finalized) {
+        try {
+          runner.shutdown();
+        } catch (const std::exception& again) {
+          errors.emplace_back(again.what());
+        }
+      }
+    }
+  }
+  return errors;
+}
+
+ComponentRunner& Host::component(const std::string& instance) {
+  for (auto& entry : components_) {
+    if (entry.runner->context().instance == instance) {
+      return *entry.runner;
+    }
+  }
+  throw std::invalid_argument("no component named '" + instance + "'");
+}
+
+}  // namespace wbi::runtime

@@ -1,0 +1,303 @@
+#include "wbi/runtime/runner.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include <wbi/dds/publisher.hpp>
+#include <wbi/dds/topics.hpp>
+
+namespace wbi::runtime {
+
+const char* to_string(LifecycleState state) {
+  switch (state) {
+    case LifecycleState::unconfigured: return "unconfigured";
+    case LifecycleState::inactive: return "inactive";
+    case LifecycleState::active: return "active";
+    case LifecycleState::finalized: return "finalized";
+  }
+  return "unknown";
+}
+
+namespace {
+msg::LifecycleState to_msg(LifecycleState state) {
+  switch (state) {
+    case LifecycleState::unconfigured: return msg::UNCONFIGURED;
+    case LifecycleState::inactive: return msg::INACTIVE;
+    case LifecycleState::active: return msg::ACTIVE;
+    case LifecycleState::finalized: return msg::FINALIZED;
+  }
+  return msg::FINALIZED;
+}
+}  // namespace
+
+struct ComponentRunner::Status {
+  dds::Publisher<msg::ComponentStatus> publisher;
+  msg::ComponentStatus sample;
+  std::mutex mutex;  // guards sample, stop, kicks
+  std::condition_variable kicked;
+  bool stop = false;
+  std::uint64_t kicks = 0;
+  std::thread thread;
+
+  explicit Status(dds::Participant& participant)
+      : publisher(participant, dds::topics::kStatus, dds::qos::kStatus) {}
+};
+
+ComponentRunner::ComponentRunner(std::unique_ptr<Component> component, ComponentContext context,
+                                 RunnerOptions options)
+    : component_(std::move(component)), context_(std::move(context)), options_(options) {
+  if (!component_) {
+    throw std::invalid_argument("component '" + context_.instance + "': no component");
+  }
+  if (context_.participant == nullptr || context_.clock == nullptr) {
+    throw std::invalid_argument("component '" + context_.instance + "': no participant or clock");
+  }
+  if (!(options_.rate_hz >= 0.0) || !std::isfinite(options_.rate_hz)) {
+    throw std::invalid_argument("component '" + context_.instance + "': rate_hz must be >= 0");
+  }
+  status_ = std::make_unique<Status>(*context_.participant);
+  status_->sample.instance(context_.instance);
+  status_->sample.type(context_.type);
+  status_->sample.rate_hz(options_.rate_hz);
+  status_->thread = std::thread([this] { run_heartbeat(); });
+}
+
+ComponentRunner::~ComponentRunner() {
+  try {
+    if (state() != LifecycleState::finalized) {
+      shutdown();
+    }
+  } catch (...) {
+    // already recorded as the last error
+  }
+  {
+    std::lock_guard lock(status_->mutex);
+    status_->stop = true;
+  }
+  status_->kicked.notify_all();
+  status_->thread.join();
+}
+
+void ComponentRunner::require(LifecycleState from, const char* transition) const {
+  if (state() != from) {
+    throw TransitionError("component '" + context_.instance + "': cannot " + transition + " from " +
+                          to_string(state()) + " (only from " + to_string(from) + ")");
+  }
+}
+
+void ComponentRunner::fail(const char* transition, const std::exception& error) {
+  const std::string text =
+      "component '" + context_.instance + "' (" + context_.type + "): " + transition + " failed: " +
+      error.what();
+  {
+    std::lock_guard lock(mutex_);
+    last_error_ = error.what();
+  }
+  publish_status();
+  throw TransitionError(text);
+}
+
+void ComponentRunner::set_state(LifecycleState state) {
+  state_ = state;
+  publish_status();
+}
+
+void ComponentRunner::configure(const Parameters& parameters) {
+  require(LifecycleState::unconfigured, "configure");
+  try {
+    component_->on_configure(parameters, context_);
+    parameters.reject_unknown();
+  } catch (const std::exception& error) {
+    if (dynamic_cast<const ParameterError*>(&error) != nullptr) {
+      try {
+        component_->on_cleanup();  // undo what on_configure did before the bad key was found
+      } catch (...) {
+      }
+    }
+    fail("configure", error);
+  }
+  set_state(LifecycleState::inactive);
+}
+
+void ComponentRunner::activate() {
+  require(LifecycleState::inactive, "activate");
+  try {
+    component_->on_activate();
+  } catch (const std::exception& error) {
+    fail("activate", error);
+  }
+  {
+    std::lock_guard lock(mutex_);
+    stats_ = LoopStats{};
+  }
+  state_ = LifecycleState::active;
+  if (options_.rate_hz > 0.0) {
+    loop_stop_ = false;
+    loop_ = std::thread([this] { run_loop(); });
+  }
+  publish_status();
+}
+
+void ComponentRunner::stop_loop() {
+  if (loop_.joinable()) {
+    loop_stop_ = true;
+    context_.clock->wake();
+    loop_.join();
+  }
+}
+
+void ComponentRunner::deactivate() {
+  require(LifecycleState::active, "deactivate");
+  stop_loop();  // the cycle never overlaps a transition hook
+  try {
+    component_->on_deactivate();
+  } catch (const std::exception& error) {
+    fail("deactivate", error);
+  }
+  set_state(LifecycleState::inactive);
+}
+
+void ComponentRunner::cleanup() {
+  require(LifecycleState::inactive, "cleanup");
+  try {
+    component_->on_cleanup();
+  } catch (const std::exception& error) {
+    fail("cleanup", error);
+  }
+  set_state(LifecycleState::unconfigured);
+}
+
+void ComponentRunner::shutdown() {
+  if (state() == LifecycleState::finalized) {
+    throw TransitionError("component '" + context_.instance + "': cannot shutdown from finalized");
+  }
+  stop_loop();
+  std::string error;
+  try {
+    if (state() == LifecycleState::active) {
+      component_->on_deactivate();
+    }
+    component_->on_shutdown();
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  if (!error.empty()) {
+    std::lock_guard lock(mutex_);
+    last_error_ = error;
+  }
+  set_state(LifecycleState::finalized);
+  if (!error.empty()) {
+    throw TransitionError("component '" + context_.instance + "' (" + context_.type +
+                          "): shutdown failed: " + error);
+  }
+}
+
+LoopStats ComponentRunner::stats() const {
+  std::lock_guard lock(mutex_);
+  return stats_;
+}
+
+std::string ComponentRunner::last_error() const {
+  std::lock_guard lock(mutex_);
+  return last_error_;
+}
+
+// The periodic cycle. Ticks at start + k·period on the clock; a cycle that ends
+// after its successor's tick is an overrun, and the missed ticks are skipped
+// (never run back to back to catch up). Statistics use Welford's running
+// mean/variance: no allocation, no lock held while the component runs.
+void ComponentRunner::run_loop() {
+  Clock& clock = *context_.clock;
+  const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / options_.rate_hz));
+  std::int64_t next_ns = clock.now_ns();
+  std::int64_t last_start_ns = -1;
+  double mean = 0.0;
+  double m2 = 0.0;
+  std::uint64_t periods = 0;
+  while (!loop_stop_.load(std::memory_order_relaxed)) {
+    if (!clock.sleep_until(next_ns)) {
+      continue;  // woken early: stop requested, or spurious
+    }
+    const std::int64_t start_ns = clock.now_ns();
+    bool error = false;
+    std::string what;
+    try {
+      component_->read(start_ns, period_ns);
+      component_->update(start_ns, period_ns);
+      component_->write(start_ns, period_ns);
+    } catch (const std::exception& e) {
+      error = true;
+      what = e.what();  // allocation only on the error path
+    }
+    const std::int64_t end_ns = clock.now_ns();
+    next_ns += period_ns;
+    bool overrun = false;
+    if (end_ns > next_ns) {
+      overrun = true;
+      next_ns += ((end_ns - next_ns) / period_ns + 1) * period_ns;  // skip the missed ticks
+    }
+    std::lock_guard lock(mutex_);
+    LoopStats& s = stats_;
+    ++s.iterations;
+    s.overruns += overrun ? 1 : 0;
+    if (error) {
+      ++s.errors;
+      last_error_ = what;
+    }
+    const double cycle_s = 1e-9 * static_cast<double>(end_ns - start_ns);
+    s.cycle_mean_s += (cycle_s - s.cycle_mean_s) / static_cast<double>(s.iterations);
+    s.cycle_max_s = std::max(s.cycle_max_s, cycle_s);
+    if (last_start_ns >= 0) {
+      const double period_s = 1e-9 * static_cast<double>(start_ns - last_start_ns);
+      ++periods;
+      const double delta = period_s - mean;
+      mean += delta / static_cast<double>(periods);
+      m2 += delta * (period_s - mean);
+      s.period_mean_s = mean;
+      s.period_jitter_s = periods > 1 ? std::sqrt(m2 / static_cast<double>(periods - 1)) : 0.0;
+      s.period_max_s = std::max(s.period_max_s, period_s);
+    }
+    last_start_ns = start_ns;
+  }
+}
+
+void ComponentRunner::publish_status() {
+  {
+    std::lock_guard lock(status_->mutex);
+    ++status_->kicks;
+  }
+  status_->kicked.notify_all();
+}
+
+void ComponentRunner::run_heartbeat() {
+  Status& status = *status_;
+  std::unique_lock lock(status.mutex);
+  std::uint64_t seen = status.kicks;
+  bool first = true;
+  while (!status.stop) {
+    if (!first) {
+      const auto woken = [&] { return status.stop || status.kicks != seen; };
+      if (options_.status_period_s > 0.0) {
+        status.kicked.wait_for(lock, std::chrono::duration<double>(options_.status_period_s), woken);
+      } else {
+        status.kicked.wait(lock, woken);
+      }
+    }
+    first = false;
+    seen = status.kicks;
+    const LoopStats s = stats();
+    msg::ComponentStatus& sample = status.sample;
+    sample.header().stamp_ns(context_.clock->now_ns());
+    sample.state(to_msg(state()));
+    sample.period_mean_s(s.period_mean_s);
+    sample.period_jitter_s(s.period_jitter_s);
+    sample.overruns(s.overruns);
+    sample.iterations(s.iterations);
+    sample.last_error(last_error());
+    status.publisher.publish(sample);
+    sample.header().seq(sample.header().seq() + 1);
+  }
+}
+
+}  // namespace wbi::runtime

@@ -1,0 +1,86 @@
+#include "wbi/model_service/component.hpp"
+
+#include <filesystem>
+
+#include <wbi/dds/topics.hpp>
+#include <wbi/model/urdf.hpp>
+
+namespace wbi::model_service {
+
+namespace {
+
+std::string resolve(const std::string& path, const runtime::Parameters& parameters) {
+  const std::filesystem::path given(path);
+  if (given.is_relative() && !parameters.file().empty() && parameters.file().front() != '<') {
+    const auto beside = std::filesystem::path(parameters.file()).parent_path() / given;
+    if (std::filesystem::exists(beside)) {
+      return beside.string();
+    }
+  }
+  return path;
+}
+
+}  // namespace
+
+ModelServiceComponent::ModelServiceComponent() = default;
+ModelServiceComponent::~ModelServiceComponent() { release(); }
+
+void ModelServiceComponent::on_configure(const runtime::Parameters& parameters,
+                                         const runtime::ComponentContext& context) {
+  const std::string urdf = resolve(parameters.require<std::string>("urdf"), parameters);
+  model::LoadOptions options;
+  options.joints = parameters.get<std::vector<std::string>>("joints", {});
+  options.fixed_base = parameters.get<bool>("fixed_base", false);
+  const bool worker_thread = parameters.get<bool>("worker_thread", false);
+  const std::string robot = parameters.get<std::string>("robot", "");
+  parameters.reject_unknown();  // before the (slow) loading and any DDS entity
+
+  try {
+    model_ = std::make_unique<model::Model>(model::load_urdf_file(urdf, options));
+  } catch (const std::exception& error) {
+    throw runtime::ParameterError(parameters.where("urdf") + ": cannot load the model: " +
+                                  error.what());
+  }
+  robot_ = robot.empty() ? model_->name : robot;
+  evaluator_ = std::make_unique<Evaluator>(*model_, robot_);
+
+  description_ = std::make_unique<dds::Publisher<msg::RobotDescription>>(
+      *context.participant, dds::topics::model_description(robot_), dds::qos::kLatched);
+  msg::RobotDescription description = evaluator_->description(urdf);
+  description.header().stamp_ns(context.clock->now_ns());
+  description_->publish(description);
+
+  participant_ = context.participant;
+  worker_thread_ = worker_thread;
+}
+
+void ModelServiceComponent::on_activate() {
+  dds::ServerOptions server_options;
+  server_options.handle_on_dds_thread = !worker_thread_;
+  server_ = std::make_unique<dds::Server<msg::ModelRequest, msg::ModelReply>>(
+      *participant_, dds::topics::model_service(robot_),
+      [this](const msg::ModelRequest& request, msg::ModelReply& reply) {
+        evaluator_->evaluate(request, reply);
+      },
+      server_options);
+}
+
+void ModelServiceComponent::on_deactivate() { server_.reset(); }
+
+dds::ServerStats ModelServiceComponent::stats() const {
+  return server_ ? server_->stats() : dds::ServerStats{};
+}
+
+void ModelServiceComponent::release() {
+  server_.reset();  // first: no handler runs after this
+  description_.reset();
+  evaluator_.reset();
+  model_.reset();
+}
+
+void register_components(runtime::Registry& registry) {
+  registry.add<ModelServiceComponent>(
+      "model_service", "loads a URDF, publishes its description, answers model requests");
+}
+
+}  // namespace wbi::model_service

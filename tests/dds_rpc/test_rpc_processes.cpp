@@ -1,0 +1,122 @@
+// Request/reply between real processes on loopback: many clients without
+// cross-talk, a client started before its server, and a server killed mid-run
+// (timeouts within the deadline, then recovery with a new server).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <wbi/dds/client.hpp>
+
+#include "child_process.hpp"
+#include "rpc_fixture.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using wbi::dds::CallStatus;
+using wbi::test::ChildProcess;
+using Request = wbi::msg::ModelRequest;
+using Reply = wbi::msg::ModelReply;
+using Clock = std::chrono::steady_clock;
+
+const std::string kService = "wbi/test/toy";
+
+std::filesystem::path peer() { return wbi::test::binary_dir() / "tests" / "wbi_test_rpc_peer"; }
+
+// Fewer calls under the sanitizers, which slow every call down.
+long calls_per_client() {
+#if defined(__SANITIZE_ADDRESS__)
+  return 200;
+#else
+  return 1000;
+#endif
+}
+
+TEST(RpcProcesses, EightClientProcessesGetOnlyTheirOwnReplies) {
+  ChildProcess server(peer(), {"server", kService});
+  ASSERT_TRUE(server.wait_for_output("server: ready", 20s)) << server.output();
+  const long calls = calls_per_client();
+  std::vector<std::unique_ptr<ChildProcess>> clients;
+  for (int c = 0; c < 8; ++c) {
+    clients.push_back(std::make_unique<ChildProcess>(
+        peer(), std::vector<std::string>{"client", kService, std::to_string(calls),
+                                         std::to_string(1000 + c)}));
+  }
+  for (int c = 0; c < 8; ++c) {
+    const auto code = clients[c]->wait(std::chrono::milliseconds(180s));
+    ASSERT_TRUE(code.has_value()) << "client " << c << " still running: " << clients[c]->output();
+    EXPECT_EQ(*code, 0) << "client " << c << ": " << clients[c]->output();
+    EXPECT_NE(clients[c]->output().find("client: ok " + std::to_string(calls)), std::string::npos)
+        << clients[c]->output();
+  }
+  EXPECT_EQ(server.stop(), 0);
+  EXPECT_NE(server.output().find("answered " + std::to_string(8 * calls)), std::string::npos)
+      << server.output();
+}
+
+TEST(RpcProcesses, ClientProcessStartedBeforeTheServer) {
+  ChildProcess client(peer(), {"client", kService, "20", "7"});
+  // The client is up and waiting for a server (it waits up to 20 s).
+  ASSERT_FALSE(client.wait(500ms).has_value()) << client.output();
+  ChildProcess server(peer(), {"server", kService});
+  const auto code = client.wait(30s);
+  ASSERT_TRUE(code.has_value());
+  EXPECT_EQ(*code, 0) << client.output();
+}
+
+TEST(RpcProcesses, ServerKilledMidRunGivesTimeoutsThenANewServerAnswers) {
+  wbi::dds::Participant participant("client");
+  wbi::dds::Client<Request, Reply> client(participant, kService);
+  std::mt19937_64 rng(9);
+  Request request;
+  Reply reply;
+  auto server = std::make_unique<ChildProcess>(peer(), std::vector<std::string>{"server", kService});
+  ASSERT_TRUE(client.wait_connected(20s)) << server->output();
+  const auto connected_at = Clock::now();
+  for (int i = 0; i < 100; ++i) {
+    wbi::test::random_request(rng, 12, request);
+    ASSERT_EQ(client.try_call(request, reply, 2s), CallStatus::ok) << "call " << i;
+    ASSERT_EQ(wbi::test::toy_mismatch(request, reply), "");
+  }
+  (void)connected_at;
+  server->stop(9);  // SIGKILL: no goodbye on the wire
+  server.reset();
+  // Every call now fails within its deadline, with a timeout naming the service.
+  for (int i = 0; i < 5; ++i) {
+    wbi::test::random_request(rng, 12, request);
+    const auto start = Clock::now();
+    try {
+      client.call(request, reply, 200ms);
+      FAIL() << "a call succeeded with the server dead";
+    } catch (const wbi::dds::TimeoutError& error) {
+      EXPECT_NE(std::string(error.what()).find("service '" + kService + "'"), std::string::npos);
+    }
+    const auto elapsed = Clock::now() - start;
+    EXPECT_LT(elapsed, 200ms + 100ms) << "call " << i << " overran its deadline";
+  }
+  // A new server: calls succeed again, within a few seconds.
+  ChildProcess second(peer(), {"server", kService});
+  ASSERT_TRUE(second.wait_for_output("server: ready", 20s)) << second.output();
+  const auto restart = Clock::now();
+  bool recovered = false;
+  while (!recovered && Clock::now() - restart < 20s) {
+    wbi::test::random_request(rng, 12, request);
+    recovered = client.try_call(request, reply, 500ms) == CallStatus::ok;
+  }
+  ASSERT_TRUE(recovered) << "no reply from the new server within 20 s";
+  EXPECT_EQ(wbi::test::toy_mismatch(request, reply), "");
+  RecordProperty("recovery_ms", static_cast<int>(std::chrono::duration_cast<std::chrono::milliseconds>(
+                                                     Clock::now() - restart)
+                                                     .count()));
+  for (int i = 0; i < 50; ++i) {
+    wbi::test::random_request(rng, 12, request);
+    ASSERT_EQ(client.try_call(request, reply, 2s), CallStatus::ok) << "call " << i << " after recovery";
+    ASSERT_EQ(wbi::test::toy_mismatch(request, reply), "");
+  }
+}
+
+}  // namespace

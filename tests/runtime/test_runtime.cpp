@@ -1,0 +1,404 @@
+// The component runtime: lifecycle transitions, typed parameters and their
+// errors, the periodic loop on a stepped and on the system clock with its
+// timing statistics, the status heartbeat, the registry and the host.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <wbi/dds/participant.hpp>
+#include <wbi/dds/publisher.hpp>
+#include <wbi/dds/subscriber.hpp>
+#include <wbi/dds/topics.hpp>
+#include <wbi/runtime/builtin.hpp>
+#include <wbi/runtime/host.hpp>
+
+namespace {
+
+using namespace std::chrono_literals;
+using wbi::runtime::ComponentContext;
+using wbi::runtime::ComponentRunner;
+using wbi::runtime::LifecycleState;
+using wbi::runtime::ParameterError;
+using wbi::runtime::Parameters;
+using wbi::runtime::TransitionError;
+
+bool eventually(const std::function<bool()>& pred, std::chrono::milliseconds timeout = 10s) {
+  const auto end = std::chrono::steady_clock::now() + timeout;
+  while (!pred()) {
+    if (std::chrono::steady_clock::now() > end) {
+      return false;
+    }
+    std::this_thread::sleep_for(1ms);
+  }
+  return true;
+}
+
+// Records its hooks and cycles; can be told to fail a hook or to be slow.
+struct Probe {
+  std::vector<std::string> calls;
+  std::string fail_in;
+  std::atomic<int> cycles{0};
+  std::atomic<std::int64_t> cycle_cost_ns{0};  // advanced on the stepped clock by each update
+  double gain = 0.0;
+  std::vector<double> weights;
+};
+
+class ProbeComponent final : public wbi::runtime::Component {
+ public:
+  explicit ProbeComponent(Probe& probe) : probe_(probe) {}
+  void on_configure(const Parameters& parameters, const ComponentContext& context) override {
+    hook("configure");
+    probe_.gain = parameters.require<double>("gain");
+    probe_.weights = parameters.get<std::vector<double>>("weights", {1.0});
+    clock_ = dynamic_cast<wbi::runtime::SteppedClock*>(context.clock);
+  }
+  void on_activate() override { hook("activate"); }
+  void on_deactivate() override { hook("deactivate"); }
+  void on_cleanup() override { hook("cleanup"); }
+  void on_shutdown() override { hook("shutdown"); }
+  void update(std::int64_t, std::int64_t) override {
+    ++probe_.cycles;
+    if (clock_ != nullptr && probe_.cycle_cost_ns != 0) {
+      clock_->advance_ns(probe_.cycle_cost_ns);
+    }
+  }
+
+ private:
+  void hook(const std::string& name) {
+    probe_.calls.push_back(name);
+    if (probe_.fail_in == name) {
+      throw std::runtime_error(name + " went wrong");
+    }
+  }
+  Probe& probe_;
+  wbi::runtime::SteppedClock* clock_ = nullptr;
+};
+
+struct Fixture : ::testing::Test {
+  wbi::dds::Participant participant{"runtime"};
+  wbi::runtime::SteppedClock stepped{0};
+  wbi::runtime::SystemClock system;
+  Probe probe;
+
+  std::unique_ptr<ComponentRunner> runner(wbi::runtime::Clock& clock, double rate_hz) {
+    wbi::runtime::RunnerOptions options;
+    options.rate_hz = rate_hz;
+    options.status_period_s = 0.05;
+    return std::make_unique<ComponentRunner>(std::make_unique<ProbeComponent>(probe),
+                                             ComponentContext{"probe", "probe", &participant, &clock},
+                                             options);
+  }
+};
+
+using Lifecycle = Fixture;
+
+TEST_F(Lifecycle, FollowsTheManagedNodeStateMachine) {
+  auto r = runner(stepped, 0);
+  EXPECT_EQ(r->state(), LifecycleState::unconfigured);
+  EXPECT_THROW(r->activate(), TransitionError);
+  r->configure(Parameters::from_string("gain: 2.5"));
+  EXPECT_EQ(r->state(), LifecycleState::inactive);
+  EXPECT_DOUBLE_EQ(probe.gain, 2.5);
+  EXPECT_THROW(r->configure(Parameters::from_string("gain: 1")), TransitionError);
+  r->activate();
+  EXPECT_EQ(r->state(), LifecycleState::active);
+  EXPECT_THROW(r->cleanup(), TransitionError);
+  r->deactivate();
+  r->cleanup();
+  EXPECT_EQ(r->state(), LifecycleState::unconfigured);
+  r->configure(Parameters::from_string("gain: 1"));
+  r->activate();
+  r->shutdown();
+  EXPECT_EQ(r->state(), LifecycleState::finalized);
+  EXPECT_THROW(r->configure(Parameters::from_string("gain: 1")), TransitionError);
+  const std::vector<std::string> expected = {"configure", "activate", "deactivate", "cleanup",
+                                             "configure", "activate", "deactivate", "shutdown"};
+  EXPECT_EQ(probe.calls, expected);
+}
+
+TEST_F(Lifecycle, InvalidTransitionNamesTheComponentAndStates) {
+  auto r = runner(stepped, 0);
+  try {
+    r->deactivate();
+    FAIL();
+  } catch (const TransitionError& error) {
+    EXPECT_STREQ(error.what(), "component 'probe': cannot deactivate from unconfigured (only from active)");
+  }
+}
+
+TEST_F(Lifecycle, AFailingHookLeavesTheStateAndRecordsTheError) {
+  auto r = runner(stepped, 0);
+  probe.fail_in = "activate";
+  r->configure(Parameters::from_string("gain: 1"));
+  EXPECT_THROW(r->activate(), TransitionError);
+  EXPECT_EQ(r->state(), LifecycleState::inactive);
+  EXPECT_EQ(r->last_error(), "activate went wrong");
+  probe.fail_in.clear();
+  r->activate();
+  EXPECT_EQ(r->state(), LifecycleState::active);
+}
+
+TEST_F(Lifecycle, ShutdownFromAnyStateEndsFinalized) {
+  for (int stage = 0; stage < 3; ++stage) {
+    Probe fresh;
+    auto r = std::make_unique<ComponentRunner>(
+        std::make_unique<ProbeComponent>(fresh),
+        ComponentContext{"p", "probe", &participant, &stepped}, wbi::runtime::RunnerOptions{});
+    if (stage >= 1) {
+      r->configure(Parameters::from_string("gain: 1"));
+    }
+    if (stage >= 2) {
+      r->activate();
+    }
+    r->shutdown();
+    EXPECT_EQ(r->state(), LifecycleState::finalized);
+    EXPECT_EQ(fresh.calls.back(), "shutdown");
+  }
+}
+
+TEST(Params, TypedValuesAndDefaults) {
+  const auto p = Parameters::from_string(
+      "rate: 250\nname: icub\nflag: true\nq: [0.5, -1, 2e-1]\njoints: [a, b]\nbig: 12345678901");
+  EXPECT_EQ(p.get<int>("rate", 0), 250);
+  EXPECT_DOUBLE_EQ(p.get<double>("rate", 0.0), 250.0);
+  EXPECT_EQ(p.get<std::string>("name", ""), "icub");
+  EXPECT_TRUE(p.get<bool>("flag", false));
+  EXPECT_EQ(p.get<std::vector<double>>("q", {}), (std::vector<double>{0.5, -1.0, 0.2}));
+  EXPECT_EQ(p.get<std::vector<std::string>>("joints", {}), (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(p.get<std::int64_t>("big", 0), 12345678901);
+  EXPECT_EQ(p.get<int>("absent", 7), 7);
+  EXPECT_NO_THROW(p.reject_unknown());
+}
+
+TEST(Params, IllTypedValueNamesFileLineAndKey) {
+  const auto p = Parameters::from_string("gain: 1\nrate: fast\n", "component 'ctrl'");
+  try {
+    (void)p.get<double>("rate", 1.0);
+    FAIL();
+  } catch (const ParameterError& error) {
+    EXPECT_STREQ(error.what(),
+                 "<string>:2: component 'ctrl': parameter 'rate' must be a number, got 'fast'");
+  }
+  EXPECT_THROW((void)Parameters::from_string("n: 1.5").get<int>("n", 0), ParameterError);
+  EXPECT_THROW((void)Parameters::from_string("f: maybe").get<bool>("f", false), ParameterError);
+  EXPECT_THROW((void)Parameters::from_string("v: [1, x]").get<std::vector<double>>("v", {}),
+               ParameterError);
+  EXPECT_THROW((void)Parameters::from_string("s: [1]").get<std::string>("s", ""), ParameterError);
+}
+
+TEST(Params, UnknownAndMissingKeys) {
+  const auto p = Parameters::from_string("gain: 1\ngian: 2\n", "component 'ctrl'");
+  EXPECT_EQ(p.require<double>("gain"), 1.0);
+  (void)p.get<double>("offset", 0.0);
+  try {
+    p.reject_unknown();
+    FAIL();
+  } catch (const ParameterError& error) {
+    EXPECT_STREQ(error.what(),
+                 "<string>:2: component 'ctrl': unknown parameter 'gian' (known: gain, offset)");
+  }
+  try {
+    (void)p.require<std::string>("urdf");
+    FAIL();
+  } catch (const ParameterError& error) {
+    EXPECT_NE(std::string(error.what()).find("missing parameter 'urdf'"), std::string::npos);
+  }
+  EXPECT_THROW(Parameters::from_string("[1, 2]"), ParameterError);
+  EXPECT_THROW(Parameters::from_string("a: [1"), ParameterError);
+}
+
+TEST_F(Lifecycle, ConfigureRejectsUnknownParameters) {
+  auto r = runner(stepped, 0);
+  EXPECT_THROW(r->configure(Parameters::from_string("gain: 1\ngainn: 2")), TransitionError);
+  EXPECT_EQ(r->state(), LifecycleState::unconfigured);
+  EXPECT_NE(r->last_error().find("unknown parameter 'gainn'"), std::string::npos) << r->last_error();
+  EXPECT_THROW(r->configure(Parameters::from_string("weights: [1]")), TransitionError);  // no gain
+  r->configure(Parameters::from_string("gain: 3"));
+  EXPECT_EQ(r->state(), LifecycleState::inactive);
+}
+
+using Loop = Fixture;
+
+TEST_F(Loop, RunsOncePerTickOfASteppedClock) {
+  auto r = runner(stepped, 100.0);  // 10 ms period
+  r->configure(Parameters::from_string("gain: 1"));
+  r->activate();
+  // Cycles are counted once their end is measured: only then may time move on.
+  const auto done = [&](std::uint64_t n) { return eventually([&] { return r->stats().iterations == n; }); };
+  ASSERT_TRUE(done(1));  // the first tick at once
+  for (std::uint64_t k = 1; k <= 20; ++k) {
+    stepped.advance_ns(10'000'000);
+    ASSERT_TRUE(done(k + 1)) << "tick " << k;
+  }
+  r->deactivate();
+  const auto stats = r->stats();
+  EXPECT_EQ(stats.iterations, 21u);
+  EXPECT_EQ(stats.overruns, 0u);
+  EXPECT_NEAR(stats.period_mean_s, 0.010, 1e-12);
+  EXPECT_NEAR(stats.period_jitter_s, 0.0, 1e-12);
+  // No cycle while inactive.
+  stepped.advance_ns(50'000'000);
+  std::this_thread::sleep_for(20ms);
+  EXPECT_EQ(probe.cycles, 21);
+}
+
+TEST_F(Loop, SlowCyclesCountAsOverrunsAndSkipTicks) {
+  auto r = runner(stepped, 100.0);
+  r->configure(Parameters::from_string("gain: 1"));
+  probe.cycle_cost_ns = 25'000'000;  // each cycle takes 2.5 periods of clock time
+  r->activate();
+  const auto done = [&](std::uint64_t n) { return eventually([&] { return r->stats().iterations == n; }); };
+  ASSERT_TRUE(done(1));
+  for (std::uint64_t k = 1; k <= 4; ++k) {
+    stepped.advance_ns(5'000'000);  // reach the next scheduled tick
+    ASSERT_TRUE(done(k + 1)) << "tick " << k;
+  }
+  r->deactivate();
+  const auto stats = r->stats();
+  EXPECT_EQ(stats.iterations, 5u);
+  EXPECT_EQ(stats.overruns, 5u);
+  // Ticks every 30 ms (3 periods: 2 skipped), cycle 25 ms.
+  EXPECT_NEAR(stats.period_mean_s, 0.030, 1e-9);
+  EXPECT_NEAR(stats.cycle_mean_s, 0.025, 1e-9);
+}
+
+TEST_F(Loop, RunsAtItsRateOnTheSystemClock) {
+  auto r = runner(system, 200.0);
+  r->configure(Parameters::from_string("gain: 1"));
+  r->activate();
+  std::this_thread::sleep_for(500ms);
+  r->deactivate();
+  const auto stats = r->stats();
+  EXPECT_GT(stats.iterations, 60u);   // ~100 expected; generous on a loaded 2-core machine
+  EXPECT_LT(stats.iterations, 110u);
+  EXPECT_NEAR(stats.period_mean_s, 0.005, 0.0015);
+  EXPECT_LT(stats.period_jitter_s, 0.005);
+  std::cout << "200 Hz: " << stats.iterations << " cycles, mean " << stats.period_mean_s * 1e3
+            << " ms, jitter " << stats.period_jitter_s * 1e6 << " us, overruns " << stats.overruns
+            << "\n";
+}
+
+TEST_F(Loop, StatusHeartbeatCarriesStateAndTiming) {
+  wbi::dds::Participant listener("listener");
+  wbi::dds::Subscriber<wbi::msg::ComponentStatus> status(listener, wbi::dds::topics::kStatus,
+                                                         wbi::dds::qos::kStatus);
+  auto r = runner(system, 100.0);
+  r->configure(Parameters::from_string("gain: 1"));
+  r->activate();
+  ASSERT_TRUE(status.wait_for_publishers(1, 10s));
+  wbi::dds::Received<wbi::msg::ComponentStatus> got;
+  ASSERT_TRUE(eventually([&] {
+    return status.latest_into(got) && got.sample.state() == wbi::msg::ACTIVE &&
+           got.sample.iterations() > 5;
+  }));
+  EXPECT_STREQ(got.sample.instance().c_str(), "probe");
+  EXPECT_STREQ(got.sample.type().c_str(), "probe");
+  EXPECT_DOUBLE_EQ(got.sample.rate_hz(), 100.0);
+  EXPECT_GT(got.sample.period_mean_s(), 0.0);
+  r->shutdown();
+  ASSERT_TRUE(eventually([&] {
+    return status.latest_into(got) && got.sample.state() == wbi::msg::FINALIZED;
+  }));
+}
+
+TEST(Registry, CreatesByTypeAndNamesUnknownTypes) {
+  wbi::runtime::Registry registry;
+  wbi::runtime::register_builtin_components(registry);
+  EXPECT_TRUE(registry.contains("idle"));
+  EXPECT_NE(registry.create("idle"), nullptr);
+  EXPECT_THROW(registry.add("idle", [] { return std::unique_ptr<wbi::runtime::Component>(); }),
+               std::invalid_argument);
+  try {
+    (void)registry.create("idel");
+    FAIL();
+  } catch (const std::invalid_argument& error) {
+    EXPECT_STREQ(error.what(), "unknown component type 'idel' (known: idle)");
+  }
+}
+
+std::string host_error(const std::string& yaml) {
+  wbi::runtime::Registry registry;
+  wbi::runtime::register_builtin_components(registry);
+  try {
+    auto host = wbi::runtime::Host::from_string(yaml, registry, "robot.yaml");
+    host->start();
+  } catch (const std::exception& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(HostFile, RunsItsComponentsAndStopsThemInReverse) {
+  wbi::runtime::Registry registry;
+  wbi::runtime::register_builtin_components(registry);
+  auto host = wbi::runtime::Host::from_string(
+      "clock: system\ncomponents:\n  - {name: a, type: idle, rate_hz: 100}\n"
+      "  - {name: b, type: idle}\n",
+      registry);
+  host->start();
+  EXPECT_EQ(host->component("a").state(), LifecycleState::active);
+  EXPECT_EQ(host->component("b").state(), LifecycleState::active);
+  ASSERT_TRUE(eventually([&] { return host->component("a").stats().iterations > 3; }));
+  EXPECT_TRUE(host->stop().empty());
+  EXPECT_EQ(host->component("a").state(), LifecycleState::finalized);
+}
+
+TEST(HostFile, BadFilesGetErrorsNamingFileLineAndKey) {
+  EXPECT_EQ(host_error("components:\n  - {name: a, type: idle}\nlogging: on\n"),
+            "robot.yaml:3: host file: unknown key 'logging' (known: clock, components, domain_id, "
+            "status_period_s)");
+  EXPECT_EQ(host_error("components:\n  - name: a\n    type: idle\n    rate: 5\n"),
+            "robot.yaml:4: component: unknown key 'rate' (known: name, parameters, rate_hz, type)");
+  EXPECT_EQ(host_error("components:\n  - name: a\n    type: idel\n"),
+            "robot.yaml:3: component 'a': unknown component type 'idel' (known: idle)");
+  EXPECT_EQ(host_error("components:\n  - name: a\n    type: idle\n    rate_hz: fast\n"),
+            "robot.yaml:4: component 'a': 'rate_hz' must be a number [Hz]");
+  EXPECT_EQ(host_error("components:\n  - name: a\n    type: idle\n    parameters: {x: 1}\n"),
+            "component 'a' (idle): configure failed: robot.yaml:4: component 'a': unknown "
+            "parameter 'x' (known: none)");
+  EXPECT_EQ(host_error("components:\n  - {name: a, type: idle}\n  - {name: a, type: idle}\n"),
+            "robot.yaml:3: component 'a': the name is used twice");
+  EXPECT_EQ(host_error("domain_id: 999\ncomponents: []\n"),
+            "robot.yaml:1: host file: 'domain_id' must be in [0, 232]");
+  EXPECT_EQ(host_error("clock: sundial\ncomponents: []\n"),
+            "robot.yaml:1: host file: 'clock' must be system or simulation, got 'sundial'");
+  EXPECT_EQ(host_error("components: {a: 1}\n"),
+            "robot.yaml:1: host file: 'components' must be a list of components");
+}
+
+TEST(SimClock, FollowsTheClockTopic) {
+  wbi::dds::Participant sim("sim");
+  wbi::dds::Participant host("host");
+  wbi::runtime::SimulationClock clock(host);
+  wbi::dds::Publisher<wbi::msg::SimulationClock> ticks(sim, wbi::dds::topics::kClock,
+                                                       wbi::dds::qos::kStream);
+  ASSERT_TRUE(ticks.wait_for_subscribers(1, 10s));
+  std::atomic<bool> woke{false};
+  std::thread sleeper([&] {
+    clock.sleep_until(3'000'000);
+    woke = true;
+  });
+  wbi::msg::SimulationClock tick;
+  tick.time_ns(1'000'000);
+  ASSERT_TRUE(eventually([&] {
+    ticks.publish(tick);  // best effort: again until it lands
+    return clock.now_ns() == 1'000'000;
+  }));
+  EXPECT_FALSE(woke.load());
+  tick.time_ns(3'000'000);
+  // Best effort: publish again until the sample has landed and woken the sleeper.
+  ASSERT_TRUE(eventually([&] {
+    ticks.publish(tick);
+    return woke.load();
+  }));
+  sleeper.join();
+  EXPECT_EQ(clock.now_ns(), 3'000'000);
+}
+
+}  // namespace
