@@ -1,0 +1,298 @@
+#include "wbi/estimator/estimator_component.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include <Eigen/Geometry>
+#include <wbi/dds/publisher.hpp>
+#include <wbi/dds/subscriber.hpp>
+#include <wbi/dds/topics.hpp>
+#include <wbi/estimation/estimator_factory.hpp>
+#include <wbi/estimation/low_pass_filter.hpp>
+
+#include "wbi/estimator/base_estimator.hpp"
+
+namespace wbi::estimator {
+
+namespace {
+
+enum class BaseSource { fixed, fixed_link, topic };
+
+std::string kebab(std::string name) {
+  for (auto& c : name) {
+    c = c == '_' ? '-' : c;
+  }
+  return name;
+}
+
+Eigen::Matrix4d pose_from(const std::vector<double>& position, const std::vector<double>& quaternion) {
+  Eigen::Matrix4d H = Eigen::Matrix4d::Identity();
+  H.topRightCorner<3, 1>() << position[0], position[1], position[2];
+  H.topLeftCorner<3, 3>() =
+      Eigen::Quaterniond(quaternion[0], quaternion[1], quaternion[2], quaternion[3]).toRotationMatrix();
+  return H;
+}
+
+void write_pose(wbi::msg::Pose& pose, const Eigen::Matrix4d& H) {
+  const Eigen::Quaterniond q(Eigen::Matrix3d(H.topLeftCorner<3, 3>()));
+  pose.position().x(H(0, 3));
+  pose.position().y(H(1, 3));
+  pose.position().z(H(2, 3));
+  pose.orientation().w(q.w());
+  pose.orientation().x(q.x());
+  pose.orientation().y(q.y());
+  pose.orientation().z(q.z());
+}
+
+class EstimatorComponent final : public runtime::Component {
+ public:
+  void on_configure(const runtime::Parameters& parameters,
+                    const runtime::ComponentContext& context) override {
+    robot_ = parameters.require<std::string>("robot");
+    method_ = parameters.get<std::string>("method", "kalman");
+    method_parameters_.clear();
+    for (const auto& spec : estimation::method_info(method_).parameters) {
+      std::string key = spec.name;
+      std::replace(key.begin(), key.end(), '-', '_');
+      if (parameters.has(key)) {
+        method_parameters_[spec.name] = parameters.get<double>(key, spec.default_value);
+      }
+    }
+    estimation::make_estimator(method_, 1, method_parameters_);  // validates now, names the bad one
+    cutoff_hz_ = parameters.get<double>("torque_cutoff_hz", 0.0);
+    const auto base = parameters.get<std::string>("base", "fixed");
+    if (base == "fixed") {
+      base_source_ = BaseSource::fixed;
+    } else if (base == "fixed_link") {
+      base_source_ = BaseSource::fixed_link;
+      urdf_ = parameters.require<std::string>("urdf");
+      fixed_link_ = parameters.require<std::string>("fixed_link");
+    } else if (base == "topic") {
+      base_source_ = BaseSource::topic;
+    } else {
+      throw runtime::ParameterError(parameters.where("base") + ": base must be fixed, fixed_link or topic, got '" +
+                                    base + "'");
+    }
+    base_pose_ = pose_from(parameters.get<std::vector<double>>("base_position", {0.0, 0.0, 0.0}),
+                           parameters.get<std::vector<double>>("base_quaternion", {1.0, 0.0, 0.0, 0.0}));
+    const auto base_topic = parameters.get<std::string>("base_topic", dds::topics::ground_truth(robot_));
+
+    auto& participant = *context.participant;
+    description_ = std::make_unique<dds::Subscriber<wbi::msg::RobotDescription>>(
+        participant, dds::topics::description(robot_), dds::qos::kLatched,
+        [this](const wbi::msg::RobotDescription&, const dds::detail::SampleInfo&) { on_description(); });
+    state_publisher_ = std::make_unique<dds::Publisher<wbi::msg::StateEstimate>>(
+        participant, dds::topics::state(robot_), dds::qos::kStream);
+    if (base_source_ == BaseSource::topic) {
+      ground_truth_ = std::make_unique<dds::Subscriber<wbi::msg::GroundTruth>>(
+          participant, base_topic, dds::qos::kStream);
+    }
+    parameter_subscriber_ = std::make_unique<dds::Subscriber<wbi::msg::EstimatorParameter>>(
+        participant, dds::topics::estimator_parameters(robot_), dds::qos::kCommand,
+        [this](const wbi::msg::EstimatorParameter& p, const dds::detail::SampleInfo&) { on_parameter(p); });
+    sensors_ = std::make_unique<dds::Subscriber<wbi::msg::SensorSample>>(
+        participant, dds::topics::sensors(robot_), dds::qos::kStream,
+        [this](const wbi::msg::SensorSample& s, const dds::detail::SampleInfo&) { on_sample(s); });
+  }
+
+  void on_activate() override { active_ = true; }
+  void on_deactivate() override { active_ = false; }
+
+  void on_cleanup() override {
+    active_ = false;
+    sensors_.reset();  // first: no callback runs after this
+    parameter_subscriber_.reset();
+    ground_truth_.reset();
+    state_publisher_.reset();
+    description_.reset();
+    std::lock_guard lock(mutex_);
+    estimator_.reset();
+    base_estimator_.reset();
+  }
+
+  void on_shutdown() override { on_cleanup(); }
+
+ private:
+  // Sizes everything from the robot description, once, at the first sample.
+  bool prepare(std::size_t joints) {
+    const auto description = description_->latest();
+    if (!description || description->sample.joint_names().size() != joints) {
+      return false;  // description not yet here, or not this robot's: wait
+    }
+    const auto n = static_cast<Eigen::Index>(joints);
+    estimator_ = estimation::make_estimator(method_, n, method_parameters_);
+    torque_filter_.emplace(n, cutoff_hz_);
+    q_.setZero(n);
+    tau_.setZero(n);
+    auto& state = state_;
+    state.header().robot(robot_);
+    state.q().assign(joints, 0.0);
+    state.dq().assign(joints, 0.0);
+    state.ddq().assign(joints, 0.0);
+    state.tau().assign(joints, 0.0);
+    if (base_source_ == BaseSource::fixed_link) {
+      std::vector<std::string> names;
+      for (const auto& name : description->sample.joint_names()) {
+        names.push_back(name.to_string());
+      }
+      base_estimator_ = std::make_unique<FixedLinkBaseEstimator>(urdf_, names, fixed_link_, base_pose_);
+    }
+    return true;
+  }
+
+  // A sample that came before the description is kept and estimated once the
+  // description is here (a lockstep robot sends its next sample only after this one).
+  void on_description() {
+    std::lock_guard lock(mutex_);
+    if (active_ && !estimator_ && pending_ && prepare(pending_->encoder_position().size())) {
+      estimate(*pending_);
+      pending_.reset();
+    }
+  }
+
+  void on_sample(const wbi::msg::SensorSample& sample) {
+    if (!active_) {
+      return;
+    }
+    std::lock_guard lock(mutex_);
+    if (!estimator_ && !prepare(sample.encoder_position().size())) {
+      pending_ = sample;  // start-up only: the description has not arrived yet
+      return;
+    }
+    estimate(sample);
+  }
+
+  void estimate(const wbi::msg::SensorSample& sample) {
+    const auto& positions = sample.encoder_position();
+    if (positions.size() != static_cast<std::size_t>(q_.size())) {
+      ++ignored_;  // a sample of the wrong size is not this robot's: never applied
+      return;
+    }
+    q_ = Eigen::Map<const Eigen::VectorXd>(positions.data(), q_.size());
+    estimator_->update(sample.header().stamp_ns(), q_);
+    const auto& tau_in = sample.joint_torque();
+    if (tau_in.size() == positions.size()) {
+      torque_filter_->update(sample.header().stamp_ns(),
+                             Eigen::Map<const Eigen::VectorXd>(tau_in.data(), q_.size()));
+      tau_ = torque_filter_->value();
+    }
+    publish(sample);
+  }
+
+  void publish(const wbi::msg::SensorSample& sample) {
+    auto& state = state_;
+    state.header().stamp_ns(sample.header().stamp_ns());
+    state.header().seq(sample.header().seq());
+    const auto& dq = estimator_->velocity();
+    const auto& ddq = estimator_->acceleration();
+    for (Eigen::Index j = 0; j < q_.size(); ++j) {
+      const auto k = static_cast<std::size_t>(j);
+      state.q()[k] = q_[j];
+      state.dq()[k] = dq[j];
+      state.ddq()[k] = ddq[j];
+      state.tau()[k] = tau_[j];
+    }
+    fill_base(dq, ddq);
+    const auto& counters = estimator_->stamp_counters();
+    state.warnings(static_cast<std::uint32_t>(counters.anomalies()) + ignored_);
+    state_publisher_->publish(state);
+  }
+
+  void fill_base(const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq) {
+    auto& state = state_;
+    switch (base_source_) {
+      case BaseSource::fixed:
+        write_pose(state.base_pose(), base_pose_);
+        break;
+      case BaseSource::fixed_link: {
+        const BaseState& base = base_estimator_->update(q_, dq, ddq);
+        write_pose(state.base_pose(), base.world_H_base);
+        std::copy(base.velocity.data(), base.velocity.data() + 6, state.base_velocity().begin());
+        std::copy(base.acceleration.data(), base.acceleration.data() + 6, state.base_acceleration().begin());
+        break;
+      }
+      case BaseSource::topic:
+        if (ground_truth_->latest_into(ground_truth_rx_)) {
+          state.base_pose(ground_truth_rx_.sample.base_pose());
+          state.base_velocity(ground_truth_rx_.sample.base_velocity());
+          state.base_acceleration(ground_truth_rx_.sample.base_acceleration());
+        }
+        break;
+    }
+  }
+
+  // Runs on a DDS thread: a rejected parameter is reported, never thrown into DDS.
+  void on_parameter(const wbi::msg::EstimatorParameter& parameter) {
+    try {
+      apply_parameter(parameter);
+    } catch (const std::exception& e) {
+      std::cerr << "estimator of robot '" << robot_ << "': parameter '" << parameter.name().to_string()
+                << "' rejected: " << e.what() << std::endl;
+    }
+  }
+
+  void apply_parameter(const wbi::msg::EstimatorParameter& parameter) {
+    std::lock_guard lock(mutex_);
+    const std::string name = parameter.name().to_string();
+    if (name == "reset") {
+      if (estimator_) {
+        estimator_->reset();
+      }
+    } else if (name == "fixed_link") {
+      if (base_estimator_) {
+        base_estimator_->set_fixed_link(parameter.text().to_string());  // unknown link: throws
+      }
+      fixed_link_ = parameter.text().to_string();
+    } else {
+      auto changed = method_parameters_;
+      changed[kebab(name)] = parameter.value();
+      const auto n = estimator_ ? estimator_->joints() : 1;
+      auto rebuilt = estimation::make_estimator(method_, n, changed);  // validates
+      method_parameters_ = changed;
+      if (estimator_) {
+        estimator_ = std::move(rebuilt);  // allocates: a parameter change, not a sample
+      }
+    }
+  }
+
+  std::string robot_;
+  std::string method_;
+  estimation::Parameters method_parameters_;
+  double cutoff_hz_ = 0.0;
+  BaseSource base_source_ = BaseSource::fixed;
+  std::string urdf_;
+  std::string fixed_link_;
+  Eigen::Matrix4d base_pose_ = Eigen::Matrix4d::Identity();
+
+  std::atomic<bool> active_{false};
+  std::mutex mutex_;  // between the sample and the parameter callbacks
+  std::unique_ptr<estimation::DerivativeEstimator> estimator_;
+  std::optional<estimation::LowPassFilter> torque_filter_;
+  std::unique_ptr<FixedLinkBaseEstimator> base_estimator_;
+  std::optional<wbi::msg::SensorSample> pending_;  // a sample that came before the description
+  Eigen::VectorXd q_;
+  Eigen::VectorXd tau_;
+  std::uint32_t ignored_ = 0;
+  wbi::msg::StateEstimate state_;
+  dds::Received<wbi::msg::GroundTruth> ground_truth_rx_;
+
+  std::unique_ptr<dds::Subscriber<wbi::msg::RobotDescription>> description_;
+  std::unique_ptr<dds::Publisher<wbi::msg::StateEstimate>> state_publisher_;
+  std::unique_ptr<dds::Subscriber<wbi::msg::GroundTruth>> ground_truth_;
+  std::unique_ptr<dds::Subscriber<wbi::msg::EstimatorParameter>> parameter_subscriber_;
+  std::unique_ptr<dds::Subscriber<wbi::msg::SensorSample>> sensors_;
+};
+
+}  // namespace
+
+void register_components(runtime::Registry& registry) {
+  registry.add<EstimatorComponent>("estimator",
+                                   "joint velocity/acceleration, filtered torques and base state "
+                                   "from sensor samples");
+}
+
+}  // namespace wbi::estimator

@@ -1,0 +1,190 @@
+// The estimator component over real DDS: one state estimate per sensor
+// sample, with its stamp; velocities of a ramp; the fixed-link base estimate
+// keeps the chosen link still in the world, and the link can be switched at
+// run time; bad parameters are named.
+#include <gtest/gtest.h>
+
+#include <chrono>
+
+#include <wbi/dds/publisher.hpp>
+#include <wbi/dds/subscriber.hpp>
+#include <wbi/dds/topics.hpp>
+#include <wbi/estimator/estimator_component.hpp>
+#include <wbi/model/algorithms.hpp>
+#include <wbi/runtime/runner.hpp>
+
+#include "test_support.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+namespace topics = wbi::dds::topics;
+namespace qos = wbi::dds::qos;
+
+// A robot's description and sensor stream, and the estimator's output, on one participant.
+class EstimatorFixture {
+ public:
+  EstimatorFixture(const std::string& robot, const std::vector<std::string>& joints,
+                   const std::string& parameters_yaml)
+      : robot_(robot),
+        description_(participant_, topics::description(robot), qos::kLatched),
+        sensors_(participant_, topics::sensors(robot), qos::kStream),
+        parameters_(participant_, topics::estimator_parameters(robot), qos::kCommand),
+        state_(participant_, topics::state(robot), qos::kStream) {
+    wbi::msg::RobotDescription description;
+    description.header().robot(robot);
+    for (const auto& joint : joints) {
+      description.joint_names().push_back(joint);
+    }
+    description_.publish(description);
+    wbi::runtime::Registry registry;
+    wbi::estimator::register_components(registry);
+    runner_ = std::make_unique<wbi::runtime::ComponentRunner>(
+        registry.create("estimator"),
+        wbi::runtime::ComponentContext{"estimator", "estimator", &participant_, &clock_});
+    runner_->configure(wbi::runtime::Parameters::from_string(parameters_yaml, "estimator"));
+    runner_->activate();
+    EXPECT_TRUE(sensors_.wait_for_subscribers(1, 10s));
+    EXPECT_TRUE(state_.wait_for_publishers(1, 10s));
+  }
+
+  // Publishes one sample (stamp k ms) and returns the estimate made from it.
+  wbi::msg::StateEstimate step(std::uint64_t k, const Eigen::VectorXd& q) {
+    wbi::msg::SensorSample sample;
+    sample.header().robot(robot_);
+    sample.header().seq(k);
+    sample.header().stamp_ns(static_cast<std::int64_t>(k) * 1'000'000);
+    sample.encoder_position().assign(q.data(), q.data() + q.size());
+    // Best-effort stream: send again until this sample's estimate comes back.
+    for (int attempt = 0; attempt < 50; ++attempt) {
+      sensors_.publish(sample);
+      if (state_.wait_newer(received_, received_.count, 100ms) && received_.sample.header().seq() == k) {
+        return received_.sample;
+      }
+    }
+    ADD_FAILURE() << "no estimate for sample " << k;
+    return {};
+  }
+
+  wbi::dds::Publisher<wbi::msg::EstimatorParameter>& parameters() { return parameters_; }
+
+ private:
+  std::string robot_;
+  wbi::dds::Participant participant_{"estimator_test"};
+  wbi::runtime::SystemClock clock_;
+  wbi::dds::Publisher<wbi::msg::RobotDescription> description_;
+  wbi::dds::Publisher<wbi::msg::SensorSample> sensors_;
+  wbi::dds::Publisher<wbi::msg::EstimatorParameter> parameters_;
+  wbi::dds::Subscriber<wbi::msg::StateEstimate> state_;
+  wbi::dds::Received<wbi::msg::StateEstimate> received_;
+  std::unique_ptr<wbi::runtime::ComponentRunner> runner_;
+};
+
+TEST(EstimatorComponent, EstimatesFollowEverySampleWithItsStamp) {
+  EstimatorFixture fixture("ramp", {"a", "b"}, "robot: ramp\nmethod: kalman\n");
+  const Eigen::Vector2d rate(0.5, -1.0);  // rad/s
+  wbi::msg::StateEstimate state;
+  for (std::uint64_t k = 0; k < 300; ++k) {
+    const Eigen::Vector2d q = Eigen::Vector2d(0.1, 0.2) + rate * (1e-3 * static_cast<double>(k));
+    state = fixture.step(k, q);
+    ASSERT_EQ(state.header().stamp_ns(), static_cast<std::int64_t>(k) * 1'000'000);
+    ASSERT_DOUBLE_EQ(state.q()[1], q[1]);
+  }
+  EXPECT_NEAR(state.dq()[0], 0.5, 1e-3);
+  EXPECT_NEAR(state.dq()[1], -1.0, 1e-3);
+  EXPECT_NEAR(state.ddq()[0], 0.0, 1e-2);
+  EXPECT_DOUBLE_EQ(state.base_pose().orientation().w(), 1.0);  // base: fixed, identity
+  EXPECT_EQ(state.warnings(), 0u);
+}
+
+Eigen::Matrix4d pose_of(const wbi::msg::Pose& p) {
+  Eigen::Matrix4d H = Eigen::Matrix4d::Identity();
+  H.topLeftCorner<3, 3>() = Eigen::Quaterniond(p.orientation().w(), p.orientation().x(),
+                                               p.orientation().y(), p.orientation().z())
+                                .toRotationMatrix();
+  H.topRightCorner<3, 1>() << p.position().x(), p.position().y(), p.position().z();
+  return H;
+}
+
+TEST(EstimatorComponent, FixedLinkBaseKeepsTheStanceFootStill) {
+  const auto urdf = wbi::test::project_model("humanoid.urdf").string();
+  const auto model = wbi::model::load_urdf_file(urdf);
+  std::vector<std::string> joints(model.joint_name.begin(), model.joint_name.end());
+  EstimatorFixture fixture("walker", joints,
+                           "robot: walker\nbase: fixed_link\nurdf: " + urdf +
+                               "\nfixed_link: l_sole\nbase_position: [0, 0, 0.555]\n");
+  wbi::model::Data data(model);
+  const auto sole_in_world = [&](const wbi::msg::StateEstimate& s, const char* frame) {
+    Eigen::VectorXd q(model.nq);
+    const Eigen::Matrix4d H = pose_of(s.base_pose());
+    const Eigen::Quaterniond o(Eigen::Matrix3d(H.topLeftCorner<3, 3>()));
+    q << H.topRightCorner<3, 1>(), o.w(), o.x(), o.y(), o.z(),
+        Eigen::Map<const Eigen::VectorXd>(s.q().data(), model.n_joints);
+    wbi::model::forward_kinematics(model, data, q);
+    return Eigen::Matrix4d(wbi::model::frame_pose(model, data, model.frame_id(frame)));
+  };
+
+  // Bend the left knee and hip over 0.2 s: the base moves, l_sole does not.
+  const int knee = model.joint_id("l_knee");
+  const int hip = model.joint_id("l_hip_pitch");
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(model.n_joints);
+  const auto first = fixture.step(0, q);
+  const Eigen::Matrix4d sole_start = sole_in_world(first, "l_sole");
+  EXPECT_NEAR(sole_start(2, 3), 0.0, 1e-6);  // the base started at 0.555 m: the sole on the ground
+  wbi::msg::StateEstimate state;
+  for (std::uint64_t k = 1; k <= 200; ++k) {
+    q[knee] = 0.4 * static_cast<double>(k) / 200.0;
+    q[hip] = -0.2 * static_cast<double>(k) / 200.0;
+    state = fixture.step(k, q);
+  }
+  EXPECT_TRUE(sole_in_world(state, "l_sole").isApprox(sole_start, 1e-9));
+  EXPECT_LT(pose_of(state.base_pose())(2, 3), 0.555 - 0.01);  // the pelvis went down
+  // The base velocity makes the sole's velocity zero: J_sole ν = 0.
+  Eigen::VectorXd nu(model.nv);
+  nu << Eigen::Map<const Eigen::Matrix<double, 6, 1>>(state.base_velocity().data()),
+      Eigen::Map<const Eigen::VectorXd>(state.dq().data(), model.n_joints);
+  const Eigen::Matrix4d H = pose_of(state.base_pose());
+  Eigen::VectorXd q_full(model.nq);
+  const Eigen::Quaterniond o(Eigen::Matrix3d(H.topLeftCorner<3, 3>()));
+  q_full << H.topRightCorner<3, 1>(), o.w(), o.x(), o.y(), o.z(), q;
+  wbi::model::forward_kinematics(model, data, q_full);
+  const Eigen::VectorXd sole_velocity = wbi::model::frame_jacobian(model, data, model.frame_id("l_sole")) * nu;
+  EXPECT_LT(sole_velocity.norm(), 1e-9);
+  EXPECT_GT(nu.head<3>().norm(), 0.05);  // the base does move
+
+  // Switch the stance foot: from now on r_sole stays where it is.
+  wbi::msg::EstimatorParameter switch_foot;
+  switch_foot.name("fixed_link");
+  switch_foot.text("r_sole");
+  ASSERT_TRUE(fixture.parameters().wait_for_subscribers(1, 10s));
+  fixture.parameters().publish(switch_foot);
+  ASSERT_TRUE(fixture.parameters().wait_acknowledged(5s));
+  const Eigen::Matrix4d right_before = sole_in_world(fixture.step(201, q), "r_sole");
+  q[knee] = 0.0;
+  const auto after = fixture.step(202, q);
+  EXPECT_TRUE(sole_in_world(after, "r_sole").isApprox(right_before, 1e-9));
+}
+
+TEST(EstimatorComponent, BadParametersAreNamed) {
+  wbi::dds::Participant participant("bad");
+  wbi::runtime::SystemClock clock;
+  wbi::runtime::Registry registry;
+  wbi::estimator::register_components(registry);
+  const auto configure = [&](const std::string& yaml) -> std::string {
+    wbi::runtime::ComponentRunner runner(registry.create("estimator"),
+                                         {"estimator", "estimator", &participant, &clock});
+    try {
+      runner.configure(wbi::runtime::Parameters::from_string(yaml, "component 'estimator'"));
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_NE(configure("method: kalman\n").find("robot"), std::string::npos);
+  EXPECT_NE(configure("robot: r\nmethod: magic\n").find("magic"), std::string::npos);
+  EXPECT_NE(configure("robot: r\nbase: fixed_link\n").find("urdf"), std::string::npos);
+  EXPECT_NE(configure("robot: r\nbase: floating\n").find("base must be"), std::string::npos);
+  EXPECT_NE(configure("robot: r\nvelocity_windw: 3\n").find("velocity_windw"), std::string::npos);
+}
+
+}  // namespace
