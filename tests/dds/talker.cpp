@@ -32,7 +32,9 @@ int main(int argc, char** argv) {
   wbi::dds::Participant participant("talker");
   wbi::dds::Publisher<wbi::msg::SensorSample> publisher(
       participant, wbi::dds::topics::sensors(robot),
-      count > 0 ? wbi::dds::qos::kCommand : wbi::dds::qos::kStream);
+      // Counted: transient local, so that a reader whose side of the match comes
+      // after the first write still gets that sample (a volatile one would not).
+      count > 0 ? wbi::dds::qos::kLatched : wbi::dds::qos::kStream);
   std::cout << "talker: ready" << std::endl;
   wbi::msg::SensorSample sample;
   if (count > 0) {

@@ -21,7 +21,7 @@ TEST(DdsTwoProcesses, EverySampleArrivesIntact) {
   std::vector<std::uint64_t> seen;
   std::string first_mismatch;
   wbi::dds::Subscriber<wbi::msg::SensorSample> subscriber(
-      participant, wbi::dds::topics::sensors("twoproc"), wbi::dds::qos::kCommand,
+      participant, wbi::dds::topics::sensors("twoproc"), wbi::dds::qos::kLatched,
       [&](const wbi::msg::SensorSample& sample, const wbi::dds::detail::SampleInfo&) {
         seen.push_back(sample.header().seq());
         if (first_mismatch.empty()) {
@@ -36,7 +36,9 @@ TEST(DdsTwoProcesses, EverySampleArrivesIntact) {
   EXPECT_EQ(*code, 0) << talker.output();
 
   wbi::dds::Received<wbi::msg::SensorSample> last;
-  ASSERT_TRUE(subscriber.wait_newer(last, kCount - 1, 5s));
+  ASSERT_TRUE(subscriber.wait_newer(last, kCount - 1, 5s))
+      << "received " << subscriber.count() << " samples, callback saw " << seen.size()
+      << (seen.empty() ? std::string() : ", first seq " + std::to_string(seen.front()) + ", last " + std::to_string(seen.back()));
   EXPECT_EQ(first_mismatch, "");
   ASSERT_EQ(seen.size(), kCount);
   for (std::uint64_t i = 0; i < kCount; ++i) {

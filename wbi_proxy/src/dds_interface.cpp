@@ -131,6 +131,9 @@ class DdsInterface final : public WholeBodyInterface {
       throw Error("no controlled joints: call add_joints() before init()");
     }
     wait_for_robot(timeout);
+    // Blocking reads from now on wait for samples newer than those init() saw.
+    sensors_.seen.fill(sensors_.received.count);
+    state_.seen.fill(state_.received.count);
     resolve_joints();
     model_.emplace(options_.urdf, controlled_, locked_positions());
     prepare_messages();

@@ -143,7 +143,9 @@ CommandResult JointController::submit(const JointCommandBatch& batch, Time now) 
       if (!std::isfinite(batch.values[b])) {
         return reject("joint '" + name + "': value is not finite");
       }
-      if (mode == ControlMode::kIdle) {
+      // A value for a joint left IDLE is a mistake; a value that comes with an
+      // explicit switch to IDLE (the wire carries one per joint) is ignored.
+      if (mode == ControlMode::kIdle && batch.modes.empty()) {
         return reject("joint '" + name + "' is IDLE: it takes no value");
       }
     }

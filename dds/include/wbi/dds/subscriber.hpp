@@ -30,7 +30,7 @@ struct Received {
 template <Message T>
 class Subscriber : private detail::ReaderSink {
  public:
-  // Called on a DDS thread for every sample, before it becomes the latest.
+  // Called on a DDS thread for every sample, once it is the latest.
   using Callback = std::function<void(const T& sample, const detail::SampleInfo& info)>;
 
   Subscriber(Participant& participant, const std::string& topic, const std::string& qos_profile,
@@ -89,9 +89,6 @@ class Subscriber : private detail::ReaderSink {
   void* storage() override { return &incoming_; }
 
   void on_sample(const detail::SampleInfo& info) override {
-    if (callback_) {
-      callback_(incoming_, info);
-    }
     {
       std::lock_guard lock(mutex_);
       latest_.sample = incoming_;  // reuses the capacity of latest_'s sequences
@@ -100,6 +97,9 @@ class Subscriber : private detail::ReaderSink {
       ++latest_.count;
     }
     arrived_.notify_all();
+    if (callback_) {
+      callback_(incoming_, info);
+    }
   }
 
   Callback callback_;

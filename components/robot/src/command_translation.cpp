@@ -1,0 +1,45 @@
+#include "command_translation.hpp"
+
+namespace wbi::robot {
+
+actuation::ControlMode to_mode(wbi::msg::ControlMode mode) {
+  switch (mode) {
+    case wbi::msg::ControlMode::IDLE: return actuation::ControlMode::kIdle;
+    case wbi::msg::ControlMode::POSITION: return actuation::ControlMode::kPosition;
+    case wbi::msg::ControlMode::POSITION_DIRECT: return actuation::ControlMode::kPositionDirect;
+    case wbi::msg::ControlMode::VELOCITY: return actuation::ControlMode::kVelocity;
+    case wbi::msg::ControlMode::TORQUE: return actuation::ControlMode::kTorque;
+    case wbi::msg::ControlMode::PWM: return actuation::ControlMode::kPwm;
+  }
+  return actuation::ControlMode::kIdle;
+}
+
+std::string to_batch(const wbi::msg::ActuatorCommand& command,
+                     const actuation::BackendDescription& description,
+                     const std::vector<double>& reference_speed,
+                     actuation::JointCommandBatch& batch) {
+  const auto& joints = command.joints();
+  if (command.modes().size() != joints.size() || command.references().size() != joints.size()) {
+    return "command from '" + command.controller().to_string() + "': " +
+           std::to_string(joints.size()) + " joints but " + std::to_string(command.modes().size()) +
+           " modes and " + std::to_string(command.references().size()) + " references";
+  }
+  batch.joints.resize(joints.size());
+  batch.modes.resize(joints.size());
+  batch.values.resize(joints.size());
+  batch.reference_speeds.resize(joints.size());
+  for (std::size_t k = 0; k < joints.size(); ++k) {
+    if (joints[k] >= description.joint_names.size()) {
+      return "command from '" + command.controller().to_string() + "': joint index " +
+             std::to_string(joints[k]) + " out of range (robot '" + description.robot + "' has " +
+             std::to_string(description.joint_names.size()) + " joints)";
+    }
+    batch.joints[k] = description.joint_names[joints[k]];
+    batch.modes[k] = to_mode(command.modes()[k]);
+    batch.values[k] = command.references()[k];
+    batch.reference_speeds[k] = reference_speed[joints[k]];
+  }
+  return {};
+}
+
+}  // namespace wbi::robot

@@ -1,0 +1,21 @@
+// Internal: from the wire (ActuatorCommand, ControlParameters; joints by index)
+// to the joint controller (batches by joint name). Buffers are reused.
+#pragma once
+
+#include <string>
+
+#include <wbi/actuation/joint_controller.hpp>
+#include <wbi/msg/commands.h>
+
+namespace wbi::robot {
+
+// Fills batch from command; returns an error text (empty when valid). Joint
+// indices out of range and sizes that disagree are errors: nothing is applied.
+std::string to_batch(const wbi::msg::ActuatorCommand& command,
+                     const actuation::BackendDescription& description,
+                     const std::vector<double>& reference_speed,
+                     actuation::JointCommandBatch& batch);
+
+actuation::ControlMode to_mode(wbi::msg::ControlMode mode);
+
+}  // namespace wbi::robot

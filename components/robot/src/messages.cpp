@@ -1,0 +1,114 @@
+#include "messages.hpp"
+
+#include <algorithm>
+
+namespace wbi::robot {
+
+namespace {
+
+void set(wbi::msg::Vector3& out, const Eigen::Vector3d& v) {
+  out.x(v.x());
+  out.y(v.y());
+  out.z(v.z());
+}
+
+void copy(const Eigen::Ref<const Eigen::VectorXd>& from, std::vector<double>& to) {
+  to.resize(static_cast<std::size_t>(from.size()));  // no allocation once sized
+  std::copy(from.data(), from.data() + from.size(), to.begin());
+}
+
+}  // namespace
+
+void describe(const actuation::BackendDescription& description, const std::string& robot,
+              const std::string& source, bool floating_base, wbi::msg::RobotDescription& out) {
+  out.header().robot(robot);
+  out.floating_base(floating_base);
+  out.urdf_path(source);
+  out.joint_names().clear();
+  out.joint_limits().clear();
+  for (std::size_t j = 0; j < description.joint_names.size(); ++j) {
+    out.joint_names().push_back(description.joint_names[j]);
+    wbi::msg::JointLimits limits;
+    limits.position_min(description.position_lower[j]);
+    limits.position_max(description.position_upper[j]);
+    limits.velocity_max(description.velocity_limit[j]);
+    limits.effort_max(description.effort_limit[j]);
+    out.joint_limits().push_back(limits);
+  }
+  out.sensors().clear();
+  for (std::size_t i = 0; i < description.imu_names.size(); ++i) {
+    wbi::msg::SensorInfo info;
+    info.name(description.imu_names[i]);
+    info.kind(wbi::msg::SensorKind::IMU);
+    info.frame(description.imu_frames[i]);
+    out.sensors().push_back(info);
+  }
+  for (std::size_t i = 0; i < description.ft_names.size(); ++i) {
+    wbi::msg::SensorInfo info;
+    info.name(description.ft_names[i]);
+    info.kind(wbi::msg::SensorKind::FORCE_TORQUE);
+    info.frame(description.ft_frames[i]);
+    out.sensors().push_back(info);
+  }
+}
+
+void prepare_sensor_sample(const actuation::BackendDescription& description, const std::string& robot,
+                           wbi::msg::SensorSample& sample) {
+  const auto n = description.joint_names.size();
+  sample.header().robot(robot);
+  sample.encoder_position().assign(n, 0.0);
+  sample.joint_torque().assign(n, 0.0);
+  sample.motor_pwm().assign(n, 0.0);
+  sample.imus().resize(description.imu_names.size());
+  sample.force_torque().resize(description.ft_names.size());
+}
+
+void fill_sensor_sample(const actuation::SensorReadings& readings, std::uint64_t tick,
+                        std::int64_t stamp_ns, wbi::msg::SensorSample& sample) {
+  sample.header().seq(tick);
+  sample.header().stamp_ns(stamp_ns);
+  copy(readings.position, sample.encoder_position());
+  copy(readings.torque, sample.joint_torque());
+  copy(readings.pwm, sample.motor_pwm());
+  for (std::size_t i = 0; i < readings.imus.size() && i < sample.imus().size(); ++i) {
+    const auto& imu = readings.imus[i];
+    auto& out = sample.imus()[i];
+    out.orientation().w(imu.orientation[0]);
+    out.orientation().x(imu.orientation[1]);
+    out.orientation().y(imu.orientation[2]);
+    out.orientation().z(imu.orientation[3]);
+    set(out.angular_velocity(), imu.gyro);
+    set(out.linear_acceleration(), imu.accel);
+  }
+  for (std::size_t i = 0; i < readings.force_torque.size() && i < sample.force_torque().size(); ++i) {
+    const auto& w = readings.force_torque[i].wrench;
+    set(sample.force_torque()[i].wrench().force(), w.head<3>());
+    set(sample.force_torque()[i].wrench().torque(), w.tail<3>());
+  }
+}
+
+void fill_ground_truth(const sim::GroundTruth& truth, const std::string& robot, std::uint64_t tick,
+                       std::int64_t stamp_ns, wbi::msg::GroundTruth& out) {
+  out.header().robot(robot);
+  out.header().seq(tick);
+  out.header().stamp_ns(stamp_ns);
+  const auto n = static_cast<Eigen::Index>(truth.tau.size());
+  copy(truth.q.tail(n), out.q());  // joints come after the base coordinates, if any
+  copy(truth.nu.tail(n), out.dq());
+  copy(truth.dnu.tail(n), out.ddq());
+  set(out.base_pose().position(), truth.base_position);
+  out.base_pose().orientation().w(truth.base_orientation[0]);
+  out.base_pose().orientation().x(truth.base_orientation[1]);
+  out.base_pose().orientation().y(truth.base_orientation[2]);
+  out.base_pose().orientation().z(truth.base_orientation[3]);
+  std::copy(truth.base_velocity.data(), truth.base_velocity.data() + 6, out.base_velocity().begin());
+  std::copy(truth.base_acceleration.data(), truth.base_acceleration.data() + 6,
+            out.base_acceleration().begin());
+  out.contact_wrenches().resize(std::min<std::size_t>(truth.contact_wrenches.size(), 16));
+  for (std::size_t i = 0; i < out.contact_wrenches().size(); ++i) {
+    set(out.contact_wrenches()[i].force(), truth.contact_wrenches[i].head<3>());
+    set(out.contact_wrenches()[i].torque(), truth.contact_wrenches[i].tail<3>());
+  }
+}
+
+}  // namespace wbi::robot
