@@ -7,6 +7,7 @@
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 
 #include <wbi/actuation/joint_controller.hpp>
@@ -45,6 +46,7 @@ class SimRobot final : public runtime::Component {
     actuation::JointControllerConfig control;
     control.watchdog_timeout = parameters.get<double>("watchdog_timeout_s", 0.1);
     control.reference_speed = parameters.get<double>("reference_speed", 0.5);
+    hold_at_start_ = parameters.get<bool>("hold_at_start", true);
 
     sim_ = std::make_unique<sim::SimBackend>(sim::load_sim_config_file(config_path.string()));
     sim_->configure();
@@ -79,6 +81,20 @@ class SimRobot final : public runtime::Component {
 
   void on_activate() override {
     sim_->activate();
+    if (hold_at_start_) {
+      // Like a real robot's boards: joints hold where they are until a controller
+      // commands them (without a watchdog: POSITION is not a streaming mode).
+      actuation::JointCommandBatch hold;
+      hold.modes.assign(sim_->description().joint_names.size(), actuation::ControlMode::kPosition);
+      sim_->read(sim_->stamp(), std::chrono::nanoseconds(0));
+      const auto& q = sim_->readings().position;
+      hold.values.assign(q.data(), q.data() + q.size());
+      std::lock_guard lock(mutex_);
+      const auto result = controller_->submit(hold, sim_->stamp());
+      if (!result.ok) {
+        throw std::runtime_error("cannot hold the initial posture: " + result.error);
+      }
+    }
     running_ = true;
     loop_ = std::thread([this] { run(); });
   }
@@ -214,6 +230,7 @@ class SimRobot final : public runtime::Component {
   double lockstep_start_timeout_s_ = 60.0;
   std::atomic<std::int64_t> tick_stamp_ns_{0};
   double duration_s_ = 0.0;
+  bool hold_at_start_ = true;
 
   std::unique_ptr<sim::SimBackend> sim_;
   std::unique_ptr<actuation::JointController> controller_;

@@ -17,6 +17,8 @@
 //   duration_s            stop stepping after this simulated time (default 0: never)
 //   watchdog_timeout_s    joint controller watchdog (default 0.1 s; 0 disables)
 //   reference_speed       default POSITION-mode speed [rad/s] (default 0.5)
+//   hold_at_start         true (default): every joint holds its initial position (POSITION
+//                         mode) until commanded; false: joints start IDLE (unpowered)
 //
 // The loop runs on its own thread while ACTIVE (the simulation is the clock).
 #pragma once

@@ -1,0 +1,37 @@
+// The README's main job, as a user runs it: `wbi launch deploy/demo.yaml`
+// starts the robot, the estimator and the controller as three processes; the
+// arm reaches its target and the launch ends with the final error.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <string>
+
+#include "child_process.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+
+TEST(DemoLaunch, ThreeProcessesBringTheArmToItsTarget) {
+  wbi::test::ChildProcess launch(wbi::test::binary_dir() / "bin" / "wbi",
+                                 {"launch", (wbi::test::source_dir() / "deploy" / "demo.yaml").string(),
+                                  "--duration", "6"});
+  const auto code = launch.wait(120s);
+  ASSERT_TRUE(code.has_value()) << launch.output();
+  const std::string out = launch.output();
+  EXPECT_EQ(*code, 0) << out;
+  for (const char* process : {"robot", "estimator", "controller"}) {
+    EXPECT_NE(out.find(std::string("[launch] ") + process + ": started"), std::string::npos) << out;
+  }
+  EXPECT_NE(out.find("[controller] t =   1.00 s"), std::string::npos) << "no progress lines\n" << out;
+  const std::string marker = "\nfinal max joint error: ";
+  const auto at = out.rfind(marker);
+  ASSERT_NE(at, std::string::npos) << out;
+  const auto end = out.find(" rad", at);
+  ASSERT_EQ(out.find('\n', end), out.size() - 1) << "the error is not the last line:\n" << out;
+  const double error = std::stod(out.substr(at + marker.size()));
+  EXPECT_LT(error, 0.01) << out;
+}
+
+}  // namespace
