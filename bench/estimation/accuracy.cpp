@@ -5,15 +5,14 @@
 
 namespace wbi::bench {
 
-void run_estimator(estimation::DerivativeEstimator& estimator,
-                   const EncoderRecording& recording, Estimates& out) {
+void run_estimator(estimation::DerivativeEstimator& estimator, const EncoderRecording& recording,
+                   Estimates& out) {
   const Eigen::Index samples = recording.q_measured.cols();
   out.dq.resize(estimator.joints(), samples);
   out.ddq.resize(estimator.joints(), samples);
   estimator.reset();
   for (Eigen::Index k = 0; k < samples; ++k) {
-    estimator.update(recording.stamp_ns[static_cast<std::size_t>(k)],
-                     recording.q_measured.col(k));
+    estimator.update(recording.stamp_ns[static_cast<std::size_t>(k)], recording.q_measured.col(k));
     out.dq.col(k) = estimator.velocity();
     out.ddq.col(k) = estimator.acceleration();
   }

@@ -14,8 +14,8 @@ struct Estimates {
 };
 
 // Feeds the whole recording to `estimator` (reset first).
-void run_estimator(estimation::DerivativeEstimator& estimator,
-                   const EncoderRecording& recording, Estimates& out);
+void run_estimator(estimation::DerivativeEstimator& estimator, const EncoderRecording& recording,
+                   Estimates& out);
 
 enum class Derivative { velocity, acceleration };
 

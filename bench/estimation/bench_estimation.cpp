@@ -66,8 +66,8 @@ const std::vector<Scenario>& scenarios() {
 
 void accuracy(benchmark::State& state, const Scenario& scenario,
               const Configuration& configuration) {
-  const EncoderRecording recording = record(scenario.motion, kRateHz, scenario.duration_s,
-                                            kCounts, scenario.drop_probability);
+  const EncoderRecording recording =
+      record(scenario.motion, kRateHz, scenario.duration_s, kCounts, scenario.drop_probability);
   const auto estimator = estimation::make_estimator(
       configuration.method, static_cast<Eigen::Index>(scenario.motion.joints.size()),
       configuration.parameters);

@@ -57,7 +57,8 @@ const Fixture* fixture(const std::string& which) {
     int deepest = -1;  // default: the first frame on a deepest body
     for (int fr = 0; fr < f->model.n_frames(); ++fr) {
       int depth = 0;
-      for (int b = f->model.frame_body[static_cast<std::size_t>(fr)]; b > 0; b = f->model.parent[static_cast<std::size_t>(b)]) {
+      for (int b = f->model.frame_body[static_cast<std::size_t>(fr)]; b > 0;
+           b = f->model.parent[static_cast<std::size_t>(b)]) {
         ++depth;
       }
       if (depth > deepest) {
@@ -108,12 +109,14 @@ void BM_GravityForces(benchmark::State& s, const std::string& m) {
 }
 void BM_ForwardDynamics(benchmark::State& s, const std::string& m) {
   run(s, m, [](const Fixture& f, wm::Data& d, std::size_t i) {
-    benchmark::DoNotOptimize(wm::forward_dynamics(f.model, d, f.q[i], f.nu[i], f.tau[i], kGravity).data());
+    benchmark::DoNotOptimize(
+        wm::forward_dynamics(f.model, d, f.q[i], f.nu[i], f.tau[i], kGravity).data());
   });
 }
 void BM_InverseDynamics(benchmark::State& s, const std::string& m) {
   run(s, m, [](const Fixture& f, wm::Data& d, std::size_t i) {
-    benchmark::DoNotOptimize(wm::inverse_dynamics(f.model, d, f.q[i], f.nu[i], f.tau[i], kGravity).data());
+    benchmark::DoNotOptimize(
+        wm::inverse_dynamics(f.model, d, f.q[i], f.nu[i], f.tau[i], kGravity).data());
   });
 }
 void BM_ForwardKinematics(benchmark::State& s, const std::string& m) {
@@ -160,18 +163,18 @@ void BM_ComJacobian(benchmark::State& s, const std::string& m) {
 
 }  // namespace
 
-#define WBI_BENCH_ALL(model)                                                  \
-  BENCHMARK_CAPTURE(BM_MassMatrix, model, #model);                            \
-  BENCHMARK_CAPTURE(BM_BiasForces, model, #model);                            \
-  BENCHMARK_CAPTURE(BM_GravityForces, model, #model);                         \
-  BENCHMARK_CAPTURE(BM_ForwardDynamics, model, #model);                       \
-  BENCHMARK_CAPTURE(BM_InverseDynamics, model, #model);                       \
-  BENCHMARK_CAPTURE(BM_ForwardKinematics, model, #model);                     \
-  BENCHMARK_CAPTURE(BM_FrameJacobian, model, #model);                         \
-  BENCHMARK_CAPTURE(BM_FrameJacobianAfterKinematics, model, #model);          \
-  BENCHMARK_CAPTURE(BM_FrameBiasAcceleration, model, #model);                 \
-  BENCHMARK_CAPTURE(BM_CentroidalMomentumMatrix, model, #model);              \
-  BENCHMARK_CAPTURE(BM_CentroidalMomentum, model, #model);                    \
+#define WBI_BENCH_ALL(model)                                         \
+  BENCHMARK_CAPTURE(BM_MassMatrix, model, #model);                   \
+  BENCHMARK_CAPTURE(BM_BiasForces, model, #model);                   \
+  BENCHMARK_CAPTURE(BM_GravityForces, model, #model);                \
+  BENCHMARK_CAPTURE(BM_ForwardDynamics, model, #model);              \
+  BENCHMARK_CAPTURE(BM_InverseDynamics, model, #model);              \
+  BENCHMARK_CAPTURE(BM_ForwardKinematics, model, #model);            \
+  BENCHMARK_CAPTURE(BM_FrameJacobian, model, #model);                \
+  BENCHMARK_CAPTURE(BM_FrameJacobianAfterKinematics, model, #model); \
+  BENCHMARK_CAPTURE(BM_FrameBiasAcceleration, model, #model);        \
+  BENCHMARK_CAPTURE(BM_CentroidalMomentumMatrix, model, #model);     \
+  BENCHMARK_CAPTURE(BM_CentroidalMomentum, model, #model);           \
   BENCHMARK_CAPTURE(BM_ComJacobian, model, #model)
 
 WBI_BENCH_ALL(icub3);

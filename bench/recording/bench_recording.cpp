@@ -29,7 +29,8 @@ using wbi::mcap::Compression;
 constexpr int kDoubles = 100;
 constexpr int kTopics = 4;
 constexpr std::uint64_t kFlushEvery = 50'000;
-constexpr const char* kIdl = "module wbi { module msg { struct JointState { double q[100]; }; }; };\n";
+constexpr const char* kIdl =
+    "module wbi { module msg { struct JointState { double q[100]; }; }; };\n";
 
 Compression compression_of(std::int64_t index) { return static_cast<Compression>(index); }
 
@@ -67,16 +68,18 @@ std::vector<std::uint16_t> add_topics(wbi::mcap::Writer& writer) {
   const auto schema = writer.add_schema("wbi::msg::JointState", kIdl);
   std::vector<std::uint16_t> channels;
   for (int t = 0; t < kTopics; ++t) {
-    channels.push_back(writer.add_channel(schema, "wbi/robot" + std::to_string(t) + "/sensors", "cdr",
-                                          {{"reliability", "reliable"}, {"durability", "volatile"}}));
+    channels.push_back(
+        writer.add_channel(schema, "wbi/robot" + std::to_string(t) + "/sensors", "cdr",
+                           {{"reliability", "reliable"}, {"durability", "volatile"}}));
   }
   return channels;
 }
 
 void BM_Write(benchmark::State& state) {
   const bool devnull = state.range(1) == 1;
-  const auto path = devnull ? std::filesystem::path("/dev/null")
-                            : temp_file(wbi::mcap::compression_name(compression_of(state.range(0))));
+  const auto path = devnull
+                        ? std::filesystem::path("/dev/null")
+                        : temp_file(wbi::mcap::compression_name(compression_of(state.range(0))));
   wbi::mcap::WriterOptions options;
   options.compression = compression_of(state.range(0));
   std::uint64_t file_bytes = 0;
@@ -104,7 +107,8 @@ void BM_Write(benchmark::State& state) {
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(i));
   state.SetBytesProcessed(static_cast<std::int64_t>(payload_bytes));
-  state.counters["ratio"] = file_bytes > 0 ? static_cast<double>(payload_bytes) / static_cast<double>(file_bytes) : 0;
+  state.counters["ratio"] =
+      file_bytes > 0 ? static_cast<double>(payload_bytes) / static_cast<double>(file_bytes) : 0;
 }
 BENCHMARK(BM_Write)
     ->ArgsProduct({{static_cast<int>(Compression::none), static_cast<int>(Compression::lz4),
@@ -116,7 +120,8 @@ BENCHMARK(BM_Write)
     ->UseRealTime();
 
 void BM_Read(benchmark::State& state) {
-  const auto path = temp_file(std::string("read_") + wbi::mcap::compression_name(compression_of(state.range(0))));
+  const auto path =
+      temp_file(std::string("read_") + wbi::mcap::compression_name(compression_of(state.range(0))));
   constexpr std::uint64_t kMessages = 100'000;
   {
     wbi::mcap::WriterOptions options;

@@ -52,7 +52,9 @@ const std::string kPing = "wbi/bench/ping";
 const std::string kPong = "wbi/bench/pong";
 
 double us_since(Clock::time_point start) {
-  return 1e-3 * static_cast<double>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start).count());
+  return 1e-3 *
+         static_cast<double>(
+             std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start).count());
 }
 
 double percentile(std::vector<double> values, double p) {
@@ -66,7 +68,8 @@ double percentile(std::vector<double> values, double p) {
 
 std::string default_model() {
   for (const auto& candidate :
-       {std::filesystem::path(WBI_SOURCE_DIR) / ".." / "shared" / "models" / "iCubGenova09" / "model.urdf",
+       {std::filesystem::path(WBI_SOURCE_DIR) / ".." / "shared" / "models" / "iCubGenova09" /
+            "model.urdf",
         std::filesystem::path(WBI_SOURCE_DIR) / "models" / "humanoid.urdf"}) {
     if (std::filesystem::exists(candidate)) {
       return std::filesystem::weakly_canonical(candidate).string();
@@ -84,8 +87,9 @@ int serve(const std::string& urdf) {
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
   wbi::dds::Participant participant("bench_service");
   wbi::runtime::SystemClock clock;
-  wbi::runtime::ComponentRunner runner(std::make_unique<wbi::model_service::ModelServiceComponent>(),
-                                       {"model", "model_service", &participant, &clock});
+  wbi::runtime::ComponentRunner runner(
+      std::make_unique<wbi::model_service::ModelServiceComponent>(),
+      {"model", "model_service", &participant, &clock});
   runner.configure(wbi::runtime::Parameters::from_string("urdf: " + urdf + "\nrobot: " + kRobot));
   runner.activate();
   // Raw pong: answers every ping with a reply of the gravity reply's size.
@@ -196,7 +200,8 @@ struct Raw {
     ping.publish(request);
     do {
       if (!pong.wait_newer(got, received, 1s)) {
-        throw std::runtime_error("raw ping-pong: no pong for ping " + std::to_string(request.seq()));
+        throw std::runtime_error("raw ping-pong: no pong for ping " +
+                                 std::to_string(request.seq()));
       }
       received = got.count;
     } while (got.sample.seq() != request.seq());
@@ -254,7 +259,8 @@ int main(int argc, char** argv) {
       child_argv.push_back(a.data());
     }
     child_argv.push_back(nullptr);
-    if (posix_spawn(&child.pid, "/proc/self/exe", nullptr, nullptr, child_argv.data(), environ) != 0) {
+    if (posix_spawn(&child.pid, "/proc/self/exe", nullptr, nullptr, child_argv.data(), environ) !=
+        0) {
       throw std::runtime_error("cannot start the service process");
     }
 
@@ -262,7 +268,8 @@ int main(int argc, char** argv) {
     std::vector<double> discovery_ms;
     {
       wbi::dds::Participant first("bench_probe");
-      wbi::dds::Client<ModelRequest, ModelReply> probe(first, wbi::dds::topics::model_service(kRobot));
+      wbi::dds::Client<ModelRequest, ModelReply> probe(first,
+                                                       wbi::dds::topics::model_service(kRobot));
       if (!probe.wait_connected(30s)) {
         throw std::runtime_error("the service process did not come up within 30 s");
       }
@@ -270,7 +277,8 @@ int main(int argc, char** argv) {
     for (int round = 0; round < 5; ++round) {
       const auto start = Clock::now();
       wbi::dds::Participant fresh("bench_discovery");
-      wbi::dds::Client<ModelRequest, ModelReply> client(fresh, wbi::dds::topics::model_service(kRobot));
+      wbi::dds::Client<ModelRequest, ModelReply> client(fresh,
+                                                        wbi::dds::topics::model_service(kRobot));
       if (!client.wait_connected(10s)) {
         throw std::runtime_error("discovery took more than 10 s");
       }
@@ -328,7 +336,8 @@ int main(int argc, char** argv) {
     out["compute_us"] = percentile(a.compute_us, 0.50);
     out["raw_p50_us"] = percentile(raw_rtt_us, 0.50);
     out["raw_p99_us"] = percentile(raw_rtt_us, 0.99);
-    out["overhead_us"] = percentile(a.rtt_us, 0.50) - percentile(raw_rtt_us, 0.50) - percentile(a.compute_us, 0.50);
+    out["overhead_us"] =
+        percentile(a.rtt_us, 0.50) - percentile(raw_rtt_us, 0.50) - percentile(a.compute_us, 0.50);
     out["b_rtt_p50_us"] = percentile(b.rtt_us, 0.50);
     out["b_rtt_p99_us"] = percentile(b.rtt_us, 0.99);
     out["b_compute_us"] = percentile(b.compute_us, 0.50);
@@ -337,12 +346,13 @@ int main(int argc, char** argv) {
     out["discovery_max_ms"] = percentile(discovery_ms, 1.0);
 
     std::cout << std::fixed << std::setprecision(1);
-    std::cout << "model " << urdf << " (" << model.n_joints << " joints), " << calls << " calls each\n"
+    std::cout << "model " << urdf << " (" << model.n_joints << " joints), " << calls
+              << " calls each\n"
               << "(a) gravity            rtt p50 " << out["rtt_p50_us"].get<double>() << " us  p99 "
-              << out["rtt_p99_us"].get<double>() << " us  compute " << out["compute_us"].get<double>()
-              << " us\n"
-              << "(b) M + h + 4 J        rtt p50 " << out["b_rtt_p50_us"].get<double>() << " us  p99 "
-              << out["b_rtt_p99_us"].get<double>() << " us  compute "
+              << out["rtt_p99_us"].get<double>() << " us  compute "
+              << out["compute_us"].get<double>() << " us\n"
+              << "(b) M + h + 4 J        rtt p50 " << out["b_rtt_p50_us"].get<double>()
+              << " us  p99 " << out["b_rtt_p99_us"].get<double>() << " us  compute "
               << out["b_compute_us"].get<double>() << " us\n"
               << "raw ping-pong          rtt p50 " << out["raw_p50_us"].get<double>() << " us  p99 "
               << out["raw_p99_us"].get<double>() << " us\n"

@@ -99,7 +99,8 @@ bool Options::has(const std::string& name) const { return values_.count(name) !=
 std::string Options::get(const std::string& name) const {
   const auto it = values_.find(name);
   if (it == values_.end()) {
-    throw UsageError("missing " + (find(name) != nullptr ? "option --" + name : "argument " + name));
+    throw UsageError("missing " +
+                     (find(name) != nullptr ? "option --" + name : "argument " + name));
   }
   return it->second;
 }

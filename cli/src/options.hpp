@@ -30,7 +30,7 @@ class Options {
   // Throws UsageError naming the offending argument otherwise.
   bool parse(Args args);
 
-  bool has(const std::string& name) const;  // flag given, or option/positional present
+  bool has(const std::string& name) const;         // flag given, or option/positional present
   std::string get(const std::string& name) const;  // throws UsageError when absent
   std::optional<std::string> get_optional(const std::string& name) const;
   double get_double(const std::string& name) const;  // throws UsageError when not a number

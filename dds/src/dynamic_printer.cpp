@@ -38,25 +38,51 @@ bool is_scalar(types::TypeKind kind) {
 void print_scalar(std::ostream& out, types::DynamicData& data, types::TypeKind kind,
                   types::MemberId id) {
   switch (kind) {
-    case types::TK_BOOLEAN: out << (data.get_bool_value(id) ? "true" : "false"); break;
-    case types::TK_BYTE: out << static_cast<int>(data.get_byte_value(id)); break;
-    case types::TK_CHAR8: out << data.get_char8_value(id); break;
-    case types::TK_INT16: out << data.get_int16_value(id); break;
-    case types::TK_UINT16: out << data.get_uint16_value(id); break;
-    case types::TK_INT32: out << data.get_int32_value(id); break;
-    case types::TK_UINT32: out << data.get_uint32_value(id); break;
-    case types::TK_INT64: out << data.get_int64_value(id); break;
-    case types::TK_UINT64: out << data.get_uint64_value(id); break;
-    case types::TK_FLOAT32: out << shortest(data.get_float32_value(id)); break;
-    case types::TK_FLOAT64: out << shortest(data.get_float64_value(id)); break;
-    case types::TK_STRING8: out << std::quoted(data.get_string_value(id)); break;
+    case types::TK_BOOLEAN:
+      out << (data.get_bool_value(id) ? "true" : "false");
+      break;
+    case types::TK_BYTE:
+      out << static_cast<int>(data.get_byte_value(id));
+      break;
+    case types::TK_CHAR8:
+      out << data.get_char8_value(id);
+      break;
+    case types::TK_INT16:
+      out << data.get_int16_value(id);
+      break;
+    case types::TK_UINT16:
+      out << data.get_uint16_value(id);
+      break;
+    case types::TK_INT32:
+      out << data.get_int32_value(id);
+      break;
+    case types::TK_UINT32:
+      out << data.get_uint32_value(id);
+      break;
+    case types::TK_INT64:
+      out << data.get_int64_value(id);
+      break;
+    case types::TK_UINT64:
+      out << data.get_uint64_value(id);
+      break;
+    case types::TK_FLOAT32:
+      out << shortest(data.get_float32_value(id));
+      break;
+    case types::TK_FLOAT64:
+      out << shortest(data.get_float64_value(id));
+      break;
+    case types::TK_STRING8:
+      out << std::quoted(data.get_string_value(id));
+      break;
     case types::TK_ENUM: {
       std::string name;
       data.get_enum_value(name, id);
       out << name;
       break;
     }
-    default: out << "<unsupported kind " << static_cast<int>(kind) << ">"; break;
+    default:
+      out << "<unsupported kind " << static_cast<int>(kind) << ">";
+      break;
   }
 }
 

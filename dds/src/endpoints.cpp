@@ -4,12 +4,12 @@
 #include <mutex>
 #include <stdexcept>
 
+#include <fastdds/rtps/common/InstanceHandle.h>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/DataWriterListener.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
-#include <fastdds/rtps/common/InstanceHandle.h>
 
 #include "participant_impl.hpp"
 
@@ -128,7 +128,8 @@ struct WriterImpl : fdds::DataWriterListener {
 Writer::Writer(Participant& participant, const std::string& topic, fdds::TopicDataType* type,
                const std::string& profile, MatchObserver* observer)
     : impl_(std::make_unique<WriterImpl>(participant.impl(), topic, observer)) {
-  const fdds::DataWriterQos qos = impl_->participant.writer_qos(profile);  // before taking the topic
+  const fdds::DataWriterQos qos =
+      impl_->participant.writer_qos(profile);  // before taking the topic
   fdds::Topic& dds_topic = impl_->participant.acquire_topic(topic, type);
   impl_->writer = impl_->participant.publisher().create_datawriter(
       &dds_topic, qos, impl_.get(), fdds::StatusMask::publication_matched());

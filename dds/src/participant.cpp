@@ -7,12 +7,12 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
-#include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
-#include <fastdds/dds/topic/TypeSupport.hpp>
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
 
 #include "participant_impl.hpp"
 #include "qos_profiles_default.hpp"
@@ -102,14 +102,16 @@ namespace detail {
 ParticipantImpl::ParticipantImpl(const ParticipantOptions& options)
     : domain_id(options.domain_id), name(options.name) {
   if (domain_id < 0 || domain_id > 232) {
-    throw std::invalid_argument("DDS domain id must be in [0, 232], got " + std::to_string(domain_id));
+    throw std::invalid_argument("DDS domain id must be in [0, 232], got " +
+                                std::to_string(domain_id));
   }
   load_qos_profiles(options.qos_file);
   auto* factory = fdds::DomainParticipantFactory::get_instance();
   fdds::StatusMask mask = fdds::StatusMask::none();  // discovery callbacks only
   participant_ = factory->create_participant(domain_id, participant_qos(options), this, mask);
   if (participant_ == nullptr) {
-    throw std::runtime_error("cannot create a DDS participant on domain " + std::to_string(domain_id));
+    throw std::runtime_error("cannot create a DDS participant on domain " +
+                             std::to_string(domain_id));
   }
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
@@ -209,8 +211,9 @@ void ParticipantImpl::on_publisher_discovery(fdds::DomainParticipant* /*particip
   discovery_changed_.notify_all();
 }
 
-void ParticipantImpl::on_subscriber_discovery(fdds::DomainParticipant* /*participant*/,
-                                              eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) {
+void ParticipantImpl::on_subscriber_discovery(
+    fdds::DomainParticipant* /*participant*/,
+    eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) {
   using Status = eprosima::fastrtps::rtps::ReaderDiscoveryInfo::DISCOVERY_STATUS;
   const std::string key = guid_text(info.info.guid());
   {
@@ -218,8 +221,8 @@ void ParticipantImpl::on_subscriber_discovery(fdds::DomainParticipant* /*partici
     if (info.status == Status::REMOVED_READER) {
       remote_endpoints_.erase(key);
     } else {
-      remote_endpoints_[key] = {info.info.topicName().to_string(),
-                                info.info.typeName().to_string(), false, false, false};
+      remote_endpoints_[key] = {info.info.topicName().to_string(), info.info.typeName().to_string(),
+                                false, false, false};
     }
   }
   discovery_changed_.notify_all();
@@ -272,11 +275,12 @@ std::optional<TopicInfo> ParticipantImpl::wait_for_topic(const std::string& topi
 Participant::Participant(const ParticipantOptions& options)
     : impl_(std::make_unique<detail::ParticipantImpl>(options)) {}
 
-Participant::Participant(const std::string& name) : Participant([&] {
-  ParticipantOptions options;
-  options.name = name;
-  return options;
-}()) {}
+Participant::Participant(const std::string& name)
+    : Participant([&] {
+        ParticipantOptions options;
+        options.name = name;
+        return options;
+      }()) {}
 
 Participant::~Participant() = default;
 

@@ -23,9 +23,9 @@ struct RawSubscriber::Impl : detail::ReaderSink {
 
 RawSubscriber::RawSubscriber(Participant& participant, const TopicInfo& topic, Callback callback)
     : impl_(std::make_unique<Impl>(std::move(callback))) {
-  impl_->reader = std::make_unique<detail::Reader>(participant, topic.name,
-                                                   new detail::RawType(topic.type), qos::kStream,
-                                                   *impl_, detail::matching_writers_of(topic));
+  impl_->reader =
+      std::make_unique<detail::Reader>(participant, topic.name, new detail::RawType(topic.type),
+                                       qos::kStream, *impl_, detail::matching_writers_of(topic));
 }
 
 RawSubscriber::~RawSubscriber() = default;

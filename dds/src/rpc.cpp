@@ -6,13 +6,20 @@ namespace wbi::dds {
 
 const char* to_string(CallStatus status) {
   switch (status) {
-    case CallStatus::ok: return "ok";
-    case CallStatus::pending: return "pending";
-    case CallStatus::idle: return "idle";
-    case CallStatus::busy: return "busy";
-    case CallStatus::not_connected: return "not connected";
-    case CallStatus::no_reply: return "no reply";
-    case CallStatus::send_failed: return "send failed";
+    case CallStatus::ok:
+      return "ok";
+    case CallStatus::pending:
+      return "pending";
+    case CallStatus::idle:
+      return "idle";
+    case CallStatus::busy:
+      return "busy";
+    case CallStatus::not_connected:
+      return "not connected";
+    case CallStatus::no_reply:
+      return "no reply";
+    case CallStatus::send_failed:
+      return "send failed";
   }
   return "unknown";
 }

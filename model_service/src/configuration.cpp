@@ -28,7 +28,8 @@ Eigen::VectorXd make_configuration(const Model& model, const Eigen::Vector3d& p_
     q[4] = quat_WB.x();
     q[5] = quat_WB.y();
     q[6] = quat_WB.z();
-  } else if (!p_WB.isZero(0.0) || !quat_WB.coeffs().isApprox(Eigen::Quaterniond::Identity().coeffs())) {
+  } else if (!p_WB.isZero(0.0) ||
+             !quat_WB.coeffs().isApprox(Eigen::Quaterniond::Identity().coeffs())) {
     throw std::invalid_argument("make_configuration: model '" + model.name +
                                 "' has a fixed base; the base pose must be the identity");
   }
@@ -113,8 +114,7 @@ Eigen::VectorXd random_configuration(const Model& model, std::mt19937& rng) {
     if (hi < lo) {
       lo = hi = 0.5 * (lo + hi);
     }
-    q[model.joint_q_index[static_cast<std::size_t>(k)]] =
-        lo + (hi - lo) * 0.5 * (unit(rng) + 1.0);
+    q[model.joint_q_index[static_cast<std::size_t>(k)]] = lo + (hi - lo) * 0.5 * (unit(rng) + 1.0);
   }
   return q;
 }

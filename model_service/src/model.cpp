@@ -61,9 +61,9 @@ void throw_data(const Model& model) {
 }
 
 void throw_singular(const Model& model, int body) {
-  throw std::runtime_error("forward_dynamics: joint '" + model.joint_name[model.body_joint[body]] +
-                           "' of model '" + model.name +
-                           "' moves a subtree with no inertia about its axis (singular mass matrix)");
+  throw std::runtime_error(
+      "forward_dynamics: joint '" + model.joint_name[model.body_joint[body]] + "' of model '" +
+      model.name + "' moves a subtree with no inertia about its axis (singular mass matrix)");
 }
 
 }  // namespace detail

@@ -12,10 +12,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/Geometry>
 #include <tinyxml2.h>
 #include <urdf_parser/urdf_parser.h>
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 
 #include "joint.hpp"
 
@@ -73,7 +73,8 @@ std::map<std::string, RawJoint> check_structure(const std::string& xml, const Er
     err.fail("the root element is not <robot>");
   }
   std::map<std::string, int> link_line;
-  for (auto* l = robot->FirstChildElement("link"); l != nullptr; l = l->NextSiblingElement("link")) {
+  for (auto* l = robot->FirstChildElement("link"); l != nullptr;
+       l = l->NextSiblingElement("link")) {
     const char* name = l->Attribute("name");
     if (name == nullptr) {
       err.fail("<link> without a name" + line_of(l));
@@ -109,7 +110,8 @@ std::map<std::string, RawJoint> check_structure(const std::string& xml, const Er
     raw.child = c->Attribute("link");
     for (const std::string& l : {raw.parent, raw.child}) {
       if (link_line.count(l) == 0) {
-        err.fail("joint '" + std::string(name) + "' refers to unknown link '" + l + "'" + line_of(j));
+        err.fail("joint '" + std::string(name) + "' refers to unknown link '" + l + "'" +
+                 line_of(j));
       }
     }
     if (raw.parent == raw.child) {
@@ -187,7 +189,8 @@ void check_inertial(const urdf::Link& link, bool strict, const Error& err) {
   const urdf::Inertial& in = *link.inertial;
   const double m = in.mass;
   if (!std::isfinite(m) || m < 0.0) {
-    err.fail("link '" + link.name + "' has a negative or non-finite mass (" + std::to_string(m) + ")");
+    err.fail("link '" + link.name + "' has a negative or non-finite mass (" + std::to_string(m) +
+             ")");
   }
   Matrix3d I;
   I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
@@ -205,7 +208,8 @@ void check_inertial(const urdf::Link& link, bool strict, const Error& err) {
     return;
   }
   // strict: positive semi-definite and triangle inequality λ1 + λ2 ≥ λ3
-  const Vector3d e = Eigen::SelfAdjointEigenSolver<Matrix3d>(I, Eigen::EigenvaluesOnly).eigenvalues();
+  const Vector3d e =
+      Eigen::SelfAdjointEigenSolver<Matrix3d>(I, Eigen::EigenvaluesOnly).eigenvalues();
   const double tol = 1e-9 * std::max(1e-9, e.cwiseAbs().maxCoeff());
   if (e[0] < -tol || e[0] + e[1] < e[2] - tol) {
     std::ostringstream msg;
@@ -261,7 +265,8 @@ struct Builder {
         Placement X_JC;
         if (j->type != urdf::Joint::FIXED) {  // locked movable joint
           double q = 0.0;
-          if (auto it = options.locked_positions.find(j->name); it != options.locked_positions.end()) {
+          if (auto it = options.locked_positions.find(j->name);
+              it != options.locked_positions.end()) {
             q = it->second;
           }
           const detail::JointCalc jc = detail::joint_calc(type_of(*j), axis_of(*j), q);
@@ -374,7 +379,8 @@ Model load_urdf_string(const std::string& xml, const LoadOptions& options,
     const Vector3d c = I.m > 0.0 ? Vector3d(I.h / I.m) : Vector3d::Zero();
     m.body_mass.push_back(I.m);
     m.body_com.push_back(c);
-    m.body_inertia_c.push_back(I.I - I.m * (c.squaredNorm() * Matrix3d::Identity() - c * c.transpose()));
+    m.body_inertia_c.push_back(I.I -
+                               I.m * (c.squaredNorm() * Matrix3d::Identity() - c * c.transpose()));
     m.body_inertia.push_back(I);
     m.total_mass += I.m;
   }
@@ -394,7 +400,8 @@ Model load_urdf_string(const std::string& xml, const LoadOptions& options,
     m.body_subtree_size[m.parent[i]] += m.body_subtree_size[i];
   }
   for (int k = 0; k < m.n_joints; ++k) {
-    m.joint_order_is_body_order = m.joint_order_is_body_order && order[static_cast<std::size_t>(k)] == k + 1;
+    m.joint_order_is_body_order =
+        m.joint_order_is_body_order && order[static_cast<std::size_t>(k)] == k + 1;
   }
   m.body_joint.assign(static_cast<std::size_t>(m.n_bodies), -1);
   m.body_q_index.assign(static_cast<std::size_t>(m.n_bodies), -1);
@@ -434,7 +441,8 @@ Model load_urdf_string(const std::string& xml, const LoadOptions& options,
     m.joint_continuous.push_back(continuous);
     m.joint_lower.push_back(continuous || !j.limits ? -kInf : j.limits->lower);
     m.joint_upper.push_back(continuous || !j.limits ? kInf : j.limits->upper);
-    m.joint_velocity_limit.push_back(j.limits && j.limits->velocity > 0 ? j.limits->velocity : kInf);
+    m.joint_velocity_limit.push_back(j.limits && j.limits->velocity > 0 ? j.limits->velocity
+                                                                        : kInf);
     m.joint_effort_limit.push_back(j.limits && j.limits->effort > 0 ? j.limits->effort : kInf);
     MimicInfo mimic;
     if (j.mimic) {

@@ -33,7 +33,8 @@ TEST(Cli, HelpListsEveryVerb) {
   const auto run = wbi_cli({"--help"});
   EXPECT_EQ(run.code, 0);
   for (const char* verb : {"launch", "record", "play", "bag", "topic", "model", "estimate"}) {
-    EXPECT_TRUE(contains(run.output, std::string("\n  ") + verb + " ")) << verb << "\n" << run.output;
+    EXPECT_TRUE(contains(run.output, std::string("\n  ") + verb + " ")) << verb << "\n"
+                                                                        << run.output;
   }
 }
 

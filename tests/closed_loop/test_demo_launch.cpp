@@ -14,9 +14,9 @@ namespace {
 using namespace std::chrono_literals;
 
 TEST(DemoLaunch, ThreeProcessesBringTheArmToItsTarget) {
-  wbi::test::ChildProcess launch(wbi::test::binary_dir() / "bin" / "wbi",
-                                 {"launch", (wbi::test::source_dir() / "deploy" / "demo.yaml").string(),
-                                  "--duration", "6"});
+  wbi::test::ChildProcess launch(
+      wbi::test::binary_dir() / "bin" / "wbi",
+      {"launch", (wbi::test::source_dir() / "deploy" / "demo.yaml").string(), "--duration", "6"});
   const auto code = launch.wait(120s);
   ASSERT_TRUE(code.has_value()) << launch.output();
   const std::string out = launch.output();
@@ -24,7 +24,8 @@ TEST(DemoLaunch, ThreeProcessesBringTheArmToItsTarget) {
   for (const char* process : {"robot", "estimator", "controller"}) {
     EXPECT_NE(out.find(std::string("[launch] ") + process + ": started"), std::string::npos) << out;
   }
-  EXPECT_NE(out.find("[controller] t =   1.00 s"), std::string::npos) << "no progress lines\n" << out;
+  EXPECT_NE(out.find("[controller] t =   1.00 s"), std::string::npos) << "no progress lines\n"
+                                                                      << out;
   const std::string marker = "\nfinal max joint error: ";
   const auto at = out.rfind(marker);
   ASSERT_NE(at, std::string::npos) << out;

@@ -40,8 +40,9 @@ ArmRun run_arm(const std::string& robot, int ticks) {
   wbi::runtime::ComponentRunner estimator(registry.create("estimator"),
                                           {"estimator", "estimator", &participant, &clock});
   const auto config = (wbi::test::source_dir() / "deploy" / "arm" / "sim.yaml").string();
-  sim.configure(wbi::runtime::Parameters::from_string(
-      "robot: " + robot + "\nconfig: " + config + "\nlockstep: true\nlockstep_controllers: [pd]\n"));
+  sim.configure(
+      wbi::runtime::Parameters::from_string("robot: " + robot + "\nconfig: " + config +
+                                            "\nlockstep: true\nlockstep_controllers: [pd]\n"));
   // Backward difference with a 100 Hz low-pass: the kalman method's extrapolation
   // drives this stiff loop unstable (see components/estimation/README.md).
   estimator.configure(wbi::runtime::Parameters::from_string(

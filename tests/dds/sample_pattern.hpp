@@ -15,7 +15,8 @@ inline double pattern_value(std::uint64_t seq, std::size_t joint) {
   return static_cast<double>(seq) + 0.001 * static_cast<double>(joint);
 }
 
-inline void fill_pattern(wbi::msg::SensorSample& sample, const std::string& robot, std::uint64_t seq) {
+inline void fill_pattern(wbi::msg::SensorSample& sample, const std::string& robot,
+                         std::uint64_t seq) {
   sample.header().robot(robot);
   sample.header().seq(seq);
   sample.header().stamp_ns(static_cast<std::int64_t>(seq) * 1'000'000);
@@ -26,7 +27,8 @@ inline void fill_pattern(wbi::msg::SensorSample& sample, const std::string& robo
 }
 
 // Empty when the sample matches the pattern of its sequence number; otherwise what differs.
-inline std::string pattern_mismatch(const wbi::msg::SensorSample& sample, const std::string& robot) {
+inline std::string pattern_mismatch(const wbi::msg::SensorSample& sample,
+                                    const std::string& robot) {
   if (sample.header().robot() != robot) {
     return "robot '" + sample.header().robot().to_string() + "'";
   }

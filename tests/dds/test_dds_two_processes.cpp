@@ -38,7 +38,9 @@ TEST(DdsTwoProcesses, EverySampleArrivesIntact) {
   wbi::dds::Received<wbi::msg::SensorSample> last;
   ASSERT_TRUE(subscriber.wait_newer(last, kCount - 1, 5s))
       << "received " << subscriber.count() << " samples, callback saw " << seen.size()
-      << (seen.empty() ? std::string() : ", first seq " + std::to_string(seen.front()) + ", last " + std::to_string(seen.back()));
+      << (seen.empty() ? std::string()
+                       : ", first seq " + std::to_string(seen.front()) + ", last " +
+                             std::to_string(seen.back()));
   EXPECT_EQ(first_mismatch, "");
   ASSERT_EQ(seen.size(), kCount);
   for (std::uint64_t i = 0; i < kCount; ++i) {

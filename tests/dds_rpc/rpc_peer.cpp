@@ -56,8 +56,8 @@ int run_client(const std::string& service, long calls, unsigned long seed, long 
     return 1;
   }
   std::cout << "client: connected in "
-            << std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() -
-                                                                      start)
+            << std::chrono::duration_cast<std::chrono::microseconds>(
+                   std::chrono::steady_clock::now() - start)
                    .count()
             << " us" << std::endl;
   std::mt19937_64 rng(seed);

@@ -7,8 +7,8 @@
 #include <chrono>
 #include <condition_variable>
 #include <functional>
-#include <iostream>
 #include <future>
+#include <iostream>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -117,9 +117,10 @@ TEST(Rpc, ANewClientConnectsToARunningServerWithinOneSecond) {
     Reply reply;
     const auto call_start = Clock::now();
     client.call(request, reply, 5s);
-    std::cout << "first call in "
-              << std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - call_start).count()
-              << " us, held " << server.stats().held << "\n";
+    std::cout
+        << "first call in "
+        << std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - call_start).count()
+        << " us, held " << server.stats().held << "\n";
   }
 }
 
@@ -185,12 +186,15 @@ TEST(Rpc, SlowReplyIsATimeoutAndTheLateReplyIsDropped) {
   Participant server_side("server");
   Participant client_side("client");
   Gate gate;
-  Server server(server_side, kService, [&](const Request& request, Reply& reply) {
-    if (request.seq() == 1) {
-      gate.pass();
-    }
-    wbi::test::toy_reply(request, reply);
-  }, worker_thread());
+  Server server(
+      server_side, kService,
+      [&](const Request& request, Reply& reply) {
+        if (request.seq() == 1) {
+          gate.pass();
+        }
+        wbi::test::toy_reply(request, reply);
+      },
+      worker_thread());
   Client client(client_side, kService);
   std::mt19937_64 rng(4);
   Request request;
@@ -272,12 +276,15 @@ TEST(Rpc, RequestsOfAReplyReaderThatNeverMatchesAreDroppedAfterTheWait) {
 TEST(Rpc, RequestsOfAClientThatLeftMidCallAreDropped) {
   Participant server_side("server");
   Gate gate;
-  Server server(server_side, kService, [&](const Request& request, Reply& reply) {
-    if (request.robot() == "first") {
-      gate.pass();
-    }
-    wbi::test::toy_reply(request, reply);
-  }, worker_thread());
+  Server server(
+      server_side, kService,
+      [&](const Request& request, Reply& reply) {
+        if (request.robot() == "first") {
+          gate.pass();
+        }
+        wbi::test::toy_reply(request, reply);
+      },
+      worker_thread());
   Participant stays_side("stays");
   Client stays(stays_side, kService);
   Request first;
@@ -308,13 +315,16 @@ TEST(Rpc, ExpiredRequestsAreNotComputed) {
   Participant client_side("client");
   Gate gate;
   int computed = 0;
-  Server server(server_side, kService, [&](const Request& request, Reply& reply) {
-    ++computed;
-    if (request.seq() == 1) {
-      gate.pass();
-    }
-    wbi::test::toy_reply(request, reply);
-  }, worker_thread());
+  Server server(
+      server_side, kService,
+      [&](const Request& request, Reply& reply) {
+        ++computed;
+        if (request.seq() == 1) {
+          gate.pass();
+        }
+        wbi::test::toy_reply(request, reply);
+      },
+      worker_thread());
   Client first(client_side, kService);
   Client second(client_side, kService);
   Request request;

@@ -71,8 +71,10 @@ TEST(RpcAllocations, NonePerCallInTheCallingThreadAfterWarmUp) {
   const std::uint64_t in_calls = allocations - before;
 
   // The same sample through a plain publisher to one reader in another participant.
-  wbi::dds::Publisher<Request> publisher(client_side, "wbi/test/alloc_raw", wbi::dds::qos::kRequestReply);
-  wbi::dds::Subscriber<Request> subscriber(server_side, "wbi/test/alloc_raw", wbi::dds::qos::kRequestReply);
+  wbi::dds::Publisher<Request> publisher(client_side, "wbi/test/alloc_raw",
+                                         wbi::dds::qos::kRequestReply);
+  wbi::dds::Subscriber<Request> subscriber(server_side, "wbi/test/alloc_raw",
+                                           wbi::dds::qos::kRequestReply);
   ASSERT_TRUE(publisher.wait_for_subscribers(1, 10s));
   for (int i = 0; i < 100; ++i) {
     publisher.publish(request);
@@ -88,7 +90,8 @@ TEST(RpcAllocations, NonePerCallInTheCallingThreadAfterWarmUp) {
   // thread: a call runs the request write, the server (handler and reply
   // write) and the reply hand-over all in the calling thread. So a call may
   // allocate what two plain writes do, and nothing more.
-  EXPECT_LE(in_calls, 2 * in_writes) << "the request/reply layer allocates beyond Fast DDS's writes";
+  EXPECT_LE(in_calls, 2 * in_writes)
+      << "the request/reply layer allocates beyond Fast DDS's writes";
   EXPECT_EQ(handler_allocations.load(), 0u) << "allocations in the handler over 500 calls";
   EXPECT_EQ(wbi::test::toy_mismatch(request, reply), "");
 }

@@ -74,7 +74,8 @@ TEST(RpcProcesses, ServerKilledMidRunGivesTimeoutsThenANewServerAnswers) {
   std::mt19937_64 rng(9);
   Request request;
   Reply reply;
-  auto server = std::make_unique<ChildProcess>(peer(), std::vector<std::string>{"server", kService});
+  auto server =
+      std::make_unique<ChildProcess>(peer(), std::vector<std::string>{"server", kService});
   ASSERT_TRUE(client.wait_connected(20s)) << server->output();
   const auto connected_at = Clock::now();
   for (int i = 0; i < 100; ++i) {
@@ -109,12 +110,14 @@ TEST(RpcProcesses, ServerKilledMidRunGivesTimeoutsThenANewServerAnswers) {
   }
   ASSERT_TRUE(recovered) << "no reply from the new server within 20 s";
   EXPECT_EQ(wbi::test::toy_mismatch(request, reply), "");
-  RecordProperty("recovery_ms", static_cast<int>(std::chrono::duration_cast<std::chrono::milliseconds>(
-                                                     Clock::now() - restart)
-                                                     .count()));
+  RecordProperty(
+      "recovery_ms",
+      static_cast<int>(
+          std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - restart).count()));
   for (int i = 0; i < 50; ++i) {
     wbi::test::random_request(rng, 12, request);
-    ASSERT_EQ(client.try_call(request, reply, 2s), CallStatus::ok) << "call " << i << " after recovery";
+    ASSERT_EQ(client.try_call(request, reply, 2s), CallStatus::ok)
+        << "call " << i << " after recovery";
     ASSERT_EQ(wbi::test::toy_mismatch(request, reply), "");
   }
 }

@@ -19,7 +19,7 @@ struct Rmse {
 Rmse rmse_on_quantised_sine(const std::string& method) {
   constexpr int kJoints = 8;
   const double step = 2.0 * std::numbers::pi / 16384.0;  // 14-bit encoder
-  const double w = 2.0 * std::numbers::pi;              // 1 Hz, 0.4 rad
+  const double w = 2.0 * std::numbers::pi;               // 1 Hz, 0.4 rad
   const auto estimator = make_estimator(method, kJoints);
   Eigen::VectorXd q(kJoints);
   double sum_dq = 0.0;

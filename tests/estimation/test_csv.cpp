@@ -71,8 +71,8 @@ TEST(Csv, RoundTripThroughTheOfflineFilter) {
   EXPECT_EQ(estimator->stamp_counters().duplicated, 1u);
 
   const JointSamples back = read_joint_csv(output);  // same shape: t then columns
-  EXPECT_EQ(back.joint_names, (std::vector<std::string>{"dq0", "dq1", "dq2", "ddq0", "ddq1",
-                                                        "ddq2"}));
+  EXPECT_EQ(back.joint_names,
+            (std::vector<std::string>{"dq0", "dq1", "dq2", "ddq0", "ddq1", "ddq2"}));
   ASSERT_EQ(back.t.size(), 51u);
   EXPECT_EQ(back.t, samples.t);
   for (Eigen::Index r = 0; r < 51; ++r) {
@@ -81,9 +81,9 @@ TEST(Csv, RoundTripThroughTheOfflineFilter) {
       EXPECT_EQ(back.q(r, 3 + j), derivatives.ddq(r, j));
     }
   }
-  EXPECT_NEAR(back.q(40, 0), 0.5, 1e-9);     // d/dt 0.5 t
-  EXPECT_NEAR(back.q(40, 4), -2.0, 1e-6);    // d²/dt² -t²
-  EXPECT_EQ(back.q(50, 0), back.q(49, 0));   // the ignored row repeats the estimate
+  EXPECT_NEAR(back.q(40, 0), 0.5, 1e-9);    // d/dt 0.5 t
+  EXPECT_NEAR(back.q(40, 4), -2.0, 1e-6);   // d²/dt² -t²
+  EXPECT_EQ(back.q(50, 0), back.q(49, 0));  // the ignored row repeats the estimate
   std::filesystem::remove_all(dir);
 }
 

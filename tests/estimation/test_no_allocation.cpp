@@ -59,9 +59,9 @@ TEST(NoAllocation, EveryEstimatorUpdate) {
         const std::int64_t stamp = k * 1'000'000 + (k % 5 == 4 ? 1'000'000 : 0);
         estimator->update(stamp, q);
         if (k % 97 == 0) {
-          estimator->update(stamp, q);               // duplicated
-          estimator->update(stamp - 2'000'000, q);   // out of order
-          estimator->update(stamp + 10, bad);        // non-finite
+          estimator->update(stamp, q);              // duplicated
+          estimator->update(stamp - 2'000'000, q);  // out of order
+          estimator->update(stamp + 10, bad);       // non-finite
         }
         if (k == 2000) {
           estimator->reset();

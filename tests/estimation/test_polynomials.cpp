@@ -77,7 +77,9 @@ TEST_P(StampPattern, ConstantAccelerationKalmanIsExactForParabolas) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Stamps, StampPattern, ::testing::Values(false, true),
-                         [](const auto& param_info) { return param_info.param ? "Irregular" : "Regular"; });
+                         [](const auto& param_info) {
+                           return param_info.param ? "Irregular" : "Regular";
+                         });
 
 TEST(Polynomials, EveryMethodGivesZeroForAConstant) {
   for (const auto& method : all_methods()) {

@@ -69,21 +69,38 @@ TEST(Factory, ListsTheMethods) {
 
 TEST(Factory, BadMethodsAndParametersAreNamed) {
   expect_error([] { make_estimator("savgol", 2); }, "unknown estimation method 'savgol'");
-  expect_error([] { make_estimator("kalman", 2, {{"threshold", 1.0}}); },
-               "method 'kalman' has no parameter 'threshold'");
-  expect_error([] { make_estimator("adaptive-window", 2, {{"velocity-window", 1.0}}); },
-               "'velocity-window' must be an integer in [2, 1000], got 1");
-  expect_error([] { make_estimator("adaptive-window", 2, {{"acceleration-window", 4.5}}); },
-               "'acceleration-window' must be an integer");
-  expect_error([] { make_estimator("adaptive-window", 2, {{"threshold", -1.0}}); },
-               "'threshold' must be a number");
+  expect_error(
+      [] {
+        make_estimator("kalman", 2, {{"threshold", 1.0}});
+      },
+      "method 'kalman' has no parameter 'threshold'");
+  expect_error(
+      [] {
+        make_estimator("adaptive-window", 2, {{"velocity-window", 1.0}});
+      },
+      "'velocity-window' must be an integer in [2, 1000], got 1");
+  expect_error(
+      [] {
+        make_estimator("adaptive-window", 2, {{"acceleration-window", 4.5}});
+      },
+      "'acceleration-window' must be an integer");
+  expect_error(
+      [] {
+        make_estimator("adaptive-window", 2, {{"threshold", -1.0}});
+      },
+      "'threshold' must be a number");
   expect_error([] { make_estimator("backward-difference", 2, {{"cutoff", -3.0}}); }, "'cutoff'");
   expect_error([] { make_estimator("kalman", 2, {{"model-order", 5.0}}); }, "'model-order'");
-  expect_error([] { make_estimator("kalman", 2, {{"sample-rate", 1000.0}, {"max-gap", 0.001}}); },
-               "max-gap must exceed 1.5 sample periods");
+  expect_error(
+      [] {
+        make_estimator("kalman", 2, {{"sample-rate", 1000.0}, {"max-gap", 0.001}});
+      },
+      "max-gap must exceed 1.5 sample periods");
   EXPECT_NO_THROW(make_estimator("adaptive-window", 2,
-                                 {{"velocity-window", 8}, {"acceleration-window", 12},
-                                  {"threshold", 0.01}, {"sample-rate", 500}}));
+                                 {{"velocity-window", 8},
+                                  {"acceleration-window", 12},
+                                  {"threshold", 0.01},
+                                  {"sample-rate", 500}}));
   expect_error([] { LowPassFilter(0, 1.0); }, "size must be > 0");
   expect_error([] { LowPassFilter(1, -1.0); }, "cutoff must be >= 0 Hz");
 }

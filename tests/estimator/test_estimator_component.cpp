@@ -58,7 +58,8 @@ class EstimatorFixture {
     // Best-effort stream: send again until this sample's estimate comes back.
     for (int attempt = 0; attempt < 50; ++attempt) {
       sensors_.publish(sample);
-      if (state_.wait_newer(received_, received_.count, 100ms) && received_.sample.header().seq() == k) {
+      if (state_.wait_newer(received_, received_.count, 100ms) &&
+          received_.sample.header().seq() == k) {
         return received_.sample;
       }
     }
@@ -148,7 +149,8 @@ TEST(EstimatorComponent, FixedLinkBaseKeepsTheStanceFootStill) {
   const Eigen::Quaterniond o(Eigen::Matrix3d(H.topLeftCorner<3, 3>()));
   q_full << H.topRightCorner<3, 1>(), o.w(), o.x(), o.y(), o.z(), q;
   wbi::model::forward_kinematics(model, data, q_full);
-  const Eigen::VectorXd sole_velocity = wbi::model::frame_jacobian(model, data, model.frame_id("l_sole")) * nu;
+  const Eigen::VectorXd sole_velocity =
+      wbi::model::frame_jacobian(model, data, model.frame_id("l_sole")) * nu;
   EXPECT_LT(sole_velocity.norm(), 1e-9);
   EXPECT_GT(nu.head<3>().norm(), 0.05);  // the base does move
 

@@ -15,9 +15,9 @@
 namespace {
 
 TEST(IdlText, SelfContainedForEveryTopLevelType) {
-  for (const char* type : {"RobotDescription", "SensorSample", "GroundTruth", "ActuatorCommand",
-                           "ControlParameters", "StateEstimate", "ModelRequest", "ModelReply",
-                           "ComponentStatus", "SimulationClock"}) {
+  for (const char* type :
+       {"RobotDescription", "SensorSample", "GroundTruth", "ActuatorCommand", "ControlParameters",
+        "StateEstimate", "ModelRequest", "ModelReply", "ComponentStatus", "SimulationClock"}) {
     const std::string text = wbi::msg::idl_text_for(std::string("wbi::msg::") + type);
     EXPECT_NE(text.find(std::string("struct ") + type), std::string::npos) << type;
     EXPECT_NE(text.find("struct Header"), std::string::npos) << type;
@@ -37,16 +37,16 @@ TEST(IdlText, UnknownTypeIsNamed) {
 }
 
 TEST(IdlText, FastddsgenAcceptsTheTextAlone) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("wbi_idl_text_" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("wbi_idl_text_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir / "out");
   {
     std::ofstream out(dir / "sample.idl");
     out << wbi::msg::idl_text_for("wbi::msg::SensorSample");
   }
   const std::string command = std::string(WBI_FASTDDSGEN) + " -cs -replace -d " +
-                              (dir / "out").string() + " " + (dir / "sample.idl").string() +
-                              " > " + (dir / "log.txt").string() + " 2>&1";
+                              (dir / "out").string() + " " + (dir / "sample.idl").string() + " > " +
+                              (dir / "log.txt").string() + " 2>&1";
   const int code = std::system(command.c_str());
   std::ifstream log(dir / "log.txt");
   const std::string output((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());

@@ -24,7 +24,8 @@ class DeployFileTest : public ::testing::Test {
       wbi::launch::load_deploy_file(path);
     } catch (const std::runtime_error& e) {
       const std::string message = e.what();
-      EXPECT_EQ(message.rfind(path.string(), 0), 0u) << "error does not start with the file: " << message;
+      EXPECT_EQ(message.rfind(path.string(), 0), 0u)
+          << "error does not start with the file: " << message;
       return message.substr(path.string().size());
     }
     ADD_FAILURE() << "no error for:\n" << text;
@@ -112,7 +113,8 @@ TEST_F(DeployFileTest, MissingFileIsNamed) {
     wbi::launch::load_deploy_file(dir_ / "absent.yaml");
     FAIL();
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("absent.yaml: cannot open the deploy file"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("absent.yaml: cannot open the deploy file"),
+              std::string::npos)
         << e.what();
   }
 }

@@ -30,7 +30,9 @@ class LaunchTest : public ::testing::Test {
   }
 
   static std::filesystem::path wbi_exe() { return wbi::test::binary_dir() / "bin" / "wbi"; }
-  static std::string talker() { return (wbi::test::binary_dir() / "tests" / "wbi_test_talker").string(); }
+  static std::string talker() {
+    return (wbi::test::binary_dir() / "tests" / "wbi_test_talker").string();
+  }
 
   std::filesystem::path dir_;
 };
@@ -42,18 +44,23 @@ bool contains(const std::string& text, const std::string& part) {
 std::string last_line(const std::string& text) {
   auto end = text.find_last_not_of('\n');
   auto start = text.rfind('\n', end);
-  return text.substr(start == std::string::npos ? 0 : start + 1, end - (start == std::string::npos ? 0 : start + 1) + 1);
+  return text.substr(start == std::string::npos ? 0 : start + 1,
+                     end - (start == std::string::npos ? 0 : start + 1) + 1);
 }
 
 TEST_F(LaunchTest, StartsByReadinessPrefixesOutputAndEndsWithTheSummary) {
-  const auto deploy = write("ok.yaml", "summary: {process: listener, match: \"seq:\"}\n"
-                                       "processes:\n"
-                                       "  - name: talker\n"
-                                       "    command: [" + talker() + ", launchtest, \"0\"]\n"
-                                       "  - name: listener\n"
-                                       "    command: [wbi, topic, echo, wbi/launchtest/sensors, --count, \"3\"]\n"
-                                       "    wait_for: {topics: [wbi/launchtest/sensors], timeout: 20}\n"
-                                       "    shutdown_on_exit: true\n");
+  const auto deploy =
+      write("ok.yaml",
+            "summary: {process: listener, match: \"seq:\"}\n"
+            "processes:\n"
+            "  - name: talker\n"
+            "    command: [" +
+                talker() +
+                ", launchtest, \"0\"]\n"
+                "  - name: listener\n"
+                "    command: [wbi, topic, echo, wbi/launchtest/sensors, --count, \"3\"]\n"
+                "    wait_for: {topics: [wbi/launchtest/sensors], timeout: 20}\n"
+                "    shutdown_on_exit: true\n");
   ChildProcess launch(wbi_exe(), {"launch", deploy.string()});
   const auto code = launch.wait(90s);
   ASSERT_TRUE(code.has_value()) << launch.output();
@@ -68,17 +75,19 @@ TEST_F(LaunchTest, StartsByReadinessPrefixesOutputAndEndsWithTheSummary) {
 }
 
 TEST_F(LaunchTest, RespawnsThenFailsWhenARequiredProcessKeepsFailing) {
-  const auto deploy = write("fail.yaml", "processes:\n"
-                                         "  - name: flaky\n"
-                                         "    command: [sh, -c, \"echo run; exit 3\"]\n"
-                                         "    respawn: {enabled: true, delay: 0.05, max_retries: 2}\n");
+  const auto deploy = write("fail.yaml",
+                            "processes:\n"
+                            "  - name: flaky\n"
+                            "    command: [sh, -c, \"echo run; exit 3\"]\n"
+                            "    respawn: {enabled: true, delay: 0.05, max_retries: 2}\n");
   ChildProcess launch(wbi_exe(), {"launch", deploy.string()});
   const auto code = launch.wait(60s);
   ASSERT_TRUE(code.has_value());
   const std::string out = launch.output();
   EXPECT_EQ(*code, 1) << out;
   std::size_t runs = 0;
-  for (auto at = out.find("[flaky] run"); at != std::string::npos; at = out.find("[flaky] run", at + 1)) {
+  for (auto at = out.find("[flaky] run"); at != std::string::npos;
+       at = out.find("[flaky] run", at + 1)) {
     ++runs;
   }
   EXPECT_EQ(runs, 3u) << out;
@@ -87,9 +96,10 @@ TEST_F(LaunchTest, RespawnsThenFailsWhenARequiredProcessKeepsFailing) {
 }
 
 TEST_F(LaunchTest, OptionalProcessFailureDoesNotStopTheLaunch) {
-  const auto deploy = write("optional.yaml", "processes:\n"
-                                             "  - {name: helper, command: [sh, -c, \"exit 5\"], required: false}\n"
-                                             "  - {name: sleeper, command: [sleep, \"30\"]}\n");
+  const auto deploy = write("optional.yaml",
+                            "processes:\n"
+                            "  - {name: helper, command: [sh, -c, \"exit 5\"], required: false}\n"
+                            "  - {name: sleeper, command: [sleep, \"30\"]}\n");
   ChildProcess launch(wbi_exe(), {"launch", deploy.string(), "--duration", "1.5"});
   const auto code = launch.wait(60s);
   ASSERT_TRUE(code.has_value());
@@ -100,7 +110,8 @@ TEST_F(LaunchTest, OptionalProcessFailureDoesNotStopTheLaunch) {
 }
 
 TEST_F(LaunchTest, CtrlCStopsEverything) {
-  const auto deploy = write("sigint.yaml", "processes:\n  - {name: sleeper, command: [sleep, \"30\"]}\n");
+  const auto deploy =
+      write("sigint.yaml", "processes:\n  - {name: sleeper, command: [sleep, \"30\"]}\n");
   ChildProcess launch(wbi_exe(), {"launch", deploy.string()});
   ASSERT_TRUE(launch.wait_for_output("sleeper: started", 30s)) << launch.output();
   kill(launch.pid(), SIGINT);
@@ -111,9 +122,10 @@ TEST_F(LaunchTest, CtrlCStopsEverything) {
 }
 
 TEST_F(LaunchTest, ProcessIgnoringSigtermIsKilled) {
-  const auto deploy = write("stubborn.yaml",
-                            "processes:\n"
-                            "  - {name: stubborn, command: [sh, -c, \"trap '' TERM; echo armed; sleep 30\"]}\n");
+  const auto deploy =
+      write("stubborn.yaml",
+            "processes:\n"
+            "  - {name: stubborn, command: [sh, -c, \"trap '' TERM; echo armed; sleep 30\"]}\n");
   ChildProcess launch(wbi_exe(), {"launch", deploy.string(), "--duration", "1", "--grace", "0.5"});
   const auto code = launch.wait(60s);
   ASSERT_TRUE(code.has_value()) << launch.output();
@@ -127,7 +139,8 @@ TEST_F(LaunchTest, BadDeployFileFailsWithItsName) {
   const auto code = launch.wait(30s);
   ASSERT_TRUE(code.has_value());
   EXPECT_EQ(*code, 1);
-  EXPECT_TRUE(contains(launch.output(), "bad.yaml:1: processes: expected a non-empty list")) << launch.output();
+  EXPECT_TRUE(contains(launch.output(), "bad.yaml:1: processes: expected a non-empty list"))
+      << launch.output();
 }
 
 }  // namespace

@@ -34,11 +34,11 @@ inline std::vector<std::filesystem::path> shared_models() {
   if (!dir) {
     return out;
   }
-  for (const char* f : {"iCubGenova09/model.urdf", "iCubGazeboV2_5/model.urdf",
-                        "talos/talos_reduced.urdf", "talos/talos_full_v2.urdf", "atlas/atlas.urdf",
-                        "anymal_c/anymal.urdf", "hyq/hyq_no_sensors.urdf", "hyq/hyq.urdf",
-                        "solo12/solo12.urdf", "panda/panda.urdf", "ur5/ur5_robot.urdf",
-                        "iiwa/iiwa.urdf"}) {
+  for (const char* f :
+       {"iCubGenova09/model.urdf", "iCubGazeboV2_5/model.urdf", "talos/talos_reduced.urdf",
+        "talos/talos_full_v2.urdf", "atlas/atlas.urdf", "anymal_c/anymal.urdf",
+        "hyq/hyq_no_sensors.urdf", "hyq/hyq.urdf", "solo12/solo12.urdf", "panda/panda.urdf",
+        "ur5/ur5_robot.urdf", "iiwa/iiwa.urdf"}) {
     out.push_back(*dir / f);
   }
   return out;
@@ -57,8 +57,8 @@ inline Eigen::VectorXd random_vector(int n, std::mt19937& rng, double scale = 1.
 inline ::testing::AssertionResult near_rel(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
                                            double tol) {
   if (a.rows() != b.rows() || a.cols() != b.cols()) {
-    return ::testing::AssertionFailure() << "size " << a.rows() << "x" << a.cols() << " vs "
-                                         << b.rows() << "x" << b.cols();
+    return ::testing::AssertionFailure()
+           << "size " << a.rows() << "x" << a.cols() << " vs " << b.rows() << "x" << b.cols();
   }
   const double scale = std::max(1.0, b.cwiseAbs().maxCoeff());
   const double err = (a - b).cwiseAbs().maxCoeff();

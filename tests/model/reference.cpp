@@ -1,8 +1,8 @@
 #include "reference.hpp"
 
+#include <urdf_parser/urdf_parser.h>
 #include <Eigen/Geometry>
 #include <stdexcept>
-#include <urdf_parser/urdf_parser.h>
 
 namespace wbi::test {
 
@@ -10,7 +10,9 @@ namespace {
 Eigen::Matrix4d pose_matrix(const urdf::Pose& p) {
   Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
   T.topLeftCorner<3, 3>() =
-      Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z).normalized().toRotationMatrix();
+      Eigen::Quaterniond(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z)
+          .normalized()
+          .toRotationMatrix();
   T.topRightCorner<3, 1>() = Eigen::Vector3d(p.position.x, p.position.y, p.position.z);
   return T;
 }
@@ -105,7 +107,8 @@ void Reference::set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& nu) {
     if (l.parent < 0) {
       T_[i].setIdentity();
       if (floating_) {
-        T_[i].topLeftCorner<3, 3>() = Eigen::Quaterniond(q[3], q[4], q[5], q[6]).normalized().toRotationMatrix();
+        T_[i].topLeftCorner<3, 3>() =
+            Eigen::Quaterniond(q[3], q[4], q[5], q[6]).normalized().toRotationMatrix();
         T_[i].topRightCorner<3, 1>() = q.head<3>();
       }
       continue;
@@ -137,7 +140,8 @@ Eigen::MatrixXd Reference::point_jacobian(int l, const Eigen::Vector3d& p) const
     J.leftCols<3>().setIdentity();
     J.middleCols<3>(3) = -cross_matrix(p - origin_of(0));
   }
-  for (int k = l; links_[static_cast<std::size_t>(k)].parent >= 0; k = links_[static_cast<std::size_t>(k)].parent) {
+  for (int k = l; links_[static_cast<std::size_t>(k)].parent >= 0;
+       k = links_[static_cast<std::size_t>(k)].parent) {
     const Link& lk = links_[static_cast<std::size_t>(k)];
     if (lk.joint_kind == 0) {
       continue;
@@ -154,7 +158,8 @@ Eigen::MatrixXd Reference::rotation_jacobian(int l) const {
   if (floating_) {
     J.middleCols<3>(3).setIdentity();
   }
-  for (int k = l; links_[static_cast<std::size_t>(k)].parent >= 0; k = links_[static_cast<std::size_t>(k)].parent) {
+  for (int k = l; links_[static_cast<std::size_t>(k)].parent >= 0;
+       k = links_[static_cast<std::size_t>(k)].parent) {
     const Link& lk = links_[static_cast<std::size_t>(k)];
     if (lk.joint_kind == 1) {
       J.col(lk.v_index) = rot_of(k) * lk.axis;
@@ -170,7 +175,8 @@ Eigen::Vector3d Reference::point_dJnu(int l, const Eigen::Vector3d& p) const {
     // d/dt(ω_B × (p − p_B)) at constant ω_B
     r += nu_.segment<3>(3).cross(pdot - nu_.head<3>());
   }
-  for (int k = l; links_[static_cast<std::size_t>(k)].parent >= 0; k = links_[static_cast<std::size_t>(k)].parent) {
+  for (int k = l; links_[static_cast<std::size_t>(k)].parent >= 0;
+       k = links_[static_cast<std::size_t>(k)].parent) {
     const Link& lk = links_[static_cast<std::size_t>(k)];
     if (lk.joint_kind == 0) {
       continue;
@@ -192,7 +198,8 @@ Eigen::Vector3d Reference::point_dJnu(int l, const Eigen::Vector3d& p) const {
 
 Eigen::Vector3d Reference::rotation_dJnu(int l) const {
   Eigen::Vector3d r = Eigen::Vector3d::Zero();
-  for (int k = l; links_[static_cast<std::size_t>(k)].parent >= 0; k = links_[static_cast<std::size_t>(k)].parent) {
+  for (int k = l; links_[static_cast<std::size_t>(k)].parent >= 0;
+       k = links_[static_cast<std::size_t>(k)].parent) {
     const Link& lk = links_[static_cast<std::size_t>(k)];
     if (lk.joint_kind == 1) {
       r += omega(lk.parent).cross(rot_of(k) * lk.axis) * nu_[lk.v_index];

@@ -43,18 +43,22 @@ class Reference {
  private:
   struct Link {
     std::string name;
-    int parent = -1;          // parent link
-    int joint_kind = 0;       // 0 fixed, 1 revolute, 2 prismatic
-    int v_index = -1;         // column in ν of its joint, −1 if fixed
-    Eigen::Matrix4d origin;   // parent link → joint frame
-    Eigen::Vector3d axis;     // unit, joint frame
+    int parent = -1;         // parent link
+    int joint_kind = 0;      // 0 fixed, 1 revolute, 2 prismatic
+    int v_index = -1;        // column in ν of its joint, −1 if fixed
+    Eigen::Matrix4d origin;  // parent link → joint frame
+    Eigen::Vector3d axis;    // unit, joint frame
     double mass = 0.0;
     Eigen::Vector3d com;      // link frame
     Eigen::Matrix3d inertia;  // about the CoM, link frame
   };
   int index(const std::string& name) const;
-  Eigen::Vector3d origin_of(int l) const { return T_[static_cast<std::size_t>(l)].topRightCorner<3, 1>(); }
-  Eigen::Matrix3d rot_of(int l) const { return T_[static_cast<std::size_t>(l)].topLeftCorner<3, 3>(); }
+  Eigen::Vector3d origin_of(int l) const {
+    return T_[static_cast<std::size_t>(l)].topRightCorner<3, 1>();
+  }
+  Eigen::Matrix3d rot_of(int l) const {
+    return T_[static_cast<std::size_t>(l)].topLeftCorner<3, 3>();
+  }
   Eigen::Vector3d com_of(int l) const;
   // 3×nv Jacobian of a point fixed in link l (world coordinates), and of its rotation.
   Eigen::MatrixXd point_jacobian(int l, const Eigen::Vector3d& p) const;

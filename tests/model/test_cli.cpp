@@ -43,7 +43,8 @@ std::string write_state(const json& state) {
 }
 
 Eigen::MatrixXd matrix(const json& rows) {
-  Eigen::MatrixXd m(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(rows[0].size()));
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(rows.size()),
+                    static_cast<Eigen::Index>(rows[0].size()));
   for (std::size_t r = 0; r < rows.size(); ++r) {
     for (std::size_t c = 0; c < rows[r].size(); ++c) {
       m(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = rows[r][c].get<double>();
@@ -84,18 +85,24 @@ TEST(Cli, EvalMatchesLibraryInModelOrder) {
   const json out = json::parse(run({"eval", humanoid(), "--state", write_state(state)}));
   const Eigen::Vector3d g(0, 0, -9.81);
   EXPECT_EQ(out["joints"].get<std::vector<std::string>>(), model.joint_name);
-  EXPECT_TRUE(wbi::test::near_rel(matrix(out["mass_matrix"]), wm::mass_matrix(model, data, q), 1e-12));
-  EXPECT_TRUE(wbi::test::near_rel(vector(out["bias_forces"]), wm::bias_forces(model, data, q, nu, g), 1e-12));
-  EXPECT_TRUE(wbi::test::near_rel(vector(out["gravity_forces"]), wm::gravity_forces(model, data, q, g), 1e-12));
+  EXPECT_TRUE(
+      wbi::test::near_rel(matrix(out["mass_matrix"]), wm::mass_matrix(model, data, q), 1e-12));
+  EXPECT_TRUE(wbi::test::near_rel(vector(out["bias_forces"]),
+                                  wm::bias_forces(model, data, q, nu, g), 1e-12));
+  EXPECT_TRUE(wbi::test::near_rel(vector(out["gravity_forces"]),
+                                  wm::gravity_forces(model, data, q, g), 1e-12));
   EXPECT_NEAR(out["total_mass"].get<double>(), model.total_mass, 1e-12);
   EXPECT_TRUE(wbi::test::near_rel(vector(out["com"]), wm::center_of_mass(model, data, q), 1e-12));
-  EXPECT_TRUE(wbi::test::near_rel(vector(out["centroidal_momentum"]), wm::centroidal_momentum(model, data, q, nu), 1e-12));
+  EXPECT_TRUE(wbi::test::near_rel(vector(out["centroidal_momentum"]),
+                                  wm::centroidal_momentum(model, data, q, nu), 1e-12));
   const json& f = out["frames"][model.frame_name.back()];
   wm::forward_velocity_kinematics(model, data, q, nu);
   const int id = model.n_frames() - 1;
   EXPECT_TRUE(wbi::test::near_rel(matrix(f["transform"]), wm::frame_pose(model, data, id), 1e-12));
-  EXPECT_TRUE(wbi::test::near_rel(matrix(f["jacobian"]), wm::frame_jacobian(model, data, id), 1e-12));
-  EXPECT_TRUE(wbi::test::near_rel(vector(f["dJnu"]), wm::frame_bias_acceleration(model, data, id), 1e-12));
+  EXPECT_TRUE(
+      wbi::test::near_rel(matrix(f["jacobian"]), wm::frame_jacobian(model, data, id), 1e-12));
+  EXPECT_TRUE(
+      wbi::test::near_rel(vector(f["dJnu"]), wm::frame_bias_acceleration(model, data, id), 1e-12));
 }
 
 TEST(Cli, EvalFollowsTheCallersJointOrder) {
@@ -113,7 +120,8 @@ TEST(Cli, EvalFollowsTheCallersJointOrder) {
   EXPECT_EQ(out["joints"].get<std::vector<std::string>>(), reversed);
   // the same state in model order
   std::vector<double> q_model(q.rbegin(), q.rend());
-  const json ref = json::parse(run({"eval", humanoid(), "--state", write_state(json{{"q", q_model}})}));
+  const json ref =
+      json::parse(run({"eval", humanoid(), "--state", write_state(json{{"q", q_model}})}));
   const Eigen::MatrixXd M = matrix(out["mass_matrix"]);
   const Eigen::MatrixXd M_ref = matrix(ref["mass_matrix"]);
   const int n = model.n_joints;
@@ -130,7 +138,8 @@ TEST(Cli, EvalFollowsTheCallersJointOrder) {
 
 TEST(Cli, FixedBaseAndReducedSizes) {
   const std::string pendulum = wbi::test::project_model("double_pendulum.urdf").string();
-  const json out = json::parse(run({"eval", pendulum, "--state", write_state(json{{"q", {0.1, 0.2}}})}));
+  const json out =
+      json::parse(run({"eval", pendulum, "--state", write_state(json{{"q", {0.1, 0.2}}})}));
   EXPECT_EQ(out["mass_matrix"].size(), 2u);
   EXPECT_EQ(out["bias_forces"].size(), 2u);
   const json red = json::parse(
@@ -148,9 +157,11 @@ TEST(Cli, InfoAndBenchKeys) {
   EXPECT_DOUBLE_EQ(info["total_mass"].get<double>(), 2.0);
   EXPECT_EQ(info["frames"].size(), 3u);
   EXPECT_FALSE(run({"info", pendulum}).empty());
-  const json bench = json::parse(run({"bench", pendulum, "--json", "--states", "3", "--batch", "2"}));
-  for (const char* key : {"mass_matrix_ns", "bias_forces_ns", "gravity_forces_ns", "forward_dynamics_ns",
-                          "jacobian_ns", "forward_kinematics_ns", "centroidal_momentum_matrix_ns"}) {
+  const json bench =
+      json::parse(run({"bench", pendulum, "--json", "--states", "3", "--batch", "2"}));
+  for (const char* key :
+       {"mass_matrix_ns", "bias_forces_ns", "gravity_forces_ns", "forward_dynamics_ns",
+        "jacobian_ns", "forward_kinematics_ns", "centroidal_momentum_matrix_ns"}) {
     EXPECT_TRUE(bench.contains(key)) << key;
     EXPECT_GT(bench[key].get<double>(), 0.0) << key;
   }
@@ -175,19 +186,31 @@ TEST(Cli, BadInput) {
   EXPECT_NE(error_of({"info"}).find("usage: "), std::string::npos);
   EXPECT_NE(error_of({"info", "/no/such.urdf"}).find("/no/such.urdf"), std::string::npos);
   EXPECT_NE(error_of({"eval", pendulum}).find("usage: "), std::string::npos);  // --state missing
-  EXPECT_NE(error_of({"eval", pendulum, "--state", write_state(json{{"q", {1, 2}}})}).find("'q'"), std::string::npos);
-  EXPECT_NE(error_of({"eval", pendulum, "--state", write_state(json{{"frames", {"nope"}}})}).find("nope"), std::string::npos);
-  EXPECT_NE(error_of({"eval", pendulum, "--state", write_state(json{{"joints", {"nope"}}})}).find("nope"), std::string::npos);
-  EXPECT_NE(error_of({"eval", pendulum, "--state", write_state(json{{"qq", {1}}})}).find("unknown key 'qq'"), std::string::npos);
-  EXPECT_NE(error_of({"eval", pendulum, "--state", write_state(json{{"base_position", {0, 0, 0}}})}).find("fixed base"),
+  EXPECT_NE(error_of({"eval", pendulum, "--state", write_state(json{{"q", {1, 2}}})}).find("'q'"),
             std::string::npos);
-  EXPECT_NE(error_of({"eval", pendulum, "--joints", "nope", "--state", write_state(json::object())}).find("nope"),
+  EXPECT_NE(
+      error_of({"eval", pendulum, "--state", write_state(json{{"frames", {"nope"}}})}).find("nope"),
+      std::string::npos);
+  EXPECT_NE(
+      error_of({"eval", pendulum, "--state", write_state(json{{"joints", {"nope"}}})}).find("nope"),
+      std::string::npos);
+  EXPECT_NE(error_of({"eval", pendulum, "--state", write_state(json{{"qq", {1}}})})
+                .find("unknown key 'qq'"),
+            std::string::npos);
+  EXPECT_NE(error_of({"eval", pendulum, "--state", write_state(json{{"base_position", {0, 0, 0}}})})
+                .find("fixed base"),
+            std::string::npos);
+  EXPECT_NE(error_of({"eval", pendulum, "--joints", "nope", "--state", write_state(json::object())})
+                .find("nope"),
             std::string::npos);
   if (std::filesystem::exists(humanoid())) {
-    EXPECT_NE(error_of({"eval", humanoid(), "--state", write_state(json{{"base_quaternion", {0, 0, 0, 0}}})})
+    EXPECT_NE(error_of({"eval", humanoid(), "--state",
+                        write_state(json{{"base_quaternion", {0, 0, 0, 0}}})})
                   .find("unit quaternion"),
               std::string::npos);
-    EXPECT_NE(error_of({"eval", humanoid(), "--state", write_state(json{{"base_velocity", {0, 0}}})}).find("6"),
-              std::string::npos);
+    EXPECT_NE(
+        error_of({"eval", humanoid(), "--state", write_state(json{{"base_velocity", {0, 0}}})})
+            .find("6"),
+        std::string::npos);
   }
 }

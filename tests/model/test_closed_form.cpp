@@ -78,7 +78,7 @@ TEST(ClosedForm, DoublePendulumDynamics) {
     M(0, 0) = I1 + I2 + m1 * c1 * c1 + m2 * (l1 * l1 + c2 * c2 + 2 * l1 * c2 * std::cos(t2));
     M(0, 1) = M(1, 0) = I2 + m2 * (c2 * c2 + l1 * c2 * std::cos(t2));
     M(1, 1) = I2 + m2 * c2 * c2;
-    Eigen::Vector2d G(( m1 * c1 + m2 * l1) * g * std::sin(t1) + m2 * c2 * g * std::sin(t1 + t2),
+    Eigen::Vector2d G((m1 * c1 + m2 * l1) * g * std::sin(t1) + m2 * c2 * g * std::sin(t1 + t2),
                       m2 * c2 * g * std::sin(t1 + t2));
     Eigen::Vector2d C(-m2 * l1 * c2 * std::sin(t2) * (2 * d1 * d2 + d2 * d2),
                       m2 * l1 * c2 * std::sin(t2) * d1 * d1);

@@ -96,8 +96,9 @@ TEST(Loader, LumpsFixedJointsExactly) {
   auto shift = [](double m, const Eigen::Vector3d& d) {
     return Eigen::Matrix3d(m * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose()));
   };
-  const Eigen::Matrix3d expected = Eigen::Vector3d(0.1, 0.2, 0.3).asDiagonal().toDenseMatrix() + shift(2, ca - c) +
-                                   Eigen::Vector3d(0.02, 0.01, 0.03).asDiagonal().toDenseMatrix() + shift(1, cb - c);
+  const Eigen::Matrix3d expected =
+      Eigen::Vector3d(0.1, 0.2, 0.3).asDiagonal().toDenseMatrix() + shift(2, ca - c) +
+      Eigen::Vector3d(0.02, 0.01, 0.03).asDiagonal().toDenseMatrix() + shift(1, cb - c);
   EXPECT_TRUE(near_rel(model.body_inertia_c[0], expected, 1e-14));
   // frames keep their placement in their body
   const int fb = model.frame_id("b");
@@ -145,12 +146,14 @@ TEST(Loader, BaseKind) {
   EXPECT_EQ(lump.nv, 1);
   // a root named world with mass stays free-floating
   const std::string heavy_world = replace(kLumpUrdf, "<link name=\"a\">", "<link name=\"world\">");
-  const wm::Model w = wm::load_urdf_string(replace(heavy_world, "<parent link=\"a\"/>", "<parent link=\"world\"/>"));
+  const wm::Model w = wm::load_urdf_string(
+      replace(heavy_world, "<parent link=\"a\"/>", "<parent link=\"world\"/>"));
   EXPECT_TRUE(w.floating_base);
   if (const auto dir = wbi::test::shared_models_dir()) {
     EXPECT_FALSE(wm::load_urdf_file((*dir / "ur5/ur5_robot.urdf").string()).floating_base);
     const wm::Model anymal = wm::load_urdf_file((*dir / "anymal_c/anymal.urdf").string());
-    EXPECT_TRUE(anymal.floating_base);  // massless root "base": mass comes from the lumped base_inertia
+    EXPECT_TRUE(
+        anymal.floating_base);  // massless root "base": mass comes from the lumped base_inertia
     EXPECT_EQ(anymal.n_joints, 12);
     EXPECT_GT(anymal.body_mass[0], 0.0);
   }
@@ -185,18 +188,15 @@ TEST(Loader, SharedModelsLoadWithExpectedSizes) {
     int links;
     bool floating;
   };
-  for (const Expected& e : {Expected{"iCubGazeboV2_5/model.urdf", 32, 213, true},
-                            Expected{"iCubGenova09/model.urdf", 32, 58, true},
-                            Expected{"talos/talos_reduced.urdf", 32, 60, true},
-                            Expected{"talos/talos_full_v2.urdf", 44, 60, true},
-                            Expected{"atlas/atlas.urdf", 30, 31, true},
-                            Expected{"anymal_c/anymal.urdf", 12, 78, true},
-                            Expected{"hyq/hyq_no_sensors.urdf", 12, 19, true},
-                            Expected{"hyq/hyq.urdf", 12, 13, true},
-                            Expected{"solo12/solo12.urdf", 12, 17, true},
-                            Expected{"panda/panda.urdf", 9, 13, true},
-                            Expected{"ur5/ur5_robot.urdf", 6, 11, false},
-                            Expected{"iiwa/iiwa.urdf", 7, 9, true}}) {
+  for (const Expected& e :
+       {Expected{"iCubGazeboV2_5/model.urdf", 32, 213, true},
+        Expected{"iCubGenova09/model.urdf", 32, 58, true},
+        Expected{"talos/talos_reduced.urdf", 32, 60, true},
+        Expected{"talos/talos_full_v2.urdf", 44, 60, true},
+        Expected{"atlas/atlas.urdf", 30, 31, true}, Expected{"anymal_c/anymal.urdf", 12, 78, true},
+        Expected{"hyq/hyq_no_sensors.urdf", 12, 19, true}, Expected{"hyq/hyq.urdf", 12, 13, true},
+        Expected{"solo12/solo12.urdf", 12, 17, true}, Expected{"panda/panda.urdf", 9, 13, true},
+        Expected{"ur5/ur5_robot.urdf", 6, 11, false}, Expected{"iiwa/iiwa.urdf", 7, 9, true}}) {
     SCOPED_TRACE(e.file);
     const wm::Model model = wm::load_urdf_file((*dir / e.file).string());
     EXPECT_EQ(model.n_joints, e.dof);
@@ -248,7 +248,8 @@ TEST(Loader, ReducedModelAgreesWithFullModelAtLockedPositions) {
       options.joints.push_back(full.joint_name[static_cast<std::size_t>(k)]);
     }
     for (int k = 0; k < full.n_joints; ++k) {
-      options.locked_positions[full.joint_name[static_cast<std::size_t>(k)]] = q_full[full.joint_q_index[static_cast<std::size_t>(k)]];
+      options.locked_positions[full.joint_name[static_cast<std::size_t>(k)]] =
+          q_full[full.joint_q_index[static_cast<std::size_t>(k)]];
     }
     const wm::Model red = wm::load_urdf_file(path.string(), options);
     ASSERT_EQ(red.n_joints, static_cast<int>(options.joints.size()));
@@ -261,7 +262,8 @@ TEST(Loader, ReducedModelAgreesWithFullModelAtLockedPositions) {
     for (int k = 0; k < red.n_joints; ++k) {
       const int kf = full.joint_id(red.joint_name[static_cast<std::size_t>(k)]);
       idx.push_back(full.joint_v_index[static_cast<std::size_t>(kf)]);
-      q_red[red.joint_q_index[static_cast<std::size_t>(k)]] = q_full[full.joint_q_index[static_cast<std::size_t>(kf)]];
+      q_red[red.joint_q_index[static_cast<std::size_t>(k)]] =
+          q_full[full.joint_q_index[static_cast<std::size_t>(kf)]];
     }
     const int n = red.nv;
     Eigen::VectorXd nu_red = wbi::test::random_vector(n, rng, 1.0);
@@ -285,12 +287,15 @@ TEST(Loader, ReducedModelAgreesWithFullModelAtLockedPositions) {
     EXPECT_TRUE(near_rel(Mr, Mf_sub, 1e-10));
     EXPECT_TRUE(near_rel(hr, hf_sub, 1e-10));
     EXPECT_NEAR(red.total_mass, full.total_mass, 1e-12);
-    EXPECT_TRUE(near_rel(wm::center_of_mass(red, dr, q_red), wm::center_of_mass(full, df, q_full), 1e-12));
+    EXPECT_TRUE(
+        near_rel(wm::center_of_mass(red, dr, q_red), wm::center_of_mass(full, df, q_full), 1e-12));
     wm::forward_kinematics(full, df, q_full);
     wm::forward_kinematics(red, dr, q_red);
     for (int f = 0; f < full.n_frames(); ++f) {
       const std::string& name = full.frame_name[static_cast<std::size_t>(f)];
-      EXPECT_TRUE(near_rel(wm::frame_pose(red, dr, red.frame_id(name)), wm::frame_pose(full, df, f), 1e-12)) << name;
+      EXPECT_TRUE(
+          near_rel(wm::frame_pose(red, dr, red.frame_id(name)), wm::frame_pose(full, df, f), 1e-12))
+          << name;
     }
   }
 }
@@ -309,13 +314,17 @@ TEST(Loader, BadInputGivesClearErrors) {
   expect_load_error("xml.urdf", replace(good, "</robot>", "</robt>"), {"XML error", "line"});
   expect_load_error("notrobot.urdf", "<?xml version=\"1.0\"?><model/>", {"<robot>"});
   // several roots, kinematic loop, dangling link
-  expect_load_error("roots.urdf", replace(good, "<link name=\"marker\"/>", "<link name=\"marker\"/><link name=\"island\"/>"),
-                    {"several root links", "island"});
+  expect_load_error(
+      "roots.urdf",
+      replace(good, "<link name=\"marker\"/>", "<link name=\"marker\"/><link name=\"island\"/>"),
+      {"several root links", "island"});
   expect_load_error("loop.urdf",
                     replace(good, "</robot>",
-                            "<joint name=\"back\" type=\"fixed\"><parent link=\"marker\"/><child link=\"b\"/></joint></robot>"),
+                            "<joint name=\"back\" type=\"fixed\"><parent link=\"marker\"/><child "
+                            "link=\"b\"/></joint></robot>"),
                     {"loop", "'b'"});
-  expect_load_error("dangling.urdf", replace(good, "<child link=\"marker\"/>", "<child link=\"nowhere\"/>"),
+  expect_load_error("dangling.urdf",
+                    replace(good, "<child link=\"marker\"/>", "<child link=\"nowhere\"/>"),
                     {"unknown link", "nowhere"});
   // zero axis, negative mass, non-physical inertia, unsupported joint type
   expect_load_error("axis.urdf", replace(good, "<axis xyz=\"1 0 0\"/>", "<axis xyz=\"0 0 0\"/>"),
@@ -326,7 +335,8 @@ TEST(Loader, BadInputGivesClearErrors) {
                     {"non-physical inertia", "'b'"});
   wm::LoadOptions strict;
   strict.strict_inertia = true;
-  expect_load_error("indefinite.urdf", replace(good, "ixx=\"0.01\" ixy=\"0\"", "ixx=\"0.01\" ixy=\"0.5\""),
+  expect_load_error("indefinite.urdf",
+                    replace(good, "ixx=\"0.01\" ixy=\"0\"", "ixx=\"0.01\" ixy=\"0.5\""),
                     {"non-physical inertia", "'b'"}, strict);
   expect_load_error("triangle.urdf", replace(good, "izz=\"0.03\"", "izz=\"0.5\""),
                     {"non-physical inertia", "'b'"}, strict);
@@ -350,7 +360,8 @@ TEST(Loader, BadArgumentsGiveClearErrors) {
       ADD_FAILURE() << "no error";
     } catch (const std::invalid_argument& e) {
       for (const auto& w : words) {
-        EXPECT_NE(std::string(e.what()).find(w), std::string::npos) << "'" << w << "' not in: " << e.what();
+        EXPECT_NE(std::string(e.what()).find(w), std::string::npos)
+            << "'" << w << "' not in: " << e.what();
       }
     }
   };
@@ -358,10 +369,16 @@ TEST(Loader, BadArgumentsGiveClearErrors) {
   const Eigen::VectorXd nu = Eigen::VectorXd::Zero(model.nv);
   expect_error([&] { model.frame_id("nope"); }, {"unknown frame", "nope"});
   expect_error([&] { model.joint_id("nope"); }, {"unknown joint", "nope"});
-  expect_error([&] { wm::mass_matrix(model, data, Eigen::VectorXd::Zero(3)); }, {"'q'", "size 3", "expected 8"});
-  expect_error([&] { wm::bias_forces(model, data, q, Eigen::VectorXd::Zero(2), kGravity); }, {"'nu'", "expected 7"});
-  expect_error([&] { wm::inverse_dynamics(model, data, q, nu, Eigen::VectorXd::Zero(9), kGravity); }, {"'dnu'", "expected 7"});
-  expect_error([&] { wm::forward_dynamics(model, data, q, nu, Eigen::VectorXd::Zero(1), kGravity); }, {"'tau'", "expected 7"});
+  expect_error([&] { wm::mass_matrix(model, data, Eigen::VectorXd::Zero(3)); },
+               {"'q'", "size 3", "expected 8"});
+  expect_error([&] { wm::bias_forces(model, data, q, Eigen::VectorXd::Zero(2), kGravity); },
+               {"'nu'", "expected 7"});
+  expect_error(
+      [&] { wm::inverse_dynamics(model, data, q, nu, Eigen::VectorXd::Zero(9), kGravity); },
+      {"'dnu'", "expected 7"});
+  expect_error(
+      [&] { wm::forward_dynamics(model, data, q, nu, Eigen::VectorXd::Zero(1), kGravity); },
+      {"'tau'", "expected 7"});
   expect_error([&] { wm::frame_jacobian(model, data, 99); }, {"frame index 99"});
   Eigen::VectorXd bad = q;
   bad.segment<4>(3).setZero();
@@ -375,7 +392,8 @@ TEST(Loader, BadArgumentsGiveClearErrors) {
 
 TEST(Loader, ConfigurationHelpers) {
   const wm::Model model = wm::load_urdf_string(kLumpUrdf);
-  const Eigen::Quaterniond quat = Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
+  const Eigen::Quaterniond quat =
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
   const Eigen::Vector3d p(0.1, -0.2, 0.3);
   Eigen::VectorXd s(1);
   s << 0.4;
@@ -402,15 +420,20 @@ TEST(Loader, ConfigurationHelpers) {
   fixed.fixed_base = true;
   const wm::Model fixed_model = wm::load_urdf_string(kLumpUrdf, fixed);
   EXPECT_THROW(wm::make_configuration(fixed_model, p, quat, s), std::invalid_argument);
-  EXPECT_EQ(wm::make_configuration(fixed_model, Eigen::Vector3d::Zero(), Eigen::Quaterniond::Identity(), s).size(), 1);
+  EXPECT_EQ(wm::make_configuration(fixed_model, Eigen::Vector3d::Zero(),
+                                   Eigen::Quaterniond::Identity(), s)
+                .size(),
+            1);
   // a Data of another model is refused
   wm::Data other(fixed_model);
   EXPECT_THROW(wm::mass_matrix(model, other, q), std::invalid_argument);
 }
 
 TEST(Loader, MasslessLeafOnAJointIsReportedByForwardDynamics) {
-  const std::string massless = replace(kLumpUrdf, R"(<inertial><origin xyz="0 0 0.1" rpy="0 0 0"/><mass value="0.5"/>
-      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial>)", "");
+  const std::string massless =
+      replace(kLumpUrdf, R"(<inertial><origin xyz="0 0 0.1" rpy="0 0 0"/><mass value="0.5"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial>)",
+              "");
   const wm::Model model = wm::load_urdf_string(massless);
   wm::Data data(model);
   const Eigen::VectorXd q = wm::neutral_configuration(model);

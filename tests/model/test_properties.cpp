@@ -48,7 +48,8 @@ TEST(Properties, MassMatrixSymmetricPositiveDefinite) {
     for (int t = 0; t < 3; ++t) {
       const Eigen::MatrixXd M = wm::mass_matrix(model, data, random_sample(model, rng).q);
       EXPECT_EQ((M - M.transpose()).cwiseAbs().maxCoeff(), 0.0) << "M not exactly symmetric";
-      const double lambda_min = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(M).eigenvalues().minCoeff();
+      const double lambda_min =
+          Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(M).eigenvalues().minCoeff();
       EXPECT_GT(lambda_min, 0.0);
     }
   }
@@ -66,10 +67,12 @@ TEST(Properties, InverseDynamicsIsMassMatrixPlusBias) {
       const Eigen::VectorXd h = wm::bias_forces(model, data, s.q, s.nu, kGravity);
       const Eigen::VectorXd G = wm::gravity_forces(model, data, s.q, kGravity);
       const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.nv);
-      EXPECT_TRUE(near_rel(wm::inverse_dynamics(model, data, s.q, s.nu, s.dnu, kGravity), M * s.dnu + h, 1e-9));
+      EXPECT_TRUE(near_rel(wm::inverse_dynamics(model, data, s.q, s.nu, s.dnu, kGravity),
+                           M * s.dnu + h, 1e-9));
       EXPECT_TRUE(near_rel(wm::inverse_dynamics(model, data, s.q, zero, zero, kGravity), G, 1e-9));
       // C(q,ν)ν is quadratic in ν and G does not depend on ν
-      EXPECT_TRUE(near_rel(wm::bias_forces(model, data, s.q, 2.0 * s.nu, kGravity) - G, 4.0 * (h - G), 1e-9));
+      EXPECT_TRUE(near_rel(wm::bias_forces(model, data, s.q, 2.0 * s.nu, kGravity) - G,
+                           4.0 * (h - G), 1e-9));
     }
   }
 }
@@ -83,7 +86,8 @@ TEST(Properties, ForwardDynamicsInvertsInverseDynamics) {
     for (int t = 0; t < 3; ++t) {
       const Sample s = random_sample(model, rng);
       const Eigen::VectorXd tau = wm::inverse_dynamics(model, data, s.q, s.nu, s.dnu, kGravity);
-      EXPECT_TRUE(near_rel(wm::forward_dynamics(model, data, s.q, s.nu, tau, kGravity), s.dnu, 1e-9));
+      EXPECT_TRUE(
+          near_rel(wm::forward_dynamics(model, data, s.q, s.nu, tau, kGravity), s.dnu, 1e-9));
       // and agrees with M⁻¹(τ − h)
       const Eigen::MatrixXd M = wm::mass_matrix(model, data, s.q);
       const Eigen::VectorXd h = wm::bias_forces(model, data, s.q, s.nu, kGravity);
@@ -111,9 +115,11 @@ TEST(Properties, ExternalWrenchesEnterAsJacobianTranspose) {
       JTw += wm::frame_jacobian(model, data, w.frame).transpose() * w.wrench;
     }
     const Eigen::VectorXd tau0 = wm::inverse_dynamics(model, data, s.q, s.nu, s.dnu, kGravity);
-    const Eigen::VectorXd tau = wm::inverse_dynamics(model, data, s.q, s.nu, s.dnu, kGravity, wrenches);
+    const Eigen::VectorXd tau =
+        wm::inverse_dynamics(model, data, s.q, s.nu, s.dnu, kGravity, wrenches);
     EXPECT_TRUE(near_rel(tau, tau0 - JTw, 1e-9));
-    EXPECT_TRUE(near_rel(wm::forward_dynamics(model, data, s.q, s.nu, tau, kGravity, wrenches), s.dnu, 1e-9));
+    EXPECT_TRUE(near_rel(wm::forward_dynamics(model, data, s.q, s.nu, tau, kGravity, wrenches),
+                         s.dnu, 1e-9));
   }
 }
 
@@ -140,7 +146,9 @@ TEST(Properties, JacobiansMatchFiniteDifferences) {
       const Eigen::VectorXd Jnu_m = wm::frame_jacobian(model, data, f) * s.nu;
       Eigen::Matrix<double, 6, 1> fd;
       fd.head<3>() = (Hp.topRightCorner<3, 1>() - Hm.topRightCorner<3, 1>()) / (2 * eps);
-      fd.tail<3>() = wbi::test::rotation_log(Hp.topLeftCorner<3, 3>() * Hm.topLeftCorner<3, 3>().transpose()) / (2 * eps);
+      fd.tail<3>() =
+          wbi::test::rotation_log(Hp.topLeftCorner<3, 3>() * Hm.topLeftCorner<3, 3>().transpose()) /
+          (2 * eps);
       EXPECT_TRUE(near_rel(Jnu, fd, 1e-6)) << "J";
       // constant ν (world-axis ω): d/dt (J ν) = J̇ ν
       EXPECT_TRUE(near_rel(dJnu, (Jnu_p - Jnu_m) / (2 * eps), 1e-6)) << "dJnu";
@@ -159,7 +167,8 @@ TEST(Properties, MassMatrixDerivativeMinusTwoCIsSkew) {
       const Sample s = random_sample(model, rng);
       const double eps = 1e-6;
       const Eigen::MatrixXd Mp = wm::mass_matrix(model, data, wm::integrate(model, s.q, s.nu, eps));
-      const Eigen::MatrixXd Mm = wm::mass_matrix(model, data, wm::integrate(model, s.q, s.nu, -eps));
+      const Eigen::MatrixXd Mm =
+          wm::mass_matrix(model, data, wm::integrate(model, s.q, s.nu, -eps));
       const Eigen::MatrixXd Mdot = (Mp - Mm) / (2 * eps);
       const Eigen::VectorXd Cnu = wm::bias_forces(model, data, s.q, s.nu, kGravity) -
                                   wm::gravity_forces(model, data, s.q, kGravity);
@@ -199,8 +208,11 @@ TEST(Properties, ChristoffelCoriolisMatrixMakesMdotMinus2CSkewFixedBase) {
     for (int i = 0; i < n; ++i) {
       for (int j = 0; j < n; ++j) {
         for (int k = 0; k < n; ++k) {
-          C(i, j) += 0.5 * (dM[static_cast<std::size_t>(k)](i, j) + dM[static_cast<std::size_t>(j)](i, k) -
-                            dM[static_cast<std::size_t>(i)](j, k)) * s.nu[k];
+          C(i, j) +=
+              0.5 *
+              (dM[static_cast<std::size_t>(k)](i, j) + dM[static_cast<std::size_t>(j)](i, k) -
+               dM[static_cast<std::size_t>(i)](j, k)) *
+              s.nu[k];
         }
       }
     }
@@ -231,12 +243,14 @@ TEST(Properties, CentroidalMomentumIsSumOfBodyMomenta) {
       const Eigen::Matrix4d H = wm::frame_pose(model, data, f);
       const Eigen::Matrix<double, 6, 1> V = wm::frame_jacobian(model, data, f) * s.nu;
       const Eigen::Matrix3d R = H.topLeftCorner<3, 3>();
-      const Eigen::Vector3d ci = H.topRightCorner<3, 1>() + R * model.body_com[static_cast<std::size_t>(b)];
+      const Eigen::Vector3d ci =
+          H.topRightCorner<3, 1>() + R * model.body_com[static_cast<std::size_t>(b)];
       const Eigen::Vector3d cdot = V.head<3>() + V.tail<3>().cross(ci - H.topRightCorner<3, 1>());
       const double m = model.body_mass[static_cast<std::size_t>(b)];
       sum.head<3>() += m * cdot;
-      sum.tail<3>() += (ci - c).cross(m * cdot) +
-                       R * model.body_inertia_c[static_cast<std::size_t>(b)] * R.transpose() * V.tail<3>();
+      sum.tail<3>() +=
+          (ci - c).cross(m * cdot) +
+          R * model.body_inertia_c[static_cast<std::size_t>(b)] * R.transpose() * V.tail<3>();
     }
     EXPECT_TRUE(near_rel(hg, sum, 1e-9));
   }
@@ -274,11 +288,14 @@ void rk4_step(const wm::Model& model, wm::Data& data, Eigen::VectorXd& q, Eigen:
   const Eigen::VectorXd a1 = wm::forward_dynamics(model, data, q, nu, tau, gravity);
   const Eigen::VectorXd v1 = nu;
   const Eigen::VectorXd v2 = nu + 0.5 * dt * a1;
-  const Eigen::VectorXd a2 = wm::forward_dynamics(model, data, wm::integrate(model, q, v1, 0.5 * dt), v2, tau, gravity);
+  const Eigen::VectorXd a2 =
+      wm::forward_dynamics(model, data, wm::integrate(model, q, v1, 0.5 * dt), v2, tau, gravity);
   const Eigen::VectorXd v3 = nu + 0.5 * dt * a2;
-  const Eigen::VectorXd a3 = wm::forward_dynamics(model, data, wm::integrate(model, q, v2, 0.5 * dt), v3, tau, gravity);
+  const Eigen::VectorXd a3 =
+      wm::forward_dynamics(model, data, wm::integrate(model, q, v2, 0.5 * dt), v3, tau, gravity);
   const Eigen::VectorXd v4 = nu + dt * a3;
-  const Eigen::VectorXd a4 = wm::forward_dynamics(model, data, wm::integrate(model, q, v3, dt), v4, tau, gravity);
+  const Eigen::VectorXd a4 =
+      wm::forward_dynamics(model, data, wm::integrate(model, q, v3, dt), v4, tau, gravity);
   q = wm::integrate(model, q, (v1 + 2 * v2 + 2 * v3 + v4) / 6.0, dt);
   nu += dt * (a1 + 2 * a2 + 2 * a3 + a4) / 6.0;
 }

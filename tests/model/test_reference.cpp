@@ -32,27 +32,39 @@ void compare_with_reference(const std::filesystem::path& path, bool fixed_base) 
     const Eigen::VectorXd nu = wbi::test::random_vector(model.nv, rng, 2.0);
     ref.set_state(q, nu);
     EXPECT_TRUE(near_rel(wm::mass_matrix(model, data, q), ref.mass_matrix(), kTol)) << "M";
-    EXPECT_TRUE(near_rel(wm::bias_forces(model, data, q, nu, kGravity), ref.bias_forces(kGravity), kTol)) << "h";
-    EXPECT_TRUE(near_rel(wm::gravity_forces(model, data, q, kGravity), ref.gravity_forces(kGravity), kTol)) << "G";
+    EXPECT_TRUE(
+        near_rel(wm::bias_forces(model, data, q, nu, kGravity), ref.bias_forces(kGravity), kTol))
+        << "h";
+    EXPECT_TRUE(
+        near_rel(wm::gravity_forces(model, data, q, kGravity), ref.gravity_forces(kGravity), kTol))
+        << "G";
     if (model.total_mass > 0.0) {
       EXPECT_TRUE(near_rel(wm::center_of_mass(model, data, q), ref.com(), kTol)) << "com";
-      EXPECT_TRUE(near_rel(wm::centroidal_momentum_matrix(model, data, q), ref.centroidal_momentum_matrix(), kTol)) << "A_G";
-      EXPECT_TRUE(near_rel(wm::centroidal_momentum(model, data, q, nu), ref.centroidal_momentum(), kTol)) << "h_G";
+      EXPECT_TRUE(near_rel(wm::centroidal_momentum_matrix(model, data, q),
+                           ref.centroidal_momentum_matrix(), kTol))
+          << "A_G";
+      EXPECT_TRUE(
+          near_rel(wm::centroidal_momentum(model, data, q, nu), ref.centroidal_momentum(), kTol))
+          << "h_G";
     }
     wm::forward_velocity_kinematics(model, data, q, nu);
     ASSERT_EQ(model.n_frames() > 0, true);
     for (int f = 0; f < model.n_frames(); ++f) {
       const std::string& name = model.frame_name[static_cast<std::size_t>(f)];
       ASSERT_TRUE(ref.has_link(name)) << name;
-      EXPECT_TRUE(near_rel(wm::frame_pose(model, data, f), ref.link_pose(name), kTol)) << "pose " << name;
-      EXPECT_TRUE(near_rel(wm::frame_jacobian(model, data, f), ref.link_jacobian(name), kTol)) << "J " << name;
-      EXPECT_TRUE(near_rel(wm::frame_bias_acceleration(model, data, f), ref.link_dJnu(name), kTol)) << "dJnu " << name;
+      EXPECT_TRUE(near_rel(wm::frame_pose(model, data, f), ref.link_pose(name), kTol))
+          << "pose " << name;
+      EXPECT_TRUE(near_rel(wm::frame_jacobian(model, data, f), ref.link_jacobian(name), kTol))
+          << "J " << name;
+      EXPECT_TRUE(near_rel(wm::frame_bias_acceleration(model, data, f), ref.link_dJnu(name), kTol))
+          << "dJnu " << name;
     }
     // the Jacobian from q (kinematics of the support only), into a fresh Data
     wm::Data fresh(model);
     for (int f = 0; f < model.n_frames(); f += 3) {
       const std::string& name = model.frame_name[static_cast<std::size_t>(f)];
-      EXPECT_TRUE(near_rel(wm::frame_jacobian(model, fresh, q, f), ref.link_jacobian(name), kTol)) << "J(q) " << name;
+      EXPECT_TRUE(near_rel(wm::frame_jacobian(model, fresh, q, f), ref.link_jacobian(name), kTol))
+          << "J(q) " << name;
     }
   }
 }

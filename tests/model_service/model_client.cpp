@@ -36,12 +36,13 @@ int main(int argc, char** argv) {
       {wbi::msg::GRAVITY_FORCES},
       {wbi::msg::MASS_MATRIX, wbi::msg::BIAS_FORCES, wbi::msg::JACOBIAN, wbi::msg::JACOBIAN},
       {wbi::msg::FRAME_POSE, wbi::msg::COM, wbi::msg::DJNU, wbi::msg::COM_JACOBIAN},
-      {wbi::msg::CENTROIDAL_MOMENTUM, wbi::msg::CENTROIDAL_MOMENTUM_MATRIX, wbi::msg::GRAVITY_FORCES}};
+      {wbi::msg::CENTROIDAL_MOMENTUM, wbi::msg::CENTROIDAL_MOMENTUM_MATRIX,
+       wbi::msg::GRAVITY_FORCES}};
   wbi::msg::ModelRequest request;
   wbi::msg::ModelReply reply;
   for (long i = 0; i < calls; ++i) {
-    wbi::test::random_model_request(model, robot, rng, mixes[static_cast<std::size_t>(i) % mixes.size()],
-                                    request);
+    wbi::test::random_model_request(model, robot, rng,
+                                    mixes[static_cast<std::size_t>(i) % mixes.size()], request);
     try {
       client.call(request, reply, 10s);
     } catch (const std::exception& error) {
@@ -58,7 +59,8 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
-  std::cout << "model_client: ok " << calls << " (resent " << client.resent_requests() << ", dropped "
-            << client.dropped_replies() << " replies of other clients)" << std::endl;
+  std::cout << "model_client: ok " << calls << " (resent " << client.resent_requests()
+            << ", dropped " << client.dropped_replies() << " replies of other clients)"
+            << std::endl;
   return 0;
 }

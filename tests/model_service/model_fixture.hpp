@@ -10,8 +10,8 @@
 
 #include <Eigen/Geometry>
 
-#include <wbi/model/algorithms.hpp>
 #include <wbi/msg/model.h>
+#include <wbi/model/algorithms.hpp>
 
 namespace wbi::test {
 
@@ -87,9 +87,15 @@ inline std::string model_mismatch(const wbi::model::Model& model, wbi::model::Da
     Eigen::MatrixXd expected;
     const int frame = model.has_frame(op.frame().c_str()) ? model.frame_id(op.frame().c_str()) : 0;
     switch (op.operation()) {
-      case wbi::msg::MASS_MATRIX: expected = mass_matrix(model, data, q); break;
-      case wbi::msg::BIAS_FORCES: expected = bias_forces(model, data, q, nu, g); break;
-      case wbi::msg::GRAVITY_FORCES: expected = gravity_forces(model, data, q, g); break;
+      case wbi::msg::MASS_MATRIX:
+        expected = mass_matrix(model, data, q);
+        break;
+      case wbi::msg::BIAS_FORCES:
+        expected = bias_forces(model, data, q, nu, g);
+        break;
+      case wbi::msg::GRAVITY_FORCES:
+        expected = gravity_forces(model, data, q, g);
+        break;
       case wbi::msg::FRAME_POSE:
         forward_kinematics(model, data, q);
         expected = frame_pose(model, data, frame);
@@ -102,13 +108,20 @@ inline std::string model_mismatch(const wbi::model::Model& model, wbi::model::Da
         forward_velocity_kinematics(model, data, q, nu);
         expected = frame_bias_acceleration(model, data, frame);
         break;
-      case wbi::msg::COM: expected = center_of_mass(model, data, q); break;
-      case wbi::msg::COM_JACOBIAN: expected = com_jacobian(model, data, q); break;
-      case wbi::msg::CENTROIDAL_MOMENTUM: expected = centroidal_momentum(model, data, q, nu); break;
+      case wbi::msg::COM:
+        expected = center_of_mass(model, data, q);
+        break;
+      case wbi::msg::COM_JACOBIAN:
+        expected = com_jacobian(model, data, q);
+        break;
+      case wbi::msg::CENTROIDAL_MOMENTUM:
+        expected = centroidal_momentum(model, data, q, nu);
+        break;
       case wbi::msg::CENTROIDAL_MOMENTUM_MATRIX:
         expected = centroidal_momentum_matrix(model, data, q);
         break;
-      default: return "operation not checked here";
+      default:
+        return "operation not checked here";
     }
     const auto& result = reply.results()[i];
     if (result.operation() != op.operation() || result.rows() != expected.rows() ||

@@ -23,7 +23,8 @@ using wbi::msg::ModelReply;
 using wbi::msg::ModelRequest;
 
 struct EvaluatorTest : ::testing::Test {
-  wbi::model::Model model = wbi::model::load_urdf_file(wbi::test::project_model("humanoid.urdf").string());
+  wbi::model::Model model =
+      wbi::model::load_urdf_file(wbi::test::project_model("humanoid.urdf").string());
   wbi::model::Data data{model};
   wbi::model_service::Evaluator evaluator{model, "humanoid"};
   std::mt19937 rng{7};
@@ -32,11 +33,18 @@ struct EvaluatorTest : ::testing::Test {
 };
 
 TEST_F(EvaluatorTest, EveryOperationMatchesTheLibrary) {
-  const std::vector<wbi::msg::ModelOperation> all = {
-      wbi::msg::MASS_MATRIX, wbi::msg::BIAS_FORCES, wbi::msg::GRAVITY_FORCES, wbi::msg::FRAME_POSE,
-      wbi::msg::JACOBIAN, wbi::msg::DJNU, wbi::msg::COM, wbi::msg::COM_JACOBIAN,
-      wbi::msg::CENTROIDAL_MOMENTUM, wbi::msg::CENTROIDAL_MOMENTUM_MATRIX, wbi::msg::JACOBIAN,
-      wbi::msg::DJNU};
+  const std::vector<wbi::msg::ModelOperation> all = {wbi::msg::MASS_MATRIX,
+                                                     wbi::msg::BIAS_FORCES,
+                                                     wbi::msg::GRAVITY_FORCES,
+                                                     wbi::msg::FRAME_POSE,
+                                                     wbi::msg::JACOBIAN,
+                                                     wbi::msg::DJNU,
+                                                     wbi::msg::COM,
+                                                     wbi::msg::COM_JACOBIAN,
+                                                     wbi::msg::CENTROIDAL_MOMENTUM,
+                                                     wbi::msg::CENTROIDAL_MOMENTUM_MATRIX,
+                                                     wbi::msg::JACOBIAN,
+                                                     wbi::msg::DJNU};
   for (int round = 0; round < 20; ++round) {
     wbi::test::random_model_request(model, "humanoid", rng, all, request);
     evaluator.evaluate(request, reply);
@@ -83,16 +91,20 @@ TEST_F(EvaluatorTest, BadRequestsGetErrorRepliesNamingTheProblem) {
             "JACOBIAN: unknown frame 'nose' in robot 'humanoid'");
   EXPECT_EQ(error_of([](ModelRequest& r) { r.state().q().resize(3); }),
             "state.q has 3 values, robot 'humanoid' needs " + std::to_string(model.n_joints));
-  EXPECT_NE(error_of([](ModelRequest& r) { r.state().dq().resize(2); }).find("state.dq has 2 values"),
+  EXPECT_NE(
+      error_of([](ModelRequest& r) { r.state().dq().resize(2); }).find("state.dq has 2 values"),
+      std::string::npos);
+  EXPECT_NE(error_of([](ModelRequest& r) {
+              r.state().base_pose().orientation().w(0.0);
+            }).find("must be a unit quaternion"),
             std::string::npos);
-  EXPECT_NE(error_of([](ModelRequest& r) { r.state().base_pose().orientation().w(0.0); })
-                .find("must be a unit quaternion"),
+  EXPECT_NE(error_of([](ModelRequest& r) {
+              r.operations()[0].operation(wbi::msg::INVERSE_DYNAMICS);
+            }).find("INVERSE_DYNAMICS: nu_dot has 0 values"),
             std::string::npos);
-  EXPECT_NE(error_of([](ModelRequest& r) { r.operations()[0].operation(wbi::msg::INVERSE_DYNAMICS); })
-                .find("INVERSE_DYNAMICS: nu_dot has 0 values"),
-            std::string::npos);
-  EXPECT_NE(error_of([](ModelRequest& r) { r.operations()[0].operation(wbi::msg::FORWARD_DYNAMICS); })
-                .find("FORWARD_DYNAMICS: tau has 0 values"),
+  EXPECT_NE(error_of([](ModelRequest& r) {
+              r.operations()[0].operation(wbi::msg::FORWARD_DYNAMICS);
+            }).find("FORWARD_DYNAMICS: tau has 0 values"),
             std::string::npos);
   // A good request afterwards is answered normally.
   wbi::test::random_model_request(model, "humanoid", rng, {wbi::msg::COM}, request);
@@ -103,13 +115,14 @@ TEST_F(EvaluatorTest, BadRequestsGetErrorRepliesNamingTheProblem) {
 TEST_F(EvaluatorTest, FixedBaseArm) {
   wbi::model::LoadOptions options;
   options.fixed_base = true;
-  const auto arm = wbi::model::load_urdf_file(wbi::test::project_model("arm7.urdf").string(), options);
+  const auto arm =
+      wbi::model::load_urdf_file(wbi::test::project_model("arm7.urdf").string(), options);
   wbi::model::Data arm_data(arm);
   wbi::model_service::Evaluator arm_evaluator(arm, "arm");
   for (int round = 0; round < 5; ++round) {
-    wbi::test::random_model_request(arm, "arm", rng,
-                                    {wbi::msg::GRAVITY_FORCES, wbi::msg::MASS_MATRIX, wbi::msg::JACOBIAN},
-                                    request);
+    wbi::test::random_model_request(
+        arm, "arm", rng, {wbi::msg::GRAVITY_FORCES, wbi::msg::MASS_MATRIX, wbi::msg::JACOBIAN},
+        request);
     request.state().base_pose().orientation().w(0.0);  // ignored for a fixed base
     arm_evaluator.evaluate(request, reply);
     ASSERT_EQ(wbi::test::model_mismatch(arm, arm_data, request, reply), "");
@@ -137,7 +150,8 @@ TEST_F(ComponentTest, ServesOnlyWhileActive) {
       "urdf: " + wbi::test::project_model("humanoid.urdf").string() + "\nrobot: hum"));
   const auto model = wbi::model::load_urdf_file(wbi::test::project_model("humanoid.urdf").string());
   wbi::model::Data data(model);
-  wbi::dds::Client<ModelRequest, ModelReply> client(client_side, wbi::dds::topics::model_service("hum"));
+  wbi::dds::Client<ModelRequest, ModelReply> client(client_side,
+                                                    wbi::dds::topics::model_service("hum"));
   std::mt19937 rng(3);
   ModelRequest request;
   ModelReply reply;
@@ -146,8 +160,8 @@ TEST_F(ComponentTest, ServesOnlyWhileActive) {
   EXPECT_EQ(client.try_call(request, reply, 300ms), wbi::dds::CallStatus::not_connected);
   runner->activate();
   for (int i = 0; i < 20; ++i) {
-    wbi::test::random_model_request(model, "hum", rng, {wbi::msg::GRAVITY_FORCES, wbi::msg::JACOBIAN},
-                                    request);
+    wbi::test::random_model_request(model, "hum", rng,
+                                    {wbi::msg::GRAVITY_FORCES, wbi::msg::JACOBIAN}, request);
     client.call(request, reply, 10s);
     ASSERT_EQ(wbi::test::model_mismatch(model, data, request, reply), "");
   }
@@ -179,9 +193,10 @@ TEST_F(ComponentTest, BadParametersAreRejectedWithFileAndKey) {
   EXPECT_NE(runner->last_error().find("<string>:1: parameters: cannot load the model"),
             std::string::npos)
       << runner->last_error();
-  EXPECT_THROW(runner->configure(wbi::runtime::Parameters::from_string(
-                   "urdf: " + wbi::test::project_model("humanoid.urdf").string() + "\nfixed: true")),
-               wbi::runtime::TransitionError);
+  EXPECT_THROW(
+      runner->configure(wbi::runtime::Parameters::from_string(
+          "urdf: " + wbi::test::project_model("humanoid.urdf").string() + "\nfixed: true")),
+      wbi::runtime::TransitionError);
   EXPECT_NE(runner->last_error().find("unknown parameter 'fixed'"), std::string::npos);
   EXPECT_EQ(runner->state(), wbi::runtime::LifecycleState::unconfigured);
 }

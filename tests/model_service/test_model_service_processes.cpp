@@ -53,8 +53,8 @@ TEST(ModelServiceProcesses, EightClientsGetCorrectRepliesOnly) {
   std::vector<std::unique_ptr<ChildProcess>> clients;
   for (int c = 0; c < 8; ++c) {
     clients.push_back(std::make_unique<ChildProcess>(
-        model_client(), std::vector<std::string>{urdf(), "hum", std::to_string(calls),
-                                                 std::to_string(100 + c)}));
+        model_client(),
+        std::vector<std::string>{urdf(), "hum", std::to_string(calls), std::to_string(100 + c)}));
   }
   for (int c = 0; c < 8; ++c) {
     const auto code = clients[c]->wait(std::chrono::milliseconds(240s));
@@ -84,7 +84,8 @@ TEST(ModelServiceProcesses, ServiceKilledMidRunThenReplaced) {
   std::mt19937 rng(5);
   wbi::msg::ModelRequest request;
   wbi::msg::ModelReply reply;
-  auto service = std::make_unique<ChildProcess>(host(), std::vector<std::string>{host_file().string()});
+  auto service =
+      std::make_unique<ChildProcess>(host(), std::vector<std::string>{host_file().string()});
   ASSERT_TRUE(client.wait_connected(30s)) << service->output();
   for (int i = 0; i < 50; ++i) {
     wbi::test::random_model_request(model, "hum", rng, {wbi::msg::GRAVITY_FORCES}, request);

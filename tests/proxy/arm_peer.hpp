@@ -23,7 +23,7 @@ namespace topics = wbi::dds::topics;
 namespace qos = wbi::dds::qos;
 
 inline const std::vector<std::string> kArmJoints{"joint_1", "joint_2", "joint_3", "joint_4",
-                                          "joint_5", "joint_6", "joint_7"};
+                                                 "joint_5", "joint_6", "joint_7"};
 
 // Robot r's joint j position in the peer's samples.
 inline double arm_position(std::size_t j) { return 0.1 * static_cast<double>(j + 1); }

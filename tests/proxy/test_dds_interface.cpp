@@ -65,8 +65,8 @@ TEST(DdsInterface, ReadsFollowTheControllersJointOrder) {
   ASSERT_EQ(robot->dofs(), 3);
 
   Eigen::VectorXd q(3);
-  const wbi::Stamp stamp = robot->read_sensors(wbi::SensorKind::encoder_position, q,
-                                               wbi::ReadMode::blocking);
+  const wbi::Stamp stamp =
+      robot->read_sensors(wbi::SensorKind::encoder_position, q, wbi::ReadMode::blocking);
   EXPECT_DOUBLE_EQ(q[0], arm_position(3));
   EXPECT_DOUBLE_EQ(q[1], arm_position(0));
   EXPECT_DOUBLE_EQ(q[2], arm_position(5));
@@ -86,8 +86,10 @@ TEST(DdsInterface, ReadsFollowTheControllersJointOrder) {
   EXPECT_TRUE((world_H_base.topLeftCorner<3, 3>().isIdentity()));
 
   // Blocking reads return a newer sample each time.
-  const auto first = robot->read_sensors(wbi::SensorKind::encoder_position, q, wbi::ReadMode::blocking);
-  const auto second = robot->read_sensors(wbi::SensorKind::encoder_position, q, wbi::ReadMode::blocking);
+  const auto first =
+      robot->read_sensors(wbi::SensorKind::encoder_position, q, wbi::ReadMode::blocking);
+  const auto second =
+      robot->read_sensors(wbi::SensorKind::encoder_position, q, wbi::ReadMode::blocking);
   EXPECT_GT(second.seq, first.seq);
 
   Eigen::VectorXd wrong(2);
@@ -186,7 +188,8 @@ TEST(DdsInterface, ModelOverASubsetAgreesWithTheFullModel) {
   wbi::model::Data data(full);
   Eigen::VectorXd q_full(full.nq);
   for (std::size_t j = 0; j < kArmJoints.size(); ++j) {
-    q_full[full.joint_q_index[static_cast<std::size_t>(full.joint_id(kArmJoints[j]))]] = arm_position(j);
+    q_full[full.joint_q_index[static_cast<std::size_t>(full.joint_id(kArmJoints[j]))]] =
+        arm_position(j);
   }
   const Eigen::Vector3d gravity(0, 0, -9.81);
   const Eigen::VectorXd g_full = wbi::model::gravity_forces(full, data, q_full, gravity);

@@ -35,8 +35,9 @@ struct SampleMessage {
 };
 
 inline SampleMessage copy_of(const mcap::MessageView& view) {
-  return {view.channel->topic, view.schema != nullptr ? view.schema->name : "", view.sequence,
-          view.log_time, view.publish_time, {view.data.begin(), view.data.end()}};
+  return {view.channel->topic, view.schema != nullptr ? view.schema->name : "",
+          view.sequence,       view.log_time,
+          view.publish_time,   {view.data.begin(), view.data.end()}};
 }
 
 inline std::vector<SampleMessage> read_all(const mcap::Reader& reader, mcap::Order order) {
@@ -50,8 +51,9 @@ inline std::vector<SampleMessage> read_all(const mcap::Reader& reader, mcap::Ord
 
 // The written messages in log-time order (ties in file order).
 inline std::vector<SampleMessage> by_log_time(std::vector<SampleMessage> messages) {
-  std::stable_sort(messages.begin(), messages.end(),
-                   [](const SampleMessage& a, const SampleMessage& b) { return a.log_time < b.log_time; });
+  std::stable_sort(
+      messages.begin(), messages.end(),
+      [](const SampleMessage& a, const SampleMessage& b) { return a.log_time < b.log_time; });
   return messages;
 }
 
@@ -61,8 +63,8 @@ class TempDir {
  public:
   explicit TempDir(const std::filesystem::path& base = std::filesystem::temp_directory_path()) {
     static std::atomic<int> counter{0};
-    path_ = base /
-            ("wbi_mcap_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    path_ =
+        base / ("wbi_mcap_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
     std::filesystem::create_directories(path_);
   }
   ~TempDir() {
@@ -125,7 +127,8 @@ inline std::vector<SampleMessage> write_sample(const std::filesystem::path& path
   mcap::Writer writer(path, std::move(options));
   const auto joint_state = writer.add_schema("wbi::msg::JointState", kJointStateIdl);
   const auto command = writer.add_schema("wbi::msg::Command", kCommandIdl);
-  EXPECT_EQ(writer.add_schema("wbi::msg::JointState", kJointStateIdl), joint_state);  // deduplicated
+  EXPECT_EQ(writer.add_schema("wbi::msg::JointState", kJointStateIdl),
+            joint_state);  // deduplicated
   const std::vector<std::uint8_t> raw_schema{0, 1, 2, 3};
   const auto raw = writer.add_schema("raw", "custom", raw_schema);
   struct Topic {

@@ -52,7 +52,8 @@ class BagCli : public ::testing::Test {
   void SetUp() override {
     const auto help = wbi_cli({"bag", "--help"});
     if (help.code != 0 || contains(help.output, "not built yet")) {
-      GTEST_SKIP() << "skipped: `wbi bag` is not registered in " << wbi::test::binary_dir() / "bin/wbi";
+      GTEST_SKIP() << "skipped: `wbi bag` is not registered in "
+                   << wbi::test::binary_dir() / "bin/wbi";
     }
     wbi::mcap::WriterOptions options;
     options.chunk_size = 32 * 1024;
@@ -105,7 +106,8 @@ TEST_F(BagCli, InfoJson) {
   EXPECT_EQ(topics.at("wbi/arm/sensors")["metadata"]["reliability"], "best_effort");
   EXPECT_EQ(topics.at("wbi/arm/commands")["type"], "wbi::msg::Command");
   EXPECT_EQ(topics.at("wbi/log")["type"], "");
-  EXPECT_NEAR(topics.at("wbi/humanoid/sensors")["rate_hz"].get<double>(), 1000 / duration_s(), 1e-6);
+  EXPECT_NEAR(topics.at("wbi/humanoid/sensors")["rate_hz"].get<double>(), 1000 / duration_s(),
+              1e-6);
 }
 
 TEST_F(BagCli, TruncatedFilePrintsWhatWasReadAndWarns) {
@@ -169,7 +171,8 @@ TEST_F(BagCli, UsageErrors) {
   EXPECT_TRUE(contains(run.output, "unknown sub-command 'frobnicate'")) << run.output;
   run = wbi_cli({"bag", "info", (dir_ / "missing.mcap").string()});
   EXPECT_EQ(run.code, 1);
-  EXPECT_TRUE(contains(run.output, "missing.mcap: cannot open: No such file or directory")) << run.output;
+  EXPECT_TRUE(contains(run.output, "missing.mcap: cannot open: No such file or directory"))
+      << run.output;
   run = wbi_cli({"bag", "info", "--help"});
   EXPECT_EQ(run.code, 0);
   EXPECT_TRUE(contains(run.output, "usage: wbi bag info FILE")) << run.output;

@@ -283,7 +283,8 @@ TEST(McapTruncation, SampledCutPointsOfALargerFile) {
     }
   }
   const std::size_t data_end = summary_start(bytes) - 13;
-  cuts.insert(cuts.end(), {data_end, data_end + 1, data_end + 13, bytes.size() - 8, bytes.size() - 1});
+  cuts.insert(cuts.end(),
+              {data_end, data_end + 1, data_end + 13, bytes.size() - 8, bytes.size() - 1});
   for (const std::size_t cut : cuts) {
     check_cut(dir, bytes, cut, written);
     if (::testing::Test::HasFailure()) {
@@ -610,7 +611,8 @@ TEST(McapWriter, NoAllocationPerMessage) {
   TempDir dir;
   for (const auto compression : {Compression::none, Compression::lz4, Compression::zstd}) {
     Writer writer(dir / "alloc.mcap", options_with(compression, 1024 * 1024));
-    const auto channel = writer.add_channel(writer.add_schema("T", "struct T { double x[100]; };"), "t");
+    const auto channel =
+        writer.add_channel(writer.add_schema("T", "struct T { double x[100]; };"), "t");
     const std::vector<std::uint8_t> payload(800, 3);
     std::uint32_t sequence = 0;
     // Warm-up: one full chunk sizes the chunk buffer and the message index.
@@ -622,7 +624,8 @@ TEST(McapWriter, NoAllocationPerMessage) {
     for (; sequence < 2500; ++sequence) {  // 1000 messages within one chunk
       writer.write(channel, sequence, sequence, sequence, payload);
     }
-    EXPECT_EQ(wbi::test::allocation_count() - before, 0) << wbi::mcap::compression_name(compression);
+    EXPECT_EQ(wbi::test::allocation_count() - before, 0)
+        << wbi::mcap::compression_name(compression);
     // Across chunks: a few allocations per chunk (its index entry), none per message.
     const long across = wbi::test::allocation_count();
     for (; sequence < 30'000; ++sequence) {

@@ -161,9 +161,9 @@ TEST(McapInterop, McapCoreReadsOurFiles) {
                          {"npm_config_loglevel=error", "npm_config_update_notifier=false"});
     const auto code = install.wait(90s);
     if (code != 0) {
-      const std::string reason =
-          code ? "npm install failed (exit " + std::to_string(*code) + "): " + error_line(install.output())
-               : "npm install did not finish within 90 s";
+      const std::string reason = code ? "npm install failed (exit " + std::to_string(*code) +
+                                            "): " + error_line(install.output())
+                                      : "npm install did not finish within 90 s";
       std::cout << "skipped: " << reason << "\n";
       GTEST_SKIP() << "skipped: " << reason;
     }
@@ -171,10 +171,11 @@ TEST(McapInterop, McapCoreReadsOurFiles) {
   const auto script = dir / "check.cjs";
   std::ofstream(script) << kCheckScript;
 
-  for (const auto compression : {wbi::mcap::Compression::none, wbi::mcap::Compression::lz4,
-                                 wbi::mcap::Compression::zstd}) {
+  for (const auto compression :
+       {wbi::mcap::Compression::none, wbi::mcap::Compression::lz4, wbi::mcap::Compression::zstd}) {
     SCOPED_TRACE(wbi::mcap::compression_name(compression));
-    const auto file = dir / (std::string("run_") + wbi::mcap::compression_name(compression) + ".mcap");
+    const auto file =
+        dir / (std::string("run_") + wbi::mcap::compression_name(compression) + ".mcap");
     wbi::mcap::WriterOptions options;
     options.compression = compression;
     options.chunk_size = 64 * 1024;

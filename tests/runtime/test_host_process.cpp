@@ -58,14 +58,15 @@ TEST(HostProcess, SigintExitsWith130) {
 }
 
 TEST(HostProcess, BadFileIsOneLineNamingFileAndLine) {
-  const auto file = write_file("host_bad.yaml", "components:\n  - name: a\n    type: idle\n    rat_hz: 5\n");
+  const auto file =
+      write_file("host_bad.yaml", "components:\n  - name: a\n    type: idle\n    rat_hz: 5\n");
   ChildProcess process(host(), {file.string()});
   const auto code = process.wait(20s);
   ASSERT_TRUE(code.has_value());
   EXPECT_EQ(*code, 1);
-  EXPECT_NE(process.output().find("wbi_host: " + file.string() +
-                                  ":4: component: unknown key 'rat_hz'"),
-            std::string::npos)
+  EXPECT_NE(
+      process.output().find("wbi_host: " + file.string() + ":4: component: unknown key 'rat_hz'"),
+      std::string::npos)
       << process.output();
   ChildProcess missing(host(), {"/nonexistent/robot.yaml"});
   ASSERT_EQ(missing.wait(20s), 1);

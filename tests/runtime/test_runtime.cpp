@@ -90,9 +90,9 @@ struct Fixture : ::testing::Test {
     wbi::runtime::RunnerOptions options;
     options.rate_hz = rate_hz;
     options.status_period_s = 0.05;
-    return std::make_unique<ComponentRunner>(std::make_unique<ProbeComponent>(probe),
-                                             ComponentContext{"probe", "probe", &participant, &clock},
-                                             options);
+    return std::make_unique<ComponentRunner>(
+        std::make_unique<ProbeComponent>(probe),
+        ComponentContext{"probe", "probe", &participant, &clock}, options);
   }
 };
 
@@ -128,7 +128,8 @@ TEST_F(Lifecycle, InvalidTransitionNamesTheComponentAndStates) {
     r->deactivate();
     FAIL();
   } catch (const TransitionError& error) {
-    EXPECT_STREQ(error.what(), "component 'probe': cannot deactivate from unconfigured (only from active)");
+    EXPECT_STREQ(error.what(),
+                 "component 'probe': cannot deactivate from unconfigured (only from active)");
   }
 }
 
@@ -217,7 +218,8 @@ TEST_F(Lifecycle, ConfigureRejectsUnknownParameters) {
   auto r = runner(stepped, 0);
   EXPECT_THROW(r->configure(Parameters::from_string("gain: 1\ngainn: 2")), TransitionError);
   EXPECT_EQ(r->state(), LifecycleState::unconfigured);
-  EXPECT_NE(r->last_error().find("unknown parameter 'gainn'"), std::string::npos) << r->last_error();
+  EXPECT_NE(r->last_error().find("unknown parameter 'gainn'"), std::string::npos)
+      << r->last_error();
   EXPECT_THROW(r->configure(Parameters::from_string("weights: [1]")), TransitionError);  // no gain
   r->configure(Parameters::from_string("gain: 3"));
   EXPECT_EQ(r->state(), LifecycleState::inactive);
@@ -230,7 +232,9 @@ TEST_F(Loop, RunsOncePerTickOfASteppedClock) {
   r->configure(Parameters::from_string("gain: 1"));
   r->activate();
   // Cycles are counted once their end is measured: only then may time move on.
-  const auto done = [&](std::uint64_t n) { return eventually([&] { return r->stats().iterations == n; }); };
+  const auto done = [&](std::uint64_t n) {
+    return eventually([&] { return r->stats().iterations == n; });
+  };
   ASSERT_TRUE(done(1));  // the first tick at once
   for (std::uint64_t k = 1; k <= 20; ++k) {
     stepped.advance_ns(10'000'000);
@@ -253,7 +257,9 @@ TEST_F(Loop, SlowCyclesCountAsOverrunsAndSkipTicks) {
   r->configure(Parameters::from_string("gain: 1"));
   probe.cycle_cost_ns = 25'000'000;  // each cycle takes 2.5 periods of clock time
   r->activate();
-  const auto done = [&](std::uint64_t n) { return eventually([&] { return r->stats().iterations == n; }); };
+  const auto done = [&](std::uint64_t n) {
+    return eventually([&] { return r->stats().iterations == n; });
+  };
   ASSERT_TRUE(done(1));
   for (std::uint64_t k = 1; k <= 4; ++k) {
     stepped.advance_ns(5'000'000);  // reach the next scheduled tick
@@ -275,7 +281,7 @@ TEST_F(Loop, RunsAtItsRateOnTheSystemClock) {
   std::this_thread::sleep_for(500ms);
   r->deactivate();
   const auto stats = r->stats();
-  EXPECT_GT(stats.iterations, 60u);   // ~100 expected; generous on a loaded 2-core machine
+  EXPECT_GT(stats.iterations, 60u);  // ~100 expected; generous on a loaded 2-core machine
   EXPECT_LT(stats.iterations, 110u);
   EXPECT_NEAR(stats.period_mean_s, 0.005, 0.0015);
   EXPECT_LT(stats.period_jitter_s, 0.005);
@@ -302,9 +308,8 @@ TEST_F(Loop, StatusHeartbeatCarriesStateAndTiming) {
   EXPECT_DOUBLE_EQ(got.sample.rate_hz(), 100.0);
   EXPECT_GT(got.sample.period_mean_s(), 0.0);
   r->shutdown();
-  ASSERT_TRUE(eventually([&] {
-    return status.latest_into(got) && got.sample.state() == wbi::msg::FINALIZED;
-  }));
+  ASSERT_TRUE(eventually(
+      [&] { return status.latest_into(got) && got.sample.state() == wbi::msg::FINALIZED; }));
 }
 
 TEST(Registry, CreatesByTypeAndNamesUnknownTypes) {

@@ -33,7 +33,8 @@ inline SimConfig humanoid_config() {
 }
 
 // Joint PD gains for the humanoid: kp = 10 s⁻¹ × effort limit, kd = kp / 200 s.
-inline std::vector<PidGains> stiff_gains(const actuation::BackendDescription& d, double ki_ratio = 0.0) {
+inline std::vector<PidGains> stiff_gains(const actuation::BackendDescription& d,
+                                         double ki_ratio = 0.0) {
   std::vector<PidGains> g(d.joint_names.size());
   for (std::size_t i = 0; i < g.size(); ++i) {
     g[i].kp = 10.0 * d.effort_limit[i];

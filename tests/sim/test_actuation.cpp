@@ -57,7 +57,8 @@ TEST(SimActuation, ArmPositionModeReachesTargets) {
   double peak_ref_speed = 0.0;
   for (int k = 0; k < 4000; ++k) {  // trajectory 1.875 × 1.6 rad / 1 rad/s = 3 s, then 1 s
     tick(sim, ctl);
-    peak_ref_speed = std::max(peak_ref_speed, ctl.status().velocity_reference.cwiseAbs().maxCoeff());
+    peak_ref_speed =
+        std::max(peak_ref_speed, ctl.status().velocity_reference.cwiseAbs().maxCoeff());
   }
   const Eigen::VectorXd q = sim.ground_truth().q;
   const double err1 = (q - kHome).cwiseAbs().maxCoeff();
@@ -91,7 +92,8 @@ TEST(SimActuation, ArmTorqueModeGravityCompensationHoldsStill) {
   for (int k = 0; k < 3000; ++k) {
     const auto t = sim.stamp();
     sim.read(t, std::chrono::milliseconds(1));
-    const Eigen::VectorXd& g = model::gravity_forces(m, data, sim.readings().position, sim.config().gravity);
+    const Eigen::VectorXd& g =
+        model::gravity_forces(m, data, sim.readings().position, sim.config().gravity);
     ctl.submit(all_joints(7, ControlMode::kTorque, g), t);
     ctl.update(t, std::chrono::milliseconds(1), sim.readings(), sim.commands());
     sim.write(t, std::chrono::milliseconds(1));
@@ -245,8 +247,8 @@ TEST(SimActuation, PwmDrivesTheMotorModel) {
   const double kt = 120.0 * 1.0 / 24.0;
   const double dq = sim.ground_truth().nu[0];
   const double expected = kt * (24.0 * 0.25 - kt * dq) / 1.0;
-  std::cout << "[measured] PWM 0.25 on joint_1 for 0.2 s: q̇ = " << dq << " rad/s, τ = "
-            << sim.ground_truth().tau_actuator[0] << " N·m\n";
+  std::cout << "[measured] PWM 0.25 on joint_1 for 0.2 s: q̇ = " << dq
+            << " rad/s, τ = " << sim.ground_truth().tau_actuator[0] << " N·m\n";
   EXPECT_GT(dq, 0.1);
   // (q̇ of the last substep differs slightly from the one after it)
   EXPECT_NEAR(sim.ground_truth().tau_actuator[0], expected, 0.3);

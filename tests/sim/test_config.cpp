@@ -27,7 +27,8 @@ void expect_error(F&& f, std::initializer_list<const char*> parts) {
 
 TEST(SimConfig, ParsesEveryKey) {
   const std::string yaml = R"(
-urdf: )" + model_path("humanoid.urdf") + R"(
+urdf: )" + model_path("humanoid.urdf") +
+                           R"(
 step: 0.002
 substeps: 4
 gravity: [0, 0, -9.8]
@@ -154,7 +155,12 @@ TEST(SimConfig, LifecycleTransitions) {
   sim.commands().value.resize(3);  // wrong size: rejected
   expect_error([&] { sim.write(sim.stamp(), Duration(1000000)); }, {"wrong size", "30"});
   sim.deactivate();
-  expect_error([&] { sim.cleanup(); sim.step(); }, {"configure() first"});
+  expect_error(
+      [&] {
+        sim.cleanup();
+        sim.step();
+      },
+      {"configure() first"});
   EXPECT_EQ(sim.state(), LifecycleState::kUnconfigured);
   sim.configure();  // again, from the initial state
   EXPECT_EQ(sim.time(), 0.0);
@@ -171,8 +177,8 @@ TEST(SimPlant, PushChangesMomentumByTheImpulse) {
   c.gravity.setZero();
   c.contact.enable = ContactConfig::Enable::kOff;
   c.place_on_ground = false;
-  c.pushes.push_back({"root_link", 0.1, 0.2, Eigen::Vector3d(10.0, -5.0, 2.0),
-                      Eigen::Vector3d(0.0, 0.05, 0.1)});
+  c.pushes.push_back(
+      {"root_link", 0.1, 0.2, Eigen::Vector3d(10.0, -5.0, 2.0), Eigen::Vector3d(0.0, 0.05, 0.1)});
   SimBackend sim(c);
   sim.configure();
   const model::Model& m = sim.model();

@@ -36,8 +36,8 @@ TEST(SimPlant, PendulumConservesEnergy) {
     }
   }
   std::cout << "[measured] pendulum 10 s: max |E - E0| = " << max_dev << " J ("
-            << 100.0 * max_dev / swing << " % of the swing energy), E(10 s) - E0 = "
-            << e_end - e0 << " J\n";
+            << 100.0 * max_dev / swing << " % of the swing energy), E(10 s) - E0 = " << e_end - e0
+            << " J\n";
   EXPECT_LT(max_dev, 0.01 * swing);
   EXPECT_LT(std::abs(e_end - e0), 0.01 * swing);
   // still swinging with the same amplitude (no numerical damping)
@@ -47,11 +47,11 @@ TEST(SimPlant, PendulumConservesEnergy) {
 struct StandResult {
   double settle_height = 0.0;      // base height change from the start to 0.5 s (contact sag)
   double settle_horizontal = 0.0;  // base horizontal offset at 0.5 s (joint PD compliance)
-  double drift_height = 0.0;       // |Δz| of the mean base position, [0.5 s, 1.5 s] → last second
-  double drift_horizontal = 0.0;   // horizontal distance between the same two means
-  double sway_horizontal = 0.0;    // max horizontal distance from the settled position after 0.5 s
-  double max_tilt = 0.0;           // max base rotation angle from the start
-  double max_joint_dev = 0.0;      // max |q_j − q_j0| over the run
+  double drift_height = 0.0;      // |Δz| of the mean base position, [0.5 s, 1.5 s] → last second
+  double drift_horizontal = 0.0;  // horizontal distance between the same two means
+  double sway_horizontal = 0.0;   // max horizontal distance from the settled position after 0.5 s
+  double max_tilt = 0.0;          // max base rotation angle from the start
+  double max_joint_dev = 0.0;     // max |q_j − q_j0| over the run
   double min_height = 1e9;
   double fz_total = 0.0;
   double ft_z_sum = 0.0;
@@ -137,17 +137,19 @@ TEST(SimPlant, HumanoidStandsStill) {
   const double weight = 33.75 * 9.81;
   std::cout << "[measured] humanoid 5 s standing (h = " << c.step / c.substeps * 1e3
             << " ms): settling in 0.5 s: height " << r.settle_height * 1e3 << " mm, horizontal "
-            << r.settle_horizontal * 1e3 << " mm; drift of the mean base position [0.5, 1.5] s → [4, 5] s: height "
+            << r.settle_horizontal * 1e3
+            << " mm; drift of the mean base position [0.5, 1.5] s → [4, 5] s: height "
             << r.drift_height * 1e3 << " mm, horizontal " << r.drift_horizontal * 1e3
-            << " mm; sway after 0.5 s " << r.sway_horizontal * 1e3 << " mm; max tilt " << r.max_tilt * 1e3 << " mrad; max joint deviation "
-            << r.max_joint_dev * 1e3 << " mrad; total normal force " << r.fz_total
-            << " N (weight " << weight << " N); sum of foot F/T fz " << r.ft_z_sum
-            << " N; IMU accel (mean of the last 0.2 s) " << r.imu_accel.transpose() << "\n";
-  EXPECT_GT(r.min_height, 0.54);                 // did not fall
-  EXPECT_LT(std::abs(r.settle_height), 3e-3);    // contact sag
-  EXPECT_LT(r.settle_horizontal, 5e-3);          // PD compliance lean
-  EXPECT_LT(r.drift_height, 0.1e-3);             // no sinking
-  EXPECT_LT(r.drift_horizontal, 1e-3);           // no creeping
+            << " mm; sway after 0.5 s " << r.sway_horizontal * 1e3 << " mm; max tilt "
+            << r.max_tilt * 1e3 << " mrad; max joint deviation " << r.max_joint_dev * 1e3
+            << " mrad; total normal force " << r.fz_total << " N (weight " << weight
+            << " N); sum of foot F/T fz " << r.ft_z_sum << " N; IMU accel (mean of the last 0.2 s) "
+            << r.imu_accel.transpose() << "\n";
+  EXPECT_GT(r.min_height, 0.54);               // did not fall
+  EXPECT_LT(std::abs(r.settle_height), 3e-3);  // contact sag
+  EXPECT_LT(r.settle_horizontal, 5e-3);        // PD compliance lean
+  EXPECT_LT(r.drift_height, 0.1e-3);           // no sinking
+  EXPECT_LT(r.drift_horizontal, 1e-3);         // no creeping
   EXPECT_LT(r.sway_horizontal, 5e-3);
   EXPECT_LT(r.max_tilt, 15e-3);
   EXPECT_LT(r.max_joint_dev, 10e-3);
@@ -163,7 +165,8 @@ TEST(SimPlant, HumanoidStandsStill) {
 // pushed back, the feet take the load (the F/T sensors see it) and it stays up.
 TEST(SimPlant, HumanoidSurvivesAPush) {
   SimConfig c = humanoid_config();
-  c.pushes.push_back({"root_link", 1.0, 0.1, Eigen::Vector3d(-30.0, 0.0, 0.0), Eigen::Vector3d::Zero()});
+  c.pushes.push_back(
+      {"root_link", 1.0, 0.1, Eigen::Vector3d(-30.0, 0.0, 0.0), Eigen::Vector3d::Zero()});
   SimBackend sim(c);
   sim.configure();
   sim.activate();
@@ -188,9 +191,9 @@ TEST(SimPlant, HumanoidSurvivesAPush) {
   }
   std::cout << "[measured] push 30 N × 0.1 s: base moved back " << (x0 - min_x) * 1e3
             << " mm, lowest base height " << min_z << " m, max |Σ F/T fx| " << max_ft_x << " N\n";
-  EXPECT_GT(x0 - min_x, 1e-3);   // it was pushed
-  EXPECT_GT(min_z, 0.54);        // it did not fall
-  EXPECT_GT(max_ft_x, 10.0);     // the feet took the push
+  EXPECT_GT(x0 - min_x, 1e-3);                              // it was pushed
+  EXPECT_GT(min_z, 0.54);                                   // it did not fall
+  EXPECT_GT(max_ft_x, 10.0);                                // the feet took the push
   EXPECT_LT(sim.ground_truth().nu.head<3>().norm(), 0.05);  // and it came back to rest
 }
 

@@ -45,7 +45,9 @@ void run_without_allocation(SimConfig c, ControlMode mode) {
   cc.gains = stiff_gains(d);
   JointController ctl(d, cc);
   const Eigen::VectorXd q_j0 = sim.ground_truth().q.tail(d.n_joints());
-  const JointCommandBatch batch = all_joints(d.n_joints(), mode, mode == ControlMode::kTorque ? Eigen::VectorXd::Zero(d.n_joints()) : q_j0);
+  const JointCommandBatch batch =
+      all_joints(d.n_joints(), mode,
+                 mode == ControlMode::kTorque ? Eigen::VectorXd::Zero(d.n_joints()) : q_j0);
   ctl.submit(batch, sim.stamp());
   tick(sim, ctl);  // first tick outside (nothing should allocate there either)
 

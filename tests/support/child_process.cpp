@@ -99,7 +99,8 @@ std::optional<int> ChildProcess::wait(std::chrono::milliseconds timeout) {
     if (std::chrono::steady_clock::now() >= deadline) {
       return std::nullopt;
     }
-    // waitpid has no timeout; poll briefly (this waits for a process, not for a condition we could observe).
+    // waitpid has no timeout; poll briefly (this waits for a process, not for a condition we could
+    // observe).
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
 }

@@ -35,12 +35,18 @@ std::int64_t system_now_ns() {
 
 wbi::msg::ControlMode to_message(ControlMode mode) {
   switch (mode) {
-    case ControlMode::idle: return wbi::msg::ControlMode::IDLE;
-    case ControlMode::position: return wbi::msg::ControlMode::POSITION;
-    case ControlMode::position_direct: return wbi::msg::ControlMode::POSITION_DIRECT;
-    case ControlMode::velocity: return wbi::msg::ControlMode::VELOCITY;
-    case ControlMode::torque: return wbi::msg::ControlMode::TORQUE;
-    case ControlMode::pwm: return wbi::msg::ControlMode::PWM;
+    case ControlMode::idle:
+      return wbi::msg::ControlMode::IDLE;
+    case ControlMode::position:
+      return wbi::msg::ControlMode::POSITION;
+    case ControlMode::position_direct:
+      return wbi::msg::ControlMode::POSITION_DIRECT;
+    case ControlMode::velocity:
+      return wbi::msg::ControlMode::VELOCITY;
+    case ControlMode::torque:
+      return wbi::msg::ControlMode::TORQUE;
+    case ControlMode::pwm:
+      return wbi::msg::ControlMode::PWM;
   }
   throw Error("unknown control mode");
 }
@@ -199,9 +205,12 @@ class DdsInterface final : public WholeBodyInterface {
     switch (kind) {
       case SensorKind::imu:
       case SensorKind::accelerometer:
-      case SensorKind::gyroscope: return imu_names_;
-      case SensorKind::force_torque: return force_torque_names_;
-      default: return controlled_;
+      case SensorKind::gyroscope:
+        return imu_names_;
+      case SensorKind::force_torque:
+        return force_torque_names_;
+      default:
+        return controlled_;
     }
   }
 
@@ -341,7 +350,9 @@ class DdsInterface final : public WholeBodyInterface {
   // Waits for every component the interface needs; names all that are missing.
   void wait_for_robot(std::chrono::milliseconds timeout) {
     const auto deadline = Clock::now() + timeout;
-    const auto remaining = [&] { return std::max(Clock::duration::zero(), deadline - Clock::now()); };
+    const auto remaining = [&] {
+      return std::max(Clock::duration::zero(), deadline - Clock::now());
+    };
     std::vector<std::string> missing;
     if (!description_.wait_newer(description_rx_, 0, remaining())) {
       missing.push_back("the robot description on " + dds::topics::description(options_.robot) +
@@ -443,9 +454,10 @@ class DdsInterface final : public WholeBodyInterface {
   void switch_mode(int joint, ControlMode mode) {
     modes_[static_cast<std::size_t>(joint)] = mode;
     if (mode == ControlMode::position || mode == ControlMode::position_direct) {
-      const auto& sample = sensors_.take(0, ReadMode::latest, options_.max_age_s,
-                                         options_.blocking_read_timeout);
-      references_[joint] = sample.encoder_position().at(robot_index_[static_cast<std::size_t>(joint)]);
+      const auto& sample =
+          sensors_.take(0, ReadMode::latest, options_.max_age_s, options_.blocking_read_timeout);
+      references_[joint] =
+          sample.encoder_position().at(robot_index_[static_cast<std::size_t>(joint)]);
     } else {
       references_[joint] = 0.0;
     }
@@ -457,8 +469,8 @@ class DdsInterface final : public WholeBodyInterface {
     header.seq(command_seq_++);
     // Lockstep: the tick this command answers is the newest sample the controller read
     // (sensor and state samples carry the robot's tick as their sequence number).
-    command_.tick(std::max(sensors_.received.sample.header().seq(),
-                           state_.received.sample.header().seq()));
+    command_.tick(
+        std::max(sensors_.received.sample.header().seq(), state_.received.sample.header().seq()));
     for (std::size_t k = 0; k < modes_.size(); ++k) {
       command_.modes()[k] = to_message(modes_[k]);
       command_.references()[k] = references_[static_cast<Eigen::Index>(k)];
@@ -470,10 +482,14 @@ class DdsInterface final : public WholeBodyInterface {
 
   std::vector<double>& parameter_values(ControlParameter parameter) {
     switch (parameter) {
-      case ControlParameter::kp: return parameters_msg_.kp();
-      case ControlParameter::ki: return parameters_msg_.ki();
-      case ControlParameter::kd: return parameters_msg_.kd();
-      case ControlParameter::reference_speed: return parameters_msg_.reference_speed();
+      case ControlParameter::kp:
+        return parameters_msg_.kp();
+      case ControlParameter::ki:
+        return parameters_msg_.ki();
+      case ControlParameter::kd:
+        return parameters_msg_.kd();
+      case ControlParameter::reference_speed:
+        return parameters_msg_.reference_speed();
     }
     throw Error("unknown control parameter");
   }
@@ -498,11 +514,15 @@ class DdsInterface final : public WholeBodyInterface {
 
   static int sensor_width(SensorKind kind) {
     switch (kind) {
-      case SensorKind::imu: return 10;
-      case SensorKind::force_torque: return 6;
+      case SensorKind::imu:
+        return 10;
+      case SensorKind::force_torque:
+        return 6;
       case SensorKind::accelerometer:
-      case SensorKind::gyroscope: return 3;
-      default: return 1;
+      case SensorKind::gyroscope:
+        return 3;
+      default:
+        return 1;
     }
   }
 
@@ -522,16 +542,24 @@ class DdsInterface final : public WholeBodyInterface {
     const auto index = static_cast<std::size_t>(kind);
     if (kind == SensorKind::encoder_velocity || kind == SensorKind::encoder_acceleration) {
       // No speed sensors on the wire: the estimator's values stand in for them.
-      const auto& state = state_.take(index, mode, options_.max_age_s, options_.blocking_read_timeout);
+      const auto& state =
+          state_.take(index, mode, options_.max_age_s, options_.blocking_read_timeout);
       gather(kind == SensorKind::encoder_velocity ? state.dq() : state.ddq(), first, count, out,
              kind == SensorKind::encoder_velocity ? "joint velocities" : "joint accelerations");
       return state_.stamp();
     }
-    const auto& sample = sensors_.take(index, mode, options_.max_age_s, options_.blocking_read_timeout);
+    const auto& sample =
+        sensors_.take(index, mode, options_.max_age_s, options_.blocking_read_timeout);
     switch (kind) {
-      case SensorKind::encoder_position: gather(sample.encoder_position(), first, count, out, "encoder positions"); break;
-      case SensorKind::joint_torque: gather(sample.joint_torque(), first, count, out, "joint torques"); break;
-      case SensorKind::motor_pwm: gather(sample.motor_pwm(), first, count, out, "motor PWM"); break;
+      case SensorKind::encoder_position:
+        gather(sample.encoder_position(), first, count, out, "encoder positions");
+        break;
+      case SensorKind::joint_torque:
+        gather(sample.joint_torque(), first, count, out, "joint torques");
+        break;
+      case SensorKind::motor_pwm:
+        gather(sample.motor_pwm(), first, count, out, "motor PWM");
+        break;
       case SensorKind::force_torque:
         for (int i = 0; i < count; ++i) {
           const auto& w = sample.force_torque().at(static_cast<std::size_t>(first + i)).wrench();
@@ -546,7 +574,8 @@ class DdsInterface final : public WholeBodyInterface {
           const auto& w = imu.angular_velocity();
           const auto& a = imu.linear_acceleration();
           if (kind == SensorKind::imu) {
-            out.segment<10>(10 * i) << o.w(), o.x(), o.y(), o.z(), w.x(), w.y(), w.z(), a.x(), a.y(), a.z();
+            out.segment<10>(10 * i) << o.w(), o.x(), o.y(), o.z(), w.x(), w.y(), w.z(), a.x(),
+                a.y(), a.z();
           } else if (kind == SensorKind::gyroscope) {
             out.segment<3>(3 * i) << w.x(), w.y(), w.z();
           } else {
@@ -559,11 +588,14 @@ class DdsInterface final : public WholeBodyInterface {
 
   static int estimate_width(EstimateKind kind) {
     switch (kind) {
-      case EstimateKind::base_pose: return 7;
+      case EstimateKind::base_pose:
+        return 7;
       case EstimateKind::base_velocity:
       case EstimateKind::base_acceleration:
-      case EstimateKind::force_torque: return 6;
-      default: return 1;
+      case EstimateKind::force_torque:
+        return 6;
+      default:
+        return 1;
     }
   }
 
@@ -571,9 +603,12 @@ class DdsInterface final : public WholeBodyInterface {
     switch (kind) {
       case EstimateKind::base_pose:
       case EstimateKind::base_velocity:
-      case EstimateKind::base_acceleration: return 1;
-      case EstimateKind::force_torque: return static_cast<int>(force_torque_names_.size());
-      default: return dofs();
+      case EstimateKind::base_acceleration:
+        return 1;
+      case EstimateKind::force_torque:
+        return static_cast<int>(force_torque_names_.size());
+      default:
+        return dofs();
     }
   }
 
@@ -585,10 +620,18 @@ class DdsInterface final : public WholeBodyInterface {
   Stamp read_estimate_range(EstimateKind kind, int first, int count, VectorRef out, ReadMode mode) {
     const auto& state = take_state(kind, mode);
     switch (kind) {
-      case EstimateKind::joint_position: gather(state.q(), first, count, out, "joint position estimates"); break;
-      case EstimateKind::joint_velocity: gather(state.dq(), first, count, out, "joint velocity estimates"); break;
-      case EstimateKind::joint_acceleration: gather(state.ddq(), first, count, out, "joint acceleration estimates"); break;
-      case EstimateKind::joint_torque: gather(state.tau(), first, count, out, "joint torque estimates"); break;
+      case EstimateKind::joint_position:
+        gather(state.q(), first, count, out, "joint position estimates");
+        break;
+      case EstimateKind::joint_velocity:
+        gather(state.dq(), first, count, out, "joint velocity estimates");
+        break;
+      case EstimateKind::joint_acceleration:
+        gather(state.ddq(), first, count, out, "joint acceleration estimates");
+        break;
+      case EstimateKind::joint_torque:
+        gather(state.tau(), first, count, out, "joint torque estimates");
+        break;
       case EstimateKind::base_pose: {
         const auto& p = state.base_pose();
         out << p.position().x(), p.position().y(), p.position().z(), p.orientation().w(),
@@ -624,7 +667,8 @@ class DdsInterface final : public WholeBodyInterface {
 
   IdList controlled_;
   bool initialized_ = false;
-  std::vector<std::uint16_t> robot_index_;  // [dofs] position of controlled joint k in the robot's order
+  std::vector<std::uint16_t>
+      robot_index_;  // [dofs] position of controlled joint k in the robot's order
   IdList imu_names_;
   IdList force_torque_names_;
   std::optional<LocalModel> model_;

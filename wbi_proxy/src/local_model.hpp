@@ -25,13 +25,15 @@ class LocalModel {
   int frame_index(const std::string& frame) const;
   JointLimits joint_limits(int joint) const;
 
-  void frame_pose(const ConstVectorRef& q, const Transform& world_H_base, int frame, Transform& out);
+  void frame_pose(const ConstVectorRef& q, const Transform& world_H_base, int frame,
+                  Transform& out);
   void jacobian(const ConstVectorRef& q, const Transform& world_H_base, int frame, MatrixRef J);
   void dj_nu(const ConstVectorRef& q, const Transform& world_H_base, const ConstVectorRef& dq,
              const ConstVectorRef& base_velocity, int frame, VectorRef out);
   void mass_matrix(const ConstVectorRef& q, const Transform& world_H_base, MatrixRef M);
   void bias_forces(const ConstVectorRef& q, const Transform& world_H_base, const ConstVectorRef& dq,
-                   const ConstVectorRef& base_velocity, const Eigen::Vector3d& gravity, VectorRef h);
+                   const ConstVectorRef& base_velocity, const Eigen::Vector3d& gravity,
+                   VectorRef h);
   void gravity_forces(const ConstVectorRef& q, const Transform& world_H_base,
                       const Eigen::Vector3d& gravity, VectorRef g);
   void inverse_dynamics(const ConstVectorRef& q, const Transform& world_H_base,
@@ -41,7 +43,8 @@ class LocalModel {
   void centroidal_momentum(const ConstVectorRef& q, const Transform& world_H_base,
                            const ConstVectorRef& dq, const ConstVectorRef& base_velocity,
                            VectorRef out);
-  void centroidal_momentum_matrix(const ConstVectorRef& q, const Transform& world_H_base, MatrixRef A);
+  void centroidal_momentum_matrix(const ConstVectorRef& q, const Transform& world_H_base,
+                                  MatrixRef A);
   void com(const ConstVectorRef& q, const Transform& world_H_base, Eigen::Vector3d& out);
   void com_jacobian(const ConstVectorRef& q, const Transform& world_H_base, MatrixRef J);
 

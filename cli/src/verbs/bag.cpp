@@ -81,7 +81,8 @@ Summary summarise(const mcap::FileInfo& info) {
   Summary s;
   const auto& stats = info.statistics;
   if (stats.message_count > 0) {
-    s.duration_s = static_cast<double>(stats.message_end_time - stats.message_start_time) / kNsPerSecond;
+    s.duration_s =
+        static_cast<double>(stats.message_end_time - stats.message_start_time) / kNsPerSecond;
   }
   for (const auto& chunk : info.chunks) {
     s.compressed_bytes += chunk.compressed_size;
@@ -145,7 +146,8 @@ void print_json(const std::string& file, const mcap::FileInfo& info, const Summa
 void print_text(const std::string& file, const mcap::FileInfo& info, const Summary& s) {
   const auto& stats = info.statistics;
   std::cout << "path:         " << file << "\n"
-            << "size:         " << human_size(info.file_size) << " (" << info.file_size << " bytes)\n"
+            << "size:         " << human_size(info.file_size) << " (" << info.file_size
+            << " bytes)\n"
             << "profile:      " << (info.profile.empty() ? "(none)" : info.profile)
             << (info.library.empty() ? "" : "  (written by " + info.library + ")") << "\n"
             << "messages:     " << stats.message_count << "\n"
@@ -158,12 +160,13 @@ void print_text(const std::string& file, const mcap::FileInfo& info, const Summa
   }
   std::cout << "compression:  " << compression_of(info) << "  (" << info.chunks.size() << " chunks";
   if (s.uncompressed_bytes > 0) {
-    std::cout << ", " << human_size(s.uncompressed_bytes) << " -> " << human_size(s.compressed_bytes);
+    std::cout << ", " << human_size(s.uncompressed_bytes) << " -> "
+              << human_size(s.compressed_bytes);
   }
   std::cout << ")\n";
   if (stats.attachment_count > 0 || stats.metadata_count > 0) {
-    std::cout << "attachments:  " << stats.attachment_count << "    metadata: " << stats.metadata_count
-              << "\n";
+    std::cout << "attachments:  " << stats.attachment_count
+              << "    metadata: " << stats.metadata_count << "\n";
   }
   std::cout << "index:        " << (info.from_summary ? "summary" : "none (data section scanned)")
             << "\n"
@@ -175,8 +178,8 @@ void print_text(const std::string& file, const mcap::FileInfo& info, const Summa
     type_width = std::max(type_width, topic.type.size());
   }
   for (const auto& topic : s.topics) {
-    std::cout << "  " << std::left << std::setw(static_cast<int>(name_width)) << topic.channel->topic
-              << "  " << std::setw(static_cast<int>(type_width))
+    std::cout << "  " << std::left << std::setw(static_cast<int>(name_width))
+              << topic.channel->topic << "  " << std::setw(static_cast<int>(type_width))
               << (topic.type.empty() ? "-" : topic.type) << std::right << "  " << std::setw(10)
               << topic.count << " msgs  " << std::setw(10) << std::setprecision(1) << topic.rate_hz
               << " Hz  " << topic.channel->message_encoding << "\n";

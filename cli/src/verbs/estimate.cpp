@@ -66,13 +66,12 @@ std::string warning_text(const estimation::StampCounters& counters) {
 }  // namespace
 
 int run_estimate(Args args) {
-  Options options(
-      "wbi estimate --method NAME --input IN.csv --output OUT.csv [method options]",
-      "Estimates joint velocities and accelerations offline. IN.csv has a header "
-      "'t,<joint columns>' (t in seconds) and one row per sample; OUT.csv gets "
-      "'t,dq0,...,dq(n-1),ddq0,...,ddq(n-1)', one row per input row. Each method "
-      "takes only its own options (in brackets below). Stamp anomalies (duplicated, "
-      "older or missing rows) are counted and reported as one warning on stderr.");
+  Options options("wbi estimate --method NAME --input IN.csv --output OUT.csv [method options]",
+                  "Estimates joint velocities and accelerations offline. IN.csv has a header "
+                  "'t,<joint columns>' (t in seconds) and one row per sample; OUT.csv gets "
+                  "'t,dq0,...,dq(n-1),ddq0,...,ddq(n-1)', one row per input row. Each method "
+                  "takes only its own options (in brackets below). Stamp anomalies (duplicated, "
+                  "older or missing rows) are counted and reported as one warning on stderr.");
   options.flag("list", "print the method names, whitespace-separated, and exit")
       .option("method", "NAME", "estimation method: " + joined_method_names())
       .option("input", "IN.csv", "joint positions to filter")
@@ -104,7 +103,8 @@ int run_estimate(Args args) {
   } catch (const std::invalid_argument& error) {
     throw UsageError(error.what());  // unknown method, option or value
   }
-  const estimation::JointDerivatives derivatives = estimation::estimate_offline(*estimator, samples);
+  const estimation::JointDerivatives derivatives =
+      estimation::estimate_offline(*estimator, samples);
   estimation::write_derivatives_csv(output, derivatives);
   if (const std::string warning = warning_text(estimator->stamp_counters()); !warning.empty()) {
     std::cerr << "wbi estimate: warning: " << input << ": " << warning << "\n";

@@ -107,8 +107,12 @@ int run_info(Args args) {
                "Print the model built from a URDF: base kind, joints in order with their limits,\n"
                "bodies after lumping fixed joints, frames (every link) and the total mass.");
   opts.positional("URDF", "the robot description (.urdf)")
-      .flag("fixed-base", "fix the root link to the world (default: free-floating, unless the root is a massless 'world')")
-      .option("joints", "LIST", "reduced model: keep only these joints (comma-separated, in this order); lock the rest at 0")
+      .flag("fixed-base",
+            "fix the root link to the world (default: free-floating, unless the root is a massless "
+            "'world')")
+      .option("joints", "LIST",
+              "reduced model: keep only these joints (comma-separated, in this order); lock the "
+              "rest at 0")
       .flag("json", "print JSON instead of text");
   if (!opts.parse(args)) {
     return kExitOk;
@@ -129,7 +133,8 @@ int run_info(Args args) {
     j["name"] = m.joint_name[uk];
     j["type"] = type_name(m, k);
     j["body"] = m.body_name[static_cast<std::size_t>(m.joint_body[uk])];
-    j["parent_body"] = m.body_name[static_cast<std::size_t>(m.parent[static_cast<std::size_t>(m.joint_body[uk])])];
+    j["parent_body"] =
+        m.body_name[static_cast<std::size_t>(m.parent[static_cast<std::size_t>(m.joint_body[uk])])];
     j["lower"] = limit(m.joint_lower[uk]);
     j["upper"] = limit(m.joint_upper[uk]);
     j["velocity"] = limit(m.joint_velocity_limit[uk]);
@@ -144,14 +149,16 @@ int run_info(Args args) {
   }
   out["locked_joints"] = json::array();
   for (std::size_t k = 0; k < m.locked_joint_name.size(); ++k) {
-    out["locked_joints"].push_back({{"name", m.locked_joint_name[k]}, {"position", m.locked_joint_position[k]}});
+    out["locked_joints"].push_back(
+        {{"name", m.locked_joint_name[k]}, {"position", m.locked_joint_position[k]}});
   }
   out["bodies"] = json::array();
   for (int i = 0; i < m.n_bodies; ++i) {
     const auto ui = static_cast<std::size_t>(i);
     json b;
     b["name"] = m.body_name[ui];
-    b["parent"] = i == 0 ? json(nullptr) : json(m.body_name[static_cast<std::size_t>(m.parent[ui])]);
+    b["parent"] =
+        i == 0 ? json(nullptr) : json(m.body_name[static_cast<std::size_t>(m.parent[ui])]);
     b["mass"] = m.body_mass[ui];
     b["com"] = vec(m.body_com[ui]);
     json frames = json::array();
@@ -175,8 +182,8 @@ int run_info(Args args) {
     return kExitOk;
   }
   std::cout << "model:      " << m.name << " (" << m.source << ")\n"
-            << "base:       " << (m.floating_base ? "floating" : "fixed") << " (root link '" << m.body_name[0]
-            << "')\n"
+            << "base:       " << (m.floating_base ? "floating" : "fixed") << " (root link '"
+            << m.body_name[0] << "')\n"
             << "sizes:      nq = " << m.nq << ", nv = " << m.nv << ", " << m.n_joints << " joints, "
             << m.n_bodies << " bodies, " << m.n_frames() << " frames\n"
             << "total mass: " << m.total_mass << " kg\n\njoints (in the order of q and ν):\n";
@@ -191,9 +198,10 @@ int run_info(Args args) {
   };
   for (int k = 0; k < m.n_joints; ++k) {
     const auto uk = static_cast<std::size_t>(k);
-    std::cout << "  " << std::setw(3) << k << "  " << std::left << std::setw(28) << m.joint_name[uk] << std::setw(11)
-              << type_name(m, k) << std::right << " [" << fmt(m.joint_lower[uk]) << ", " << fmt(m.joint_upper[uk])
-              << "]  vel " << fmt(m.joint_velocity_limit[uk]) << "  effort " << fmt(m.joint_effort_limit[uk]);
+    std::cout << "  " << std::setw(3) << k << "  " << std::left << std::setw(28) << m.joint_name[uk]
+              << std::setw(11) << type_name(m, k) << std::right << " [" << fmt(m.joint_lower[uk])
+              << ", " << fmt(m.joint_upper[uk]) << "]  vel " << fmt(m.joint_velocity_limit[uk])
+              << "  effort " << fmt(m.joint_effort_limit[uk]);
     if (!m.joint_mimic[uk].joint.empty()) {
       std::cout << "  (mimics " << m.joint_mimic[uk].joint << ", treated as independent)";
     }
@@ -207,8 +215,8 @@ int run_info(Args args) {
   }
   std::cout << "\nbodies (after lumping fixed joints):\n";
   for (const auto& b : out["bodies"]) {
-    std::cout << "  " << std::left << std::setw(28) << b["name"].get<std::string>() << std::right << " mass "
-              << std::setw(10) << b["mass"].get<double>() << "  frames:";
+    std::cout << "  " << std::left << std::setw(28) << b["name"].get<std::string>() << std::right
+              << " mass " << std::setw(10) << b["mass"].get<double>() << "  frames:";
     for (const auto& f : b["frames"]) {
       std::cout << " " << f.get<std::string>();
     }
@@ -249,7 +257,8 @@ Eigen::VectorXd numbers(const json& state, const std::string& key, std::size_t s
   const json& v = state.at(key);
   if (!v.is_array() || v.size() != size) {
     throw std::runtime_error("state: '" + key + "' must be an array of " + std::to_string(size) +
-                             " numbers" + (v.is_array() ? ", got " + std::to_string(v.size()) : ""));
+                             " numbers" +
+                             (v.is_array() ? ", got " + std::to_string(v.size()) : ""));
   }
   Eigen::VectorXd out(static_cast<Eigen::Index>(size));
   for (std::size_t i = 0; i < size; ++i) {
@@ -262,26 +271,32 @@ Eigen::VectorXd numbers(const json& state, const std::string& key, std::size_t s
 }
 
 int run_eval(Args args) {
-  Options opts("wbi model eval URDF --state FILE|- [--fixed-base] [--joints a,b,...]",
-               "Evaluate the model at a state read as JSON and print the results as JSON.\n"
-               "State keys (all optional): q, dq (in the order of 'joints' when given, else the model's),\n"
-               "base_position [3], base_quaternion [w,x,y,z], base_velocity [6: linear, angular, world axes],\n"
-               "gravity [3] (default [0,0,-9.81]), frames [names], joints [every joint, in the caller's order].\n"
-               "Output keys: joints, mass_matrix, bias_forces, gravity_forces, total_mass, com,\n"
-               "centroidal_momentum, frames {name: {transform 4x4, jacobian 6x(n+6), dJnu [6]}}.\n"
-               "Sizes are n+6 for a free-floating model, n with a fixed base; matrices are arrays of rows.");
+  Options opts(
+      "wbi model eval URDF --state FILE|- [--fixed-base] [--joints a,b,...]",
+      "Evaluate the model at a state read as JSON and print the results as JSON.\n"
+      "State keys (all optional): q, dq (in the order of 'joints' when given, else the model's),\n"
+      "base_position [3], base_quaternion [w,x,y,z], base_velocity [6: linear, angular, world "
+      "axes],\n"
+      "gravity [3] (default [0,0,-9.81]), frames [names], joints [every joint, in the caller's "
+      "order].\n"
+      "Output keys: joints, mass_matrix, bias_forces, gravity_forces, total_mass, com,\n"
+      "centroidal_momentum, frames {name: {transform 4x4, jacobian 6x(n+6), dJnu [6]}}.\n"
+      "Sizes are n+6 for a free-floating model, n with a fixed base; matrices are arrays of rows.");
   opts.positional("URDF", "the robot description (.urdf)")
       .option("state", "FILE", "the state as JSON, '-' for standard input")
       .flag("fixed-base", "fix the root link to the world")
-      .option("joints", "LIST", "reduced model: keep only these joints (comma-separated, in this order); lock the rest at 0");
+      .option("joints", "LIST",
+              "reduced model: keep only these joints (comma-separated, in this order); lock the "
+              "rest at 0");
   if (!opts.parse(args)) {
     return kExitOk;
   }
   const std::string state_file = opts.get("state");
   const wm::Model m = load(opts);
   const json state = read_state(state_file);
-  static const std::set<std::string> kKeys{"q", "dq", "base_position", "base_quaternion", "base_velocity",
-                                           "gravity", "frames", "joints"};
+  static const std::set<std::string> kKeys{
+      "q",       "dq",     "base_position", "base_quaternion", "base_velocity",
+      "gravity", "frames", "joints"};
   for (const auto& [key, value] : state.items()) {
     if (kKeys.count(key) == 0) {
       throw std::runtime_error("state: unknown key '" + key + "'");
@@ -310,7 +325,8 @@ int run_eval(Args args) {
     if (order.size() != n) {
       for (const auto& jn : m.joint_name) {
         if (seen.count(jn) == 0) {
-          throw std::runtime_error("state: 'joints' must list every joint of the model; '" + jn + "' is missing");
+          throw std::runtime_error("state: 'joints' must list every joint of the model; '" + jn +
+                                   "' is missing");
         }
       }
     }
@@ -320,15 +336,18 @@ int run_eval(Args args) {
       names.push_back(m.joint_name[static_cast<std::size_t>(k)]);
     }
   }
-  const Eigen::VectorXd s = state.contains("q") ? numbers(state, "q", n) : Eigen::VectorXd::Zero(m.n_joints);
-  const Eigen::VectorXd ds = state.contains("dq") ? numbers(state, "dq", n) : Eigen::VectorXd::Zero(m.n_joints);
+  const Eigen::VectorXd s =
+      state.contains("q") ? numbers(state, "q", n) : Eigen::VectorXd::Zero(m.n_joints);
+  const Eigen::VectorXd ds =
+      state.contains("dq") ? numbers(state, "dq", n) : Eigen::VectorXd::Zero(m.n_joints);
   Eigen::Vector3d gravity(0.0, 0.0, -9.81);
   if (state.contains("gravity")) {
     gravity = numbers(state, "gravity", 3);
   }
   for (const char* key : {"base_position", "base_quaternion", "base_velocity"}) {
     if (!m.floating_base && state.contains(key)) {
-      throw std::runtime_error(std::string("state: '") + key + "' given, but the model has a fixed base");
+      throw std::runtime_error(std::string("state: '") + key +
+                               "' given, but the model has a fixed base");
     }
   }
   Eigen::VectorXd q = wm::neutral_configuration(m);
@@ -340,8 +359,8 @@ int run_eval(Args args) {
     if (state.contains("base_quaternion")) {
       const Eigen::VectorXd quat = numbers(state, "base_quaternion", 4);
       if (std::abs(quat.norm() - 1.0) > 1e-6) {
-        throw std::runtime_error("state: 'base_quaternion' [w,x,y,z] has norm " + std::to_string(quat.norm()) +
-                                 ", expected a unit quaternion");
+        throw std::runtime_error("state: 'base_quaternion' [w,x,y,z] has norm " +
+                                 std::to_string(quat.norm()) + ", expected a unit quaternion");
       }
       q.segment<4>(3) = quat;
     }
@@ -392,7 +411,8 @@ int run_eval(Args args) {
     out["gravity_forces"] = vec(permute_vec(wm::gravity_forces(m, data, q, gravity)));
     out["total_mass"] = m.total_mass;
     out["com"] = m.total_mass > 0.0 ? vec(wm::center_of_mass(m, data, q)) : json(nullptr);
-    out["centroidal_momentum"] = m.total_mass > 0.0 ? vec(wm::centroidal_momentum(m, data, q, nu)) : json(nullptr);
+    out["centroidal_momentum"] =
+        m.total_mass > 0.0 ? vec(wm::centroidal_momentum(m, data, q, nu)) : json(nullptr);
     out["frames"] = json::object();
     if (state.contains("frames")) {
       wm::forward_velocity_kinematics(m, data, q, nu);
@@ -434,7 +454,9 @@ double median_ns(int states, int batch, Call call) {
     const auto t1 = Clock::now();
     samples.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count() / batch);
   }
-  std::nth_element(samples.begin(), samples.begin() + static_cast<std::ptrdiff_t>(samples.size() / 2), samples.end());
+  std::nth_element(samples.begin(),
+                   samples.begin() + static_cast<std::ptrdiff_t>(samples.size() / 2),
+                   samples.end());
   return samples[samples.size() / 2];
 }
 
@@ -445,7 +467,8 @@ int run_bench(Args args) {
                "(Google Benchmark suite wbi_bench_model).");
   opts.positional("URDF", "the robot description (.urdf)")
       .flag("fixed-base", "fix the root link to the world")
-      .option("joints", "LIST", "reduced model: keep only these joints (comma-separated, in this order)")
+      .option("joints", "LIST",
+              "reduced model: keep only these joints (comma-separated, in this order)")
       .option("states", "N", "number of random states", "101")
       .option("batch", "N", "calls per state", "200")
       .flag("json", "print JSON instead of text");
@@ -477,7 +500,8 @@ int run_bench(Args args) {
   int deepest = -1;
   for (int f = 0; f < m.n_frames(); ++f) {
     int depth = 0;
-    for (int i = m.frame_body[static_cast<std::size_t>(f)]; i > 0; i = m.parent[static_cast<std::size_t>(i)]) {
+    for (int i = m.frame_body[static_cast<std::size_t>(f)]; i > 0;
+         i = m.parent[static_cast<std::size_t>(i)]) {
       ++depth;
     }
     if (depth > deepest) {
@@ -494,32 +518,35 @@ int run_bench(Args args) {
   out["model"] = m.name;
   out["file"] = m.source;
   out["nv"] = m.nv;
-  out["mass_matrix_ns"] = median_ns(S, B, [&](int s) { sink = sink + wm::mass_matrix(m, data, q[at(s)])(0, 0); });
-  out["bias_forces_ns"] =
-      median_ns(S, B, [&](int s) { sink = sink + wm::bias_forces(m, data, q[at(s)], nu[at(s)], g)[0]; });
+  out["mass_matrix_ns"] =
+      median_ns(S, B, [&](int s) { sink = sink + wm::mass_matrix(m, data, q[at(s)])(0, 0); });
+  out["bias_forces_ns"] = median_ns(
+      S, B, [&](int s) { sink = sink + wm::bias_forces(m, data, q[at(s)], nu[at(s)], g)[0]; });
   out["gravity_forces_ns"] =
       median_ns(S, B, [&](int s) { sink = sink + wm::gravity_forces(m, data, q[at(s)], g)[0]; });
-  out["forward_dynamics_ns"] = median_ns(
-      S, B, [&](int s) { sink = sink + wm::forward_dynamics(m, data, q[at(s)], nu[at(s)], tau[at(s)], g)[0]; });
-  out["jacobian_ns"] =
-      median_ns(S, B, [&](int s) { sink = sink + wm::frame_jacobian(m, data, q[at(s)], frame)(0, 0); });
+  out["forward_dynamics_ns"] = median_ns(S, B, [&](int s) {
+    sink = sink + wm::forward_dynamics(m, data, q[at(s)], nu[at(s)], tau[at(s)], g)[0];
+  });
+  out["jacobian_ns"] = median_ns(
+      S, B, [&](int s) { sink = sink + wm::frame_jacobian(m, data, q[at(s)], frame)(0, 0); });
   out["forward_kinematics_ns"] = median_ns(S, B, [&](int s) {
     wm::forward_kinematics(m, data, q[at(s)]);
     sink = sink + data.p_WB.back()[0];
   });
-  out["centroidal_momentum_matrix_ns"] =
-      median_ns(S, B, [&](int s) { sink = sink + wm::centroidal_momentum_matrix(m, data, q[at(s)])(0, 0); });
+  out["centroidal_momentum_matrix_ns"] = median_ns(
+      S, B, [&](int s) { sink = sink + wm::centroidal_momentum_matrix(m, data, q[at(s)])(0, 0); });
   out["jacobian_frame"] = m.frame_name[static_cast<std::size_t>(frame)];
   if (opts.has("json")) {
     std::cout << out.dump(2) << "\n";
     return kExitOk;
   }
-  std::cout << "model " << m.name << " (" << m.source << "), nv = " << m.nv << ", median ns per call over "
-            << states << " random states:\n";
-  for (const char* key : {"mass_matrix_ns", "bias_forces_ns", "gravity_forces_ns", "forward_dynamics_ns",
-                          "jacobian_ns", "forward_kinematics_ns", "centroidal_momentum_matrix_ns"}) {
-    std::cout << "  " << std::left << std::setw(32) << key << std::right << std::setw(10) << std::fixed
-              << std::setprecision(0) << out[key].get<double>() << "\n";
+  std::cout << "model " << m.name << " (" << m.source << "), nv = " << m.nv
+            << ", median ns per call over " << states << " random states:\n";
+  for (const char* key :
+       {"mass_matrix_ns", "bias_forces_ns", "gravity_forces_ns", "forward_dynamics_ns",
+        "jacobian_ns", "forward_kinematics_ns", "centroidal_momentum_matrix_ns"}) {
+    std::cout << "  " << std::left << std::setw(32) << key << std::right << std::setw(10)
+              << std::fixed << std::setprecision(0) << out[key].get<double>() << "\n";
   }
   std::cout << "  (jacobian_ns: frame '" << out["jacobian_frame"].get<std::string>()
             << "', including the kinematics of its support)\n";

@@ -49,7 +49,8 @@ int run_list(Args args) {
     return kExitOk;
   }
   dds::Participant participant(participant_options(options));
-  std::this_thread::sleep_for(seconds(options.get_double("wait")));  // discovery has no "done" event
+  std::this_thread::sleep_for(
+      seconds(options.get_double("wait")));  // discovery has no "done" event
   for (const auto& topic : participant.discovered_topics()) {
     std::cout << topic.name << "  [" << topic.type << "]  writers: " << topic.writers
               << "  readers: " << topic.readers << "\n";
@@ -171,10 +172,12 @@ int run_hz(Args args) {
       std::swap(done, window);
     }
     const double span_s = 1e-9 * static_cast<double>(done.last_ns - done.first_ns);
-    const double rate = done.count > 1 && span_s > 0 ? static_cast<double>(done.count - 1) / span_s : 0.0;
-    std::cout << "rate: " << rate << " Hz  samples: " << done.count << "  max gap: "
-              << 1e3 * done.max_gap_s << " ms  bandwidth: "
-              << static_cast<double>(done.bytes) / window_s / 1024.0 << " KiB/s" << std::endl;
+    const double rate =
+        done.count > 1 && span_s > 0 ? static_cast<double>(done.count - 1) / span_s : 0.0;
+    std::cout << "rate: " << rate << " Hz  samples: " << done.count
+              << "  max gap: " << 1e3 * done.max_gap_s
+              << " ms  bandwidth: " << static_cast<double>(done.bytes) / window_s / 1024.0
+              << " KiB/s" << std::endl;
     if (duration_s > 0 && std::chrono::steady_clock::now() - start >= seconds(duration_s)) {
       break;
     }

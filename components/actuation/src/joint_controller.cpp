@@ -135,7 +135,7 @@ CommandResult JointController::submit(const JointCommandBatch& batch, Time now) 
   }
   for (std::size_t b = 0; b < k; ++b) {
     const auto i = static_cast<std::size_t>(scratch_index_[b]);
-    const ControlMode mode = !batch.modes.empty() ? batch.modes[b]
+    const ControlMode mode = !batch.modes.empty()  ? batch.modes[b]
                              : staged_[i].has_mode ? staged_[i].mode
                                                    : joints_[i].mode;
     const std::string& name = description_.joint_names[i];
@@ -177,8 +177,8 @@ CommandResult JointController::submit(const JointCommandBatch& batch, Time now) 
 // Quintic from (q, q̇, q̈) to (target, 0, 0) in time T (minimum jerk when starting at rest).
 void JointController::start_trajectory(Joint& j, int i, double t, double q, double dq) {
   const auto u = static_cast<std::size_t>(i);
-  const double v_max = std::min(j.speed > 0.0 ? j.speed : config_.reference_speed,
-                                description_.velocity_limit[u]);
+  const double v_max =
+      std::min(j.speed > 0.0 ? j.speed : config_.reference_speed, description_.velocity_limit[u]);
   const double delta = j.target - q;
   // rest-to-rest minimum jerk reaches its peak speed 1.875 Δ/T at T/2
   const double T = std::max(config_.min_trajectory_time, 1.875 * std::abs(delta) / v_max);
@@ -231,7 +231,8 @@ void JointController::update(Time now, Duration period, const SensorReadings& in
         j.integral = 0.0;
         j.q_r = q;  // bumpless: references start at the measured state
         j.dq_r = 0.0;
-        j.target = j.mode == ControlMode::kPosition || j.mode == ControlMode::kPositionDirect ? q : 0.0;
+        j.target =
+            j.mode == ControlMode::kPosition || j.mode == ControlMode::kPositionDirect ? q : 0.0;
         j.start_trajectory = j.mode == ControlMode::kPosition;
       }
       if (s.has_value) {

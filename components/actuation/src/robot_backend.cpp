@@ -119,8 +119,8 @@ void RobotBackend::write(Time time, Duration period) {
     const auto n = static_cast<std::size_t>(description_.n_joints());
     if (commands_.mode.size() != n || static_cast<std::size_t>(commands_.value.size()) != n) {
       throw std::invalid_argument("robot backend '" + description_.robot +
-                                  "': commands have the wrong size (expected " +
-                                  std::to_string(n) + " joints)");
+                                  "': commands have the wrong size (expected " + std::to_string(n) +
+                                  " joints)");
     }
     on_write(time, period, commands_);
     return;

@@ -17,9 +17,8 @@ AdaptiveWindowEstimator::AdaptiveWindowEstimator(Eigen::Index joints,
                                 std::to_string(params.velocity_window));
   }
   if (params.acceleration_window < 3) {
-    throw std::invalid_argument(
-        "adaptive-window: acceleration-window must be >= 3 samples, got " +
-        std::to_string(params.acceleration_window));
+    throw std::invalid_argument("adaptive-window: acceleration-window must be >= 3 samples, got " +
+                                std::to_string(params.acceleration_window));
   }
   if (!(params.threshold_rad > 0.0) || !std::isfinite(params.threshold_rad)) {
     throw std::invalid_argument("adaptive-window: threshold must be > 0 rad, got " +
@@ -88,8 +87,8 @@ double AdaptiveWindowEstimator::linear_slope(const Eigen::VectorXd& y) const {
       continue;
     }
     // Least-squares line y = a + b tau over the n newest samples.
-    const Eigen::Vector2d ab = linear_inverse_[static_cast<std::size_t>(n)] *
-                               Eigen::Vector2d(sum_y, sum_ty);
+    const Eigen::Vector2d ab =
+        linear_inverse_[static_cast<std::size_t>(n)] * Eigen::Vector2d(sum_y, sum_ty);
     for (Eigen::Index i = 0; i < n; ++i) {
       if (std::abs(y(i) - ab(0) - ab(1) * tau_(i)) > params_.threshold_rad) {
         return slope;  // window n breaks the threshold: keep the longest one that did not
@@ -115,8 +114,8 @@ double AdaptiveWindowEstimator::quadratic_curvature(const Eigen::VectorXd& y) co
       continue;
     }
     // Least-squares parabola y = a + b tau + c tau² over the n newest samples.
-    const Eigen::Vector3d abc = quadratic_inverse_[static_cast<std::size_t>(n)] *
-                                Eigen::Vector3d(sum_y, sum_ty, sum_tty);
+    const Eigen::Vector3d abc =
+        quadratic_inverse_[static_cast<std::size_t>(n)] * Eigen::Vector3d(sum_y, sum_ty, sum_tty);
     for (Eigen::Index i = 0; i < n; ++i) {
       const double ti = tau_(i);
       if (std::abs(y(i) - abc(0) - (abc(1) + abc(2) * ti) * ti) > params_.threshold_rad) {

@@ -92,8 +92,8 @@ Parameters resolve(const MethodInfo& info, const Parameters& given) {
     if (!in_range || (spec.integer && value != std::round(value))) {
       throw std::invalid_argument("method '" + info.name + "': parameter '" + spec.name +
                                   "' must be " + (spec.integer ? "an integer" : "a number") +
-                                  " in [" + format(spec.min) + ", " + format(spec.max) +
-                                  "], got " + format(value));
+                                  " in [" + format(spec.min) + ", " + format(spec.max) + "], got " +
+                                  format(value));
     }
   }
   return values;
@@ -120,12 +120,11 @@ const MethodInfo& method_info(const std::string& name) {
       return info;
     }
   }
-  throw std::invalid_argument("unknown estimation method '" + name + "' (known: " +
-                              join_names(method_names()) + ")");
+  throw std::invalid_argument("unknown estimation method '" + name +
+                              "' (known: " + join_names(method_names()) + ")");
 }
 
-std::unique_ptr<DerivativeEstimator> make_estimator(const std::string& method,
-                                                    Eigen::Index joints,
+std::unique_ptr<DerivativeEstimator> make_estimator(const std::string& method, Eigen::Index joints,
                                                     const Parameters& given) {
   const MethodInfo& info = method_info(method);
   const Parameters p = resolve(info, given);

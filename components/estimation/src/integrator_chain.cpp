@@ -12,8 +12,8 @@ constexpr double kFactorial[10] = {1, 1, 2, 6, 24, 120, 720, 5040, 40320, 362880
 
 }  // namespace
 
-IntegratorChain::IntegratorChain(const char* method, int order, double counts,
-                                 double sigma_w, double period_s)
+IntegratorChain::IntegratorChain(const char* method, int order, double counts, double sigma_w,
+                                 double period_s)
     : order_(order), period_s_(period_s) {
   const std::string name(method);
   if (order < 2 || order > kStates - 1) {

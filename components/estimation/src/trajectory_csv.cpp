@@ -81,14 +81,13 @@ JointSamples parse_joint_csv(std::istream& in, const std::string& source) {
     if (fields.size() != samples.joint_names.size() + 1) {
       throw std::runtime_error(at_line + ": expected " +
                                std::to_string(samples.joint_names.size() + 1) +
-                               " columns as in the header, found " +
-                               std::to_string(fields.size()));
+                               " columns as in the header, found " + std::to_string(fields.size()));
     }
     std::vector<double> row(fields.size());
     for (std::size_t c = 0; c < fields.size(); ++c) {
       const std::string name = c == 0 ? std::string("t") : samples.joint_names[c - 1];
-      row[c] = parse_number(fields[c], at_line + ": column " + std::to_string(c + 1) + " (" +
-                                           name + ")");
+      row[c] = parse_number(fields[c],
+                            at_line + ": column " + std::to_string(c + 1) + " (" + name + ")");
     }
     if (!std::isfinite(row[0])) {
       throw std::runtime_error(at_line + ": column 1 (t): time must be finite");
@@ -154,8 +153,7 @@ void format_derivatives_csv(std::ostream& out, const JointDerivatives& derivativ
   }
 }
 
-void write_derivatives_csv(const std::filesystem::path& path,
-                           const JointDerivatives& derivatives) {
+void write_derivatives_csv(const std::filesystem::path& path, const JointDerivatives& derivatives) {
   std::ofstream out(path);
   if (!out) {
     throw std::runtime_error(path.string() + ": cannot open for writing");

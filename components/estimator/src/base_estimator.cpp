@@ -70,7 +70,8 @@ Eigen::Matrix4d FixedLinkBaseEstimator::link_in_base(const Eigen::Ref<const Eige
 const BaseState& FixedLinkBaseEstimator::update(const Eigen::Ref<const Eigen::VectorXd>& q,
                                                 const Eigen::Ref<const Eigen::VectorXd>& dq,
                                                 const Eigen::Ref<const Eigen::VectorXd>& ddq) {
-  if (q.size() != model_.n_joints || dq.size() != model_.n_joints || ddq.size() != model_.n_joints) {
+  if (q.size() != model_.n_joints || dq.size() != model_.n_joints ||
+      ddq.size() != model_.n_joints) {
     throw std::invalid_argument("base estimate: joint vectors must have size " +
                                 std::to_string(model_.n_joints));
   }

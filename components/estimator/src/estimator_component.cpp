@@ -29,11 +29,13 @@ std::string kebab(std::string name) {
   return name;
 }
 
-Eigen::Matrix4d pose_from(const std::vector<double>& position, const std::vector<double>& quaternion) {
+Eigen::Matrix4d pose_from(const std::vector<double>& position,
+                          const std::vector<double>& quaternion) {
   Eigen::Matrix4d H = Eigen::Matrix4d::Identity();
   H.topRightCorner<3, 1>() << position[0], position[1], position[2];
   H.topLeftCorner<3, 3>() =
-      Eigen::Quaterniond(quaternion[0], quaternion[1], quaternion[2], quaternion[3]).toRotationMatrix();
+      Eigen::Quaterniond(quaternion[0], quaternion[1], quaternion[2], quaternion[3])
+          .toRotationMatrix();
   return H;
 }
 
@@ -74,17 +76,22 @@ class EstimatorComponent final : public runtime::Component {
     } else if (base == "topic") {
       base_source_ = BaseSource::topic;
     } else {
-      throw runtime::ParameterError(parameters.where("base") + ": base must be fixed, fixed_link or topic, got '" +
-                                    base + "'");
+      throw runtime::ParameterError(parameters.where("base") +
+                                    ": base must be fixed, fixed_link or topic, got '" + base +
+                                    "'");
     }
-    base_pose_ = pose_from(parameters.get<std::vector<double>>("base_position", {0.0, 0.0, 0.0}),
-                           parameters.get<std::vector<double>>("base_quaternion", {1.0, 0.0, 0.0, 0.0}));
-    const auto base_topic = parameters.get<std::string>("base_topic", dds::topics::ground_truth(robot_));
+    base_pose_ =
+        pose_from(parameters.get<std::vector<double>>("base_position", {0.0, 0.0, 0.0}),
+                  parameters.get<std::vector<double>>("base_quaternion", {1.0, 0.0, 0.0, 0.0}));
+    const auto base_topic =
+        parameters.get<std::string>("base_topic", dds::topics::ground_truth(robot_));
 
     auto& participant = *context.participant;
     description_ = std::make_unique<dds::Subscriber<wbi::msg::RobotDescription>>(
         participant, dds::topics::description(robot_), dds::qos::kLatched,
-        [this](const wbi::msg::RobotDescription&, const dds::detail::SampleInfo&) { on_description(); });
+        [this](const wbi::msg::RobotDescription&, const dds::detail::SampleInfo&) {
+          on_description();
+        });
     state_publisher_ = std::make_unique<dds::Publisher<wbi::msg::StateEstimate>>(
         participant, dds::topics::state(robot_), dds::qos::kStream);
     if (base_source_ == BaseSource::topic) {
@@ -93,7 +100,9 @@ class EstimatorComponent final : public runtime::Component {
     }
     parameter_subscriber_ = std::make_unique<dds::Subscriber<wbi::msg::EstimatorParameter>>(
         participant, dds::topics::estimator_parameters(robot_), dds::qos::kCommand,
-        [this](const wbi::msg::EstimatorParameter& p, const dds::detail::SampleInfo&) { on_parameter(p); });
+        [this](const wbi::msg::EstimatorParameter& p, const dds::detail::SampleInfo&) {
+          on_parameter(p);
+        });
     sensors_ = std::make_unique<dds::Subscriber<wbi::msg::SensorSample>>(
         participant, dds::topics::sensors(robot_), dds::qos::kStream,
         [this](const wbi::msg::SensorSample& s, const dds::detail::SampleInfo&) { on_sample(s); });
@@ -139,7 +148,8 @@ class EstimatorComponent final : public runtime::Component {
       for (const auto& name : description->sample.joint_names()) {
         names.push_back(name.to_string());
       }
-      base_estimator_ = std::make_unique<FixedLinkBaseEstimator>(urdf_, names, fixed_link_, base_pose_);
+      base_estimator_ =
+          std::make_unique<FixedLinkBaseEstimator>(urdf_, names, fixed_link_, base_pose_);
     }
     return true;
   }
@@ -212,7 +222,8 @@ class EstimatorComponent final : public runtime::Component {
         const BaseState& base = base_estimator_->update(q_, dq, ddq);
         write_pose(state.base_pose(), base.world_H_base);
         std::copy(base.velocity.data(), base.velocity.data() + 6, state.base_velocity().begin());
-        std::copy(base.acceleration.data(), base.acceleration.data() + 6, state.base_acceleration().begin());
+        std::copy(base.acceleration.data(), base.acceleration.data() + 6,
+                  state.base_acceleration().begin());
         break;
       }
       case BaseSource::topic:
@@ -230,8 +241,8 @@ class EstimatorComponent final : public runtime::Component {
     try {
       apply_parameter(parameter);
     } catch (const std::exception& e) {
-      std::cerr << "estimator of robot '" << robot_ << "': parameter '" << parameter.name().to_string()
-                << "' rejected: " << e.what() << std::endl;
+      std::cerr << "estimator of robot '" << robot_ << "': parameter '"
+                << parameter.name().to_string() << "' rejected: " << e.what() << std::endl;
     }
   }
 

@@ -186,8 +186,8 @@ class FieldReader {
   void need(std::uint64_t n, const char* field, std::size_t start) const {
     if (n > remaining()) {
       throw ParseError(start, std::string("field '") + field + "' needs " + std::to_string(n) +
-                                      " bytes but only " + std::to_string(remaining()) +
-                                      " remain in the record");
+                                  " bytes but only " + std::to_string(remaining()) +
+                                  " remain in the record");
     }
   }
 

@@ -34,7 +34,8 @@ LZ4F_preferences_t lz4_preferences(std::size_t content_size, int level) {
 
 }  // namespace
 
-Compressor::Compressor(Compression compression, int level) : compression_(compression), level_(level) {
+Compressor::Compressor(Compression compression, int level)
+    : compression_(compression), level_(level) {
   switch (compression_) {
     case Compression::none:
       break;
@@ -75,7 +76,8 @@ void Compressor::compress(std::span<const std::uint8_t> input, ByteBuffer& out) 
       const std::size_t written = ZSTD_compressCCtx(zstd_cctx(context_), out.tail(bound), bound,
                                                     input.data(), input.size(), level_);
       if (ZSTD_isError(written) != 0) {
-        throw std::runtime_error(std::string("zstd compression failed: ") + ZSTD_getErrorName(written));
+        throw std::runtime_error(std::string("zstd compression failed: ") +
+                                 ZSTD_getErrorName(written));
       }
       out.grow(written);
       return;

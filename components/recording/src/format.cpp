@@ -7,10 +7,9 @@ namespace wbi::mcap {
 
 std::string opcode_name(std::uint8_t opcode) {
   static constexpr std::array<const char*, 16> kNames{
-      nullptr,          "Header",        "Footer",          "Schema",
-      "Channel",        "Message",       "Chunk",           "MessageIndex",
-      "ChunkIndex",     "Attachment",    "AttachmentIndex", "Statistics",
-      "Metadata",       "MetadataIndex", "SummaryOffset",   "DataEnd"};
+      nullptr,    "Header",        "Footer",        "Schema",     "Channel",         "Message",
+      "Chunk",    "MessageIndex",  "ChunkIndex",    "Attachment", "AttachmentIndex", "Statistics",
+      "Metadata", "MetadataIndex", "SummaryOffset", "DataEnd"};
   if (opcode < kNames.size() && kNames[opcode] != nullptr) {
     return kNames[opcode];
   }

@@ -25,10 +25,11 @@ using detail::ByteBuffer;
 using detail::FieldReader;
 using detail::ParseError;
 
-constexpr std::uint64_t kRecordHeader = 1 + 8;                    // opcode, length
-constexpr std::uint64_t kMessageFields = 2 + 4 + 8 + 8;           // before the payload
+constexpr std::uint64_t kRecordHeader = 1 + 8;           // opcode, length
+constexpr std::uint64_t kMessageFields = 2 + 4 + 8 + 8;  // before the payload
 constexpr std::uint64_t kFooterRecord = kRecordHeader + 8 + 8 + 4;
-constexpr std::uint64_t kFooterCrcCovered = kRecordHeader + 8 + 8;  // footer bytes the summary CRC covers
+constexpr std::uint64_t kFooterCrcCovered =
+    kRecordHeader + 8 + 8;  // footer bytes the summary CRC covers
 // A chunk claiming more than this uncompressed is treated as corrupt rather
 // than allocated.
 constexpr std::uint64_t kMaxChunkUncompressed = std::uint64_t{1} << 32;
@@ -53,8 +54,9 @@ class MappedFile {
     if (::fstat(fd, &status) != 0 || !S_ISREG(status.st_mode)) {
       const int error = errno;
       ::close(fd);
-      throw std::runtime_error(path.string() + ": " +
-                               (S_ISREG(status.st_mode) ? std::strerror(error) : "not a regular file"));
+      throw std::runtime_error(
+          path.string() + ": " +
+          (S_ISREG(status.st_mode) ? std::strerror(error) : "not a regular file"));
     }
     size_ = static_cast<std::size_t>(status.st_size);
     if (size_ > 0) {
@@ -120,8 +122,9 @@ struct MessageFields {
 
 // " (at byte N of the chunk's records)" for a record in a chunk, else "".
 std::string where_text(const Where& where) {
-  return where.in_chunk ? " (at byte " + std::to_string(*where.in_chunk) + " of the chunk's records)"
-                        : std::string();
+  return where.in_chunk
+             ? " (at byte " + std::to_string(*where.in_chunk) + " of the chunk's records)"
+             : std::string();
 }
 
 MessageFields message_fields(FieldReader& f) {
@@ -201,7 +204,8 @@ struct Reader::Impl {
                                       std::to_string(*where.in_chunk) +
                                       " of the chunk's records: " + e.what());
       }
-      throw error(where.offset + kRecordHeader + e.at(), opcode_name(opcode) + " record: " + e.what());
+      throw error(where.offset + kRecordHeader + e.at(),
+                  opcode_name(opcode) + " record: " + e.what());
     }
   }
 
@@ -263,13 +267,13 @@ ChunkHeader Reader::Impl::chunk_at(std::uint64_t offset) const {
                             " runs past the end of the file (" + std::to_string(all.size()) +
                             " bytes)");
   }
-  return parse(opcode, all.subspan(offset + kRecordHeader, length), Where{offset, {}}, chunk_fields);
+  return parse(opcode, all.subspan(offset + kRecordHeader, length), Where{offset, {}},
+               chunk_fields);
 }
 
-std::span<const std::uint8_t> Reader::Impl::chunk_records(std::uint64_t chunk_offset,
-                                                          const ChunkHeader& chunk,
-                                                          ByteBuffer& buffer,
-                                                          detail::Decompressor& decompressor) const {
+std::span<const std::uint8_t> Reader::Impl::chunk_records(
+    std::uint64_t chunk_offset, const ChunkHeader& chunk, ByteBuffer& buffer,
+    detail::Decompressor& decompressor) const {
   std::span<const std::uint8_t> records = chunk.records;
   if (!chunk.compression.empty()) {
     if (chunk.uncompressed_size > kMaxChunkUncompressed) {
@@ -280,7 +284,8 @@ std::span<const std::uint8_t> Reader::Impl::chunk_records(std::uint64_t chunk_of
       const auto declared = detail::declared_size(chunk.compression, chunk.records);
       if (declared && *declared != chunk.uncompressed_size) {
         throw std::runtime_error(chunk.compression + " frame holds " + std::to_string(*declared) +
-                                 " bytes, the chunk says " + std::to_string(chunk.uncompressed_size));
+                                 " bytes, the chunk says " +
+                                 std::to_string(chunk.uncompressed_size));
       }
       buffer.resize(static_cast<std::size_t>(chunk.uncompressed_size));
       decompressor.decompress(chunk.compression, chunk.records, {buffer.data(), buffer.size()});
@@ -296,8 +301,9 @@ std::span<const std::uint8_t> Reader::Impl::chunk_records(std::uint64_t chunk_of
   if (options.validate_crcs && chunk.uncompressed_crc != 0) {
     const std::uint32_t computed = detail::crc32(0, records);
     if (computed != chunk.uncompressed_crc) {
-      throw error(chunk_offset, "Chunk record: CRC mismatch (stored " + hex32(chunk.uncompressed_crc) +
-                                    ", computed " + hex32(computed) + ")");
+      throw error(chunk_offset, "Chunk record: CRC mismatch (stored " +
+                                    hex32(chunk.uncompressed_crc) + ", computed " +
+                                    hex32(computed) + ")");
     }
   }
   return records;
@@ -406,12 +412,14 @@ void Reader::Impl::scan(std::uint64_t from, FileInfo& out, std::vector<Block>& o
       case Opcode::header:
         throw error(pos, "a second Header record");
       case Opcode::footer:
-        out.warnings.push_back("no DataEnd record before the Footer at byte " + std::to_string(pos));
+        out.warnings.push_back("no DataEnd record before the Footer at byte " +
+                               std::to_string(pos));
         stop = true;
         break;
       case Opcode::data_end: {
-        const auto crc = parse(opcode, content, Where{pos, {}},
-                               [](FieldReader& f) { return f.get<std::uint32_t>("data_section_crc"); });
+        const auto crc = parse(opcode, content, Where{pos, {}}, [](FieldReader& f) {
+          return f.get<std::uint32_t>("data_section_crc");
+        });
         check_data_crc(pos, crc);
         if (!complete) {
           out.truncated = true;
@@ -439,21 +447,22 @@ void Reader::Impl::scan(std::uint64_t from, FileInfo& out, std::vector<Block>& o
         const auto records = chunk_records(pos, chunk, buffer, decompressor);
         Block block{pos, 0, 0, true};
         bool any = false;
-        for_each_chunk_record(pos, records, [&](std::uint8_t inner, std::span<const std::uint8_t> body,
-                                                std::uint64_t at) {
-          const Where where{pos, at};
-          if (inner == as_byte(Opcode::schema)) {
-            add_schema(parse(inner, body, where, schema_fields), pos, out);
-          } else if (inner == as_byte(Opcode::channel)) {
-            add_channel(parse(inner, body, where, channel_fields), pos, out);
-          } else if (inner == as_byte(Opcode::message)) {
-            const auto m = parse(inner, body, where, message_fields);
-            count_message(m, where);
-            block.start_time = any ? std::min(block.start_time, m.log_time) : m.log_time;
-            block.end_time = any ? std::max(block.end_time, m.log_time) : m.log_time;
-            any = true;
-          }
-        });
+        for_each_chunk_record(
+            pos, records,
+            [&](std::uint8_t inner, std::span<const std::uint8_t> body, std::uint64_t at) {
+              const Where where{pos, at};
+              if (inner == as_byte(Opcode::schema)) {
+                add_schema(parse(inner, body, where, schema_fields), pos, out);
+              } else if (inner == as_byte(Opcode::channel)) {
+                add_channel(parse(inner, body, where, channel_fields), pos, out);
+              } else if (inner == as_byte(Opcode::message)) {
+                const auto m = parse(inner, body, where, message_fields);
+                count_message(m, where);
+                block.start_time = any ? std::min(block.start_time, m.log_time) : m.log_time;
+                block.end_time = any ? std::max(block.end_time, m.log_time) : m.log_time;
+                any = true;
+              }
+            });
         out_blocks.push_back(block);
         out.chunks.push_back({pos, kRecordHeader + length, chunk.start_time, chunk.end_time,
                               chunk.compression, chunk.records.size(), chunk.uncompressed_size});
@@ -499,7 +508,8 @@ bool Reader::Impl::read_summary(std::uint64_t footer_offset) {
                             Where{footer_offset, {}}, [](FieldReader& f) {
                               Footer out{};
                               out.summary_start = f.get<std::uint64_t>("summary_start");
-                              out.summary_offset_start = f.get<std::uint64_t>("summary_offset_start");
+                              out.summary_offset_start =
+                                  f.get<std::uint64_t>("summary_offset_start");
                               out.summary_crc = f.get<std::uint32_t>("summary_crc");
                               return out;
                             });
@@ -507,19 +517,20 @@ bool Reader::Impl::read_summary(std::uint64_t footer_offset) {
     return false;
   }
   if (footer.summary_start < kMagic.size() || footer.summary_start > footer_offset) {
-    throw error(footer_offset, "Footer record: summary start " + std::to_string(footer.summary_start) +
+    throw error(footer_offset, "Footer record: summary start " +
+                                   std::to_string(footer.summary_start) +
                                    " is outside the file's body");
   }
-  if (footer.summary_offset_start != 0 &&
-      (footer.summary_offset_start < footer.summary_start ||
-       footer.summary_offset_start > footer_offset)) {
+  if (footer.summary_offset_start != 0 && (footer.summary_offset_start < footer.summary_start ||
+                                           footer.summary_offset_start > footer_offset)) {
     throw error(footer_offset, "Footer record: summary offset start " +
                                    std::to_string(footer.summary_offset_start) +
                                    " is outside the summary");
   }
   if (options.validate_crcs && footer.summary_crc != 0) {
-    const std::uint32_t computed = detail::crc32(
-        0, all.subspan(footer.summary_start, footer_offset + kFooterCrcCovered - footer.summary_start));
+    const std::uint32_t computed =
+        detail::crc32(0, all.subspan(footer.summary_start,
+                                     footer_offset + kFooterCrcCovered - footer.summary_start));
     if (computed != footer.summary_crc) {
       throw error(footer.summary_start, "summary section CRC mismatch (stored " +
                                             hex32(footer.summary_crc) + ", computed " +
@@ -543,8 +554,8 @@ bool Reader::Impl::read_summary(std::uint64_t footer_offset) {
     const auto length = detail::load_le<std::uint64_t>(all.data() + pos + 1);
     if (length > end - pos - kRecordHeader) {
       throw error(pos, opcode_name(opcode) + " record length " + std::to_string(length) +
-                           " runs past the end of the summary section (byte " + std::to_string(end) +
-                           ")");
+                           " runs past the end of the summary section (byte " +
+                           std::to_string(end) + ")");
     }
     const auto content = all.subspan(pos + kRecordHeader, length);
     switch (static_cast<Opcode>(opcode)) {
@@ -593,11 +604,13 @@ bool Reader::Impl::read_summary(std::uint64_t footer_offset) {
         // One cheap look per chunk: the indexed record is a Chunk of that length.
         const std::uint8_t chunk_opcode = all[chunk.offset];
         const auto chunk_length = detail::load_le<std::uint64_t>(all.data() + chunk.offset + 1);
-        if (chunk_opcode != as_byte(Opcode::chunk) || chunk_length != chunk.length - kRecordHeader) {
+        if (chunk_opcode != as_byte(Opcode::chunk) ||
+            chunk_length != chunk.length - kRecordHeader) {
           throw error(chunk.offset, "expected the Chunk record of " + std::to_string(chunk.length) +
-                                        " bytes that the ChunkIndex at byte " + std::to_string(pos) +
-                                        " names, found a " + opcode_name(chunk_opcode) +
-                                        " record of length " + std::to_string(chunk_length));
+                                        " bytes that the ChunkIndex at byte " +
+                                        std::to_string(pos) + " names, found a " +
+                                        opcode_name(chunk_opcode) + " record of length " +
+                                        std::to_string(chunk_length));
         }
         summary.chunks.push_back(std::move(chunk));
         break;
@@ -633,7 +646,8 @@ void Reader::Impl::open() {
   info.file_size = all.size();
   // Leading magic; a file that is only a prefix of it is empty and truncated.
   const std::size_t magic_bytes = std::min<std::size_t>(all.size(), kMagic.size());
-  if (!std::equal(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(magic_bytes), kMagic.begin())) {
+  if (!std::equal(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(magic_bytes),
+                  kMagic.begin())) {
     throw error(0, "not an MCAP file (bad magic)");
   }
   if (all.size() < kMagic.size()) {
@@ -644,7 +658,8 @@ void Reader::Impl::open() {
   }
   // A complete file ends with Footer and magic.
   complete = all.size() >= 2 * kMagic.size() + kFooterRecord &&
-             std::equal(kMagic.begin(), kMagic.end(), all.end() - static_cast<std::ptrdiff_t>(kMagic.size()));
+             std::equal(kMagic.begin(), kMagic.end(),
+                        all.end() - static_cast<std::ptrdiff_t>(kMagic.size()));
   const std::uint64_t footer_offset = all.size() - kMagic.size() - kFooterRecord;
 
   // Header: profile, library.
@@ -662,8 +677,8 @@ void Reader::Impl::open() {
   }
   if (length > all.size() - pos - kRecordHeader) {
     if (complete) {
-      throw error(pos, "Header record length " + std::to_string(length) +
-                           " runs past the end of the file");
+      throw error(
+          pos, "Header record length " + std::to_string(length) + " runs past the end of the file");
     }
     info.truncated = true;
     info.warnings.push_back("file truncated: it ends at byte " + std::to_string(all.size()) +
@@ -711,12 +726,14 @@ void Reader::verify() const {
   if (said.message_count != found.message_count ||
       said.channel_message_counts != found.channel_message_counts) {
     throw r.error(0, "the Statistics record says " + std::to_string(said.message_count) +
-                         " messages, the data section holds " + std::to_string(found.message_count) +
+                         " messages, the data section holds " +
+                         std::to_string(found.message_count) +
                          " (or the per-channel counts differ)");
   }
   if (scanned.chunks.size() != r.info.chunks.size()) {
     throw r.error(0, "the summary indexes " + std::to_string(r.info.chunks.size()) +
-                         " chunks, the data section holds " + std::to_string(scanned.chunks.size()));
+                         " chunks, the data section holds " +
+                         std::to_string(scanned.chunks.size()));
   }
   for (std::size_t i = 0; i < scanned.chunks.size(); ++i) {
     if (scanned.chunks[i].offset != r.info.chunks[i].offset ||
@@ -794,8 +811,8 @@ struct MessageCursor::State {
     const auto m = reader->parse(as_byte(Opcode::message), content, where, message_fields);
     const auto channel = reader->info.channels.find(m.channel_id);
     if (channel == reader->info.channels.end()) {
-      throw reader->error(slot.offset, "Message record" + where_text(where) + ": unknown channel id " +
-                                           std::to_string(m.channel_id));
+      throw reader->error(slot.offset, "Message record" + where_text(where) +
+                                           ": unknown channel id " + std::to_string(m.channel_id));
     }
     view.channel = &channel->second;
     view.schema = nullptr;
@@ -866,20 +883,20 @@ const MessageView* MessageCursor::State::next_in_log_time_order() {
          (heap.empty() || blocks[next_block].start_time <= heap.front().log_time)) {
     const std::uint32_t index = load_next();
     Slot& slot = slots[index];
-    reader->for_each_chunk_record(slot.offset, slot.records,
-                                  [&](std::uint8_t opcode, std::span<const std::uint8_t> content,
-                                      std::uint64_t at) {
-                                    if (opcode != as_byte(Opcode::message)) {
-                                      return;
-                                    }
-                                    if (content.size() < kMessageFields) {
-                                      make_view(slot, content, at);  // throws the field error
-                                    }
-                                    const auto log_time = detail::load_le<std::uint64_t>(content.data() + 6);
-                                    heap.push_back({log_time, slot.offset, at, index});
-                                    std::push_heap(heap.begin(), heap.end(), later);
-                                    ++slot.pending;
-                                  });
+    reader->for_each_chunk_record(
+        slot.offset, slot.records,
+        [&](std::uint8_t opcode, std::span<const std::uint8_t> content, std::uint64_t at) {
+          if (opcode != as_byte(Opcode::message)) {
+            return;
+          }
+          if (content.size() < kMessageFields) {
+            make_view(slot, content, at);  // throws the field error
+          }
+          const auto log_time = detail::load_le<std::uint64_t>(content.data() + 6);
+          heap.push_back({log_time, slot.offset, at, index});
+          std::push_heap(heap.begin(), heap.end(), later);
+          ++slot.pending;
+        });
     if (slot.pending == 0) {
       free_slots.push_back(index);
     }

@@ -19,14 +19,15 @@ namespace {
 using detail::ByteBuffer;
 
 // Fixed sizes of record contents (spec field lists).
-constexpr std::size_t kRecordHeader = 1 + 8;              // opcode, length
-constexpr std::size_t kMessageFields = 2 + 4 + 8 + 8;     // channel, sequence, log and publish time
-constexpr std::size_t kMessageIndexEntry = 8 + 8;         // log_time, offset
-constexpr std::uint64_t kFooterContent = 8 + 8 + 4;       // summary start, offset start, CRC
+constexpr std::size_t kRecordHeader = 1 + 8;           // opcode, length
+constexpr std::size_t kMessageFields = 2 + 4 + 8 + 8;  // channel, sequence, log and publish time
+constexpr std::size_t kMessageIndexEntry = 8 + 8;      // log_time, offset
+constexpr std::uint64_t kFooterContent = 8 + 8 + 4;    // summary start, offset start, CRC
 
 struct ChunkIndexEntry {
   ChunkInfo chunk;
-  std::map<std::uint16_t, std::uint64_t> message_index_offsets;  // channel id -> MessageIndex offset
+  std::map<std::uint16_t, std::uint64_t>
+      message_index_offsets;               // channel id -> MessageIndex offset
   std::uint64_t message_index_length = 0;  // bytes of all MessageIndex records after the chunk
 };
 
@@ -47,13 +48,13 @@ struct Writer::Impl {
   std::FILE* file = nullptr;
   bool failed = false;  // a write failed: close() only releases the file
   Section section = Section::data;
-  std::uint64_t offset = 0;         // bytes written to the file
-  std::uint32_t data_crc = 0;       // CRC-32 of the data section so far (magic included)
-  std::uint32_t summary_crc = 0;    // CRC-32 from the summary start to the footer's CRC field
+  std::uint64_t offset = 0;       // bytes written to the file
+  std::uint32_t data_crc = 0;     // CRC-32 of the data section so far (magic included)
+  std::uint32_t summary_crc = 0;  // CRC-32 from the summary start to the footer's CRC field
   WriterStatistics written;
 
-  std::vector<Schema> schemas;    // index = id - 1
-  std::vector<Channel> channels;  // index = id - 1
+  std::vector<Schema> schemas;                        // index = id - 1
+  std::vector<Channel> channels;                      // index = id - 1
   std::vector<std::uint64_t> channel_message_counts;  // index = channel id (0 unused)
   std::uint64_t message_start_time = 0;
   std::uint64_t message_end_time = 0;
@@ -140,7 +141,8 @@ void Writer::Impl::write_chunk() {
   // Chunk: start, end, uncompressed size, uncompressed CRC, compression, records.
   scratch.clear();
   scratch.put(static_cast<std::uint8_t>(Opcode::chunk));
-  scratch.put(static_cast<std::uint64_t>(8 + 8 + 8 + 4 + 4 + compression.size() + 8 + payload.size()));
+  scratch.put(
+      static_cast<std::uint64_t>(8 + 8 + 8 + 4 + 4 + compression.size() + 8 + payload.size()));
   scratch.put(chunk_start_time);
   scratch.put(chunk_end_time);
   scratch.put(static_cast<std::uint64_t>(records.size()));
@@ -372,8 +374,10 @@ std::uint16_t Writer::add_schema(std::string_view name, std::string_view encodin
   if (w.schemas.size() >= 0xFFFF) {
     throw std::length_error(w.path.string() + ": more than 65535 schemas");
   }
-  Schema schema{static_cast<std::uint16_t>(w.schemas.size() + 1), std::string(name),
-                std::string(encoding), {data.begin(), data.end()}};
+  Schema schema{static_cast<std::uint16_t>(w.schemas.size() + 1),
+                std::string(name),
+                std::string(encoding),
+                {data.begin(), data.end()}};
   // Schema: id, name, encoding, data (uint32 length).
   w.scratch.clear();
   const auto at = w.scratch.begin_record(Opcode::schema);

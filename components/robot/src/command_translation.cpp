@@ -4,12 +4,18 @@ namespace wbi::robot {
 
 actuation::ControlMode to_mode(wbi::msg::ControlMode mode) {
   switch (mode) {
-    case wbi::msg::ControlMode::IDLE: return actuation::ControlMode::kIdle;
-    case wbi::msg::ControlMode::POSITION: return actuation::ControlMode::kPosition;
-    case wbi::msg::ControlMode::POSITION_DIRECT: return actuation::ControlMode::kPositionDirect;
-    case wbi::msg::ControlMode::VELOCITY: return actuation::ControlMode::kVelocity;
-    case wbi::msg::ControlMode::TORQUE: return actuation::ControlMode::kTorque;
-    case wbi::msg::ControlMode::PWM: return actuation::ControlMode::kPwm;
+    case wbi::msg::ControlMode::IDLE:
+      return actuation::ControlMode::kIdle;
+    case wbi::msg::ControlMode::POSITION:
+      return actuation::ControlMode::kPosition;
+    case wbi::msg::ControlMode::POSITION_DIRECT:
+      return actuation::ControlMode::kPositionDirect;
+    case wbi::msg::ControlMode::VELOCITY:
+      return actuation::ControlMode::kVelocity;
+    case wbi::msg::ControlMode::TORQUE:
+      return actuation::ControlMode::kTorque;
+    case wbi::msg::ControlMode::PWM:
+      return actuation::ControlMode::kPwm;
   }
   return actuation::ControlMode::kIdle;
 }
@@ -20,9 +26,10 @@ std::string to_batch(const wbi::msg::ActuatorCommand& command,
                      actuation::JointCommandBatch& batch) {
   const auto& joints = command.joints();
   if (command.modes().size() != joints.size() || command.references().size() != joints.size()) {
-    return "command from '" + command.controller().to_string() + "': " +
-           std::to_string(joints.size()) + " joints but " + std::to_string(command.modes().size()) +
-           " modes and " + std::to_string(command.references().size()) + " references";
+    return "command from '" + command.controller().to_string() +
+           "': " + std::to_string(joints.size()) + " joints but " +
+           std::to_string(command.modes().size()) + " modes and " +
+           std::to_string(command.references().size()) + " references";
   }
   batch.joints.resize(joints.size());
   batch.modes.resize(joints.size());

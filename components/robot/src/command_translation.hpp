@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include <wbi/actuation/joint_controller.hpp>
 #include <wbi/msg/commands.h>
+#include <wbi/actuation/joint_controller.hpp>
 
 namespace wbi::robot {
 

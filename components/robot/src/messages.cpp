@@ -52,8 +52,8 @@ void describe(const actuation::BackendDescription& description, const std::strin
   }
 }
 
-void prepare_sensor_sample(const actuation::BackendDescription& description, const std::string& robot,
-                           wbi::msg::SensorSample& sample) {
+void prepare_sensor_sample(const actuation::BackendDescription& description,
+                           const std::string& robot, wbi::msg::SensorSample& sample) {
   const auto n = description.joint_names.size();
   sample.header().robot(robot);
   sample.encoder_position().assign(n, 0.0);
@@ -80,7 +80,8 @@ void fill_sensor_sample(const actuation::SensorReadings& readings, std::uint64_t
     set(out.angular_velocity(), imu.gyro);
     set(out.linear_acceleration(), imu.accel);
   }
-  for (std::size_t i = 0; i < readings.force_torque.size() && i < sample.force_torque().size(); ++i) {
+  for (std::size_t i = 0; i < readings.force_torque.size() && i < sample.force_torque().size();
+       ++i) {
     const auto& w = readings.force_torque[i].wrench;
     set(sample.force_torque()[i].wrench().force(), w.head<3>());
     set(sample.force_torque()[i].wrench().torque(), w.tail<3>());
@@ -101,7 +102,8 @@ void fill_ground_truth(const sim::GroundTruth& truth, const std::string& robot, 
   out.base_pose().orientation().x(truth.base_orientation[1]);
   out.base_pose().orientation().y(truth.base_orientation[2]);
   out.base_pose().orientation().z(truth.base_orientation[3]);
-  std::copy(truth.base_velocity.data(), truth.base_velocity.data() + 6, out.base_velocity().begin());
+  std::copy(truth.base_velocity.data(), truth.base_velocity.data() + 6,
+            out.base_velocity().begin());
   std::copy(truth.base_acceleration.data(), truth.base_acceleration.data() + 6,
             out.base_acceleration().begin());
   out.contact_wrenches().resize(std::min<std::size_t>(truth.contact_wrenches.size(), 16));

@@ -5,9 +5,9 @@
 
 #include <string>
 
-#include <wbi/actuation/robot_backend.hpp>
 #include <wbi/msg/description.h>
 #include <wbi/msg/sensors.h>
+#include <wbi/actuation/robot_backend.hpp>
 #include <wbi/sim/sim_backend.hpp>
 
 namespace wbi::robot {
@@ -16,8 +16,8 @@ void describe(const actuation::BackendDescription& description, const std::strin
               const std::string& source, bool floating_base, wbi::msg::RobotDescription& out);
 
 // Sizes the sample's sequences for the backend's joints and sensors.
-void prepare_sensor_sample(const actuation::BackendDescription& description, const std::string& robot,
-                           wbi::msg::SensorSample& sample);
+void prepare_sensor_sample(const actuation::BackendDescription& description,
+                           const std::string& robot, wbi::msg::SensorSample& sample);
 
 void fill_sensor_sample(const actuation::SensorReadings& readings, std::uint64_t tick,
                         std::int64_t stamp_ns, wbi::msg::SensorSample& sample);

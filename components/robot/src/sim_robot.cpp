@@ -31,7 +31,8 @@ class SimRobot final : public runtime::Component {
                     const runtime::ComponentContext& context) override {
     robot_ = parameters.require<std::string>("robot");
     auto config_path = std::filesystem::path(parameters.require<std::string>("config"));
-    if (config_path.is_relative() && !parameters.file().empty() && parameters.file() != "<string>") {
+    if (config_path.is_relative() && !parameters.file().empty() &&
+        parameters.file() != "<string>") {
       config_path = std::filesystem::path(parameters.file()).parent_path() / config_path;
     }
     lockstep_ = parameters.get<bool>("lockstep", false);
@@ -50,7 +51,8 @@ class SimRobot final : public runtime::Component {
 
     sim_ = std::make_unique<sim::SimBackend>(sim::load_sim_config_file(config_path.string()));
     sim_->configure();
-    const auto& description = sim_->description();  // its robot name is the URDF's; topics use robot_
+    const auto& description =
+        sim_->description();  // its robot name is the URDF's; topics use robot_
     controller_ = std::make_unique<actuation::JointController>(description, control);
     reference_speed_.assign(description.joint_names.size(), control.reference_speed);
     answered_.clear();
@@ -65,16 +67,21 @@ class SimRobot final : public runtime::Component {
         participant, dds::topics::sensors(robot_), dds::qos::kStream);
     ground_truth_ = std::make_unique<dds::Publisher<wbi::msg::GroundTruth>>(
         participant, dds::topics::ground_truth(robot_), dds::qos::kStream);
-    clock_ = std::make_unique<dds::Publisher<wbi::msg::SimulationClock>>(participant, dds::topics::kClock,
-                                                                         dds::qos::kStream);
+    clock_ = std::make_unique<dds::Publisher<wbi::msg::SimulationClock>>(
+        participant, dds::topics::kClock, dds::qos::kStream);
     commands_ = std::make_unique<dds::Subscriber<wbi::msg::ActuatorCommand>>(
         participant, dds::topics::commands(robot_), dds::qos::kCommand,
-        [this](const wbi::msg::ActuatorCommand& c, const dds::detail::SampleInfo&) { on_command(c); });
+        [this](const wbi::msg::ActuatorCommand& c, const dds::detail::SampleInfo&) {
+          on_command(c);
+        });
     parameters_ = std::make_unique<dds::Subscriber<wbi::msg::ControlParameters>>(
         participant, dds::topics::control_parameters(robot_), dds::qos::kCommand,
-        [this](const wbi::msg::ControlParameters& p, const dds::detail::SampleInfo&) { on_parameters(p); });
+        [this](const wbi::msg::ControlParameters& p, const dds::detail::SampleInfo&) {
+          on_parameters(p);
+        });
 
-    describe(description, robot_, config_path.string(), sim_->model().floating_base, description_message_);
+    describe(description, robot_, config_path.string(), sim_->model().floating_base,
+             description_message_);
     description_->publish(description_message_);
     prepare_sensor_sample(description, robot_, sensor_message_);
   }
@@ -131,8 +138,9 @@ class SimRobot final : public runtime::Component {
   void on_command(const wbi::msg::ActuatorCommand& command) {
     std::lock_guard lock(mutex_);
     const std::string error = to_batch(command, sim_->description(), reference_speed_, batch_);
-    const auto result = error.empty() ? controller_->submit(batch_, actuation::Time(tick_stamp_ns_.load()))
-                                      : actuation::CommandResult{false, error};
+    const auto result = error.empty()
+                            ? controller_->submit(batch_, actuation::Time(tick_stamp_ns_.load()))
+                            : actuation::CommandResult{false, error};
     if (!result.ok) {
       ++rejected_;
       std::cerr << "sim_robot '" << robot_ << "': command rejected: " << result.error << std::endl;
@@ -182,13 +190,15 @@ class SimRobot final : public runtime::Component {
     if (!answered_changed_.wait_for(lock, std::chrono::duration<double>(timeout_s),
                                     [&] { return !running_ || all_answered(); })) {
       ++lockstep_timeouts_;
-      std::cerr << "sim_robot '" << robot_ << "': tick " << tick << " not answered by every controller within "
-                << timeout_s << " s: stepping on" << std::endl;
+      std::cerr << "sim_robot '" << robot_ << "': tick " << tick
+                << " not answered by every controller within " << timeout_s << " s: stepping on"
+                << std::endl;
     }
   }
 
   void run() {
-    const auto period = std::chrono::nanoseconds(static_cast<std::int64_t>(sim_->config().step * 1e9));
+    const auto period =
+        std::chrono::nanoseconds(static_cast<std::int64_t>(sim_->config().step * 1e9));
     const auto start = Clock::now();
     for (std::uint64_t tick = 0; running_; ++tick) {
       if (duration_s_ > 0.0 && sim_->time() >= duration_s_) {
@@ -234,8 +244,8 @@ class SimRobot final : public runtime::Component {
 
   std::unique_ptr<sim::SimBackend> sim_;
   std::unique_ptr<actuation::JointController> controller_;
-  std::vector<double> reference_speed_;   // [n] POSITION-mode speed per joint
-  actuation::JointCommandBatch batch_;    // reused for every command
+  std::vector<double> reference_speed_;  // [n] POSITION-mode speed per joint
+  actuation::JointCommandBatch batch_;   // reused for every command
 
   std::mutex mutex_;  // guards controller_, batch_, answered_ between DDS threads and the loop
   std::condition_variable answered_changed_;
@@ -260,8 +270,8 @@ class SimRobot final : public runtime::Component {
 }  // namespace
 
 void register_components(runtime::Registry& registry) {
-  registry.add<SimRobot>("sim_robot",
-                         "simulated robot: sensor samples, ground truth and clock out, commands in");
+  registry.add<SimRobot>(
+      "sim_robot", "simulated robot: sensor samples, ground truth and clock out, commands in");
 }
 
 }  // namespace wbi::robot

@@ -6,7 +6,8 @@ namespace {
 
 class Idle final : public Component {
  public:
-  void on_configure(const Parameters& /*parameters*/, const ComponentContext& /*context*/) override {}
+  void on_configure(const Parameters& /*parameters*/,
+                    const ComponentContext& /*context*/) override {}
 };
 
 }  // namespace

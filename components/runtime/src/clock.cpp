@@ -15,8 +15,9 @@ std::int64_t SystemClock::now_ns() const {
 }
 
 bool SystemClock::sleep_until(std::int64_t time_ns) {
-  const std::chrono::system_clock::time_point until{std::chrono::duration_cast<
-      std::chrono::system_clock::duration>(std::chrono::nanoseconds(time_ns))};
+  const std::chrono::system_clock::time_point until{
+      std::chrono::duration_cast<std::chrono::system_clock::duration>(
+          std::chrono::nanoseconds(time_ns))};
   std::unique_lock lock(mutex_);
   const std::uint64_t seen = wakes_;
   woken_.wait_until(lock, until, [&] { return wakes_ != seen; });

@@ -113,10 +113,11 @@ void Host::load(const std::string& source, bool is_text, const std::string& file
   check_keys(file, root, {"domain_id", "clock", "status_period_s", "components"}, context);
 
   dds::ParticipantOptions options;
-  options.domain_id = scalar<int>(file, root, "domain_id", options.domain_id, context,
-                                  "an integer in [0, 232]");
+  options.domain_id =
+      scalar<int>(file, root, "domain_id", options.domain_id, context, "an integer in [0, 232]");
   if (options.domain_id < 0 || options.domain_id > 232) {
-    throw ParameterError(at(file, root["domain_id"]) + ": host file: 'domain_id' must be in [0, 232]");
+    throw ParameterError(at(file, root["domain_id"]) +
+                         ": host file: 'domain_id' must be in [0, 232]");
   }
   const std::string clock = scalar<std::string>(file, root, "clock", "system", context, "a string");
   const double status_period_s =
@@ -181,8 +182,8 @@ void Host::load(const std::string& source, bool is_text, const std::string& file
   } else if (clock == "simulation") {
     clock_ = std::make_unique<SimulationClock>(*participant_);
   } else {
-    throw ParameterError(at(file, root["clock"]) + ": host file: 'clock' must be system or simulation, got '" +
-                         clock + "'");
+    throw ParameterError(at(file, root["clock"]) +
+                         ": host file: 'clock' must be system or simulation, got '" + clock + "'");
   }
   for (const auto& spec : specs) {
     RunnerOptions runner_options;
@@ -190,7 +191,7 @@ void Host::load(const std::string& source, bool is_text, const std::string& file
     runner_options.status_period_s = status_period_s;
     ComponentContext component_context{spec.name, spec.type, participant_.get(), clock_.get()};
     Entry entry{std::make_unique<ComponentRunner>(registry.create(spec.type), component_context,
-                                                 runner_options),
+                                                  runner_options),
                 Parameters(spec.parameters, file, "component '" + spec.name + "'")};
     components_.push_back(std::move(entry));
   }

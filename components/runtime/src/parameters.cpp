@@ -25,8 +25,8 @@ Parameters Parameters::from_string(const std::string& yaml, const std::string& c
   try {
     return Parameters(YAML::Load(yaml), "<string>", context);
   } catch (const YAML::Exception& error) {
-    throw ParameterError("<string>:" + std::to_string(error.mark.line + 1) + ": " + context +
-                         ": " + error.msg);
+    throw ParameterError("<string>:" + std::to_string(error.mark.line + 1) + ": " + context + ": " +
+                         error.msg);
   }
 }
 
@@ -63,19 +63,33 @@ namespace {
 template <class T>
 const char* kind();
 template <>
-const char* kind<bool>() { return "a boolean (true or false)"; }
+const char* kind<bool>() {
+  return "a boolean (true or false)";
+}
 template <>
-const char* kind<int>() { return "an integer"; }
+const char* kind<int>() {
+  return "an integer";
+}
 template <>
-const char* kind<std::int64_t>() { return "an integer"; }
+const char* kind<std::int64_t>() {
+  return "an integer";
+}
 template <>
-const char* kind<double>() { return "a number"; }
+const char* kind<double>() {
+  return "a number";
+}
 template <>
-const char* kind<std::string>() { return "a string"; }
+const char* kind<std::string>() {
+  return "a string";
+}
 template <>
-const char* kind<std::vector<double>>() { return "a list of numbers"; }
+const char* kind<std::vector<double>>() {
+  return "a list of numbers";
+}
 template <>
-const char* kind<std::vector<std::string>>() { return "a list of strings"; }
+const char* kind<std::vector<std::string>>() {
+  return "a list of strings";
+}
 
 std::string shown(const YAML::Node& node) {
   if (node.IsScalar()) {
@@ -172,14 +186,14 @@ void Parameters::reject_unknown() const {
         known += known.empty() ? "" : ", ";
         known += name;
       }
-      throw ParameterError(where(key) + ": unknown parameter '" + key + "' (known: " +
-                           (known.empty() ? std::string("none") : known) + ")");
+      throw ParameterError(where(key) + ": unknown parameter '" + key +
+                           "' (known: " + (known.empty() ? std::string("none") : known) + ")");
     }
   }
 }
 
-#define WBI_PARAMETER_TYPE(T)                                                  \
-  template T Parameters::get<T>(const std::string&, const T&) const;           \
+#define WBI_PARAMETER_TYPE(T)                                        \
+  template T Parameters::get<T>(const std::string&, const T&) const; \
   template T Parameters::require<T>(const std::string&) const;
 
 WBI_PARAMETER_TYPE(bool)

@@ -27,10 +27,10 @@ std::unique_ptr<Component> Registry::create(const std::string& type) const {
     std::string known;
     for (const auto& entry : entries_) {
       known += known.empty() ? "" : ", ";
-        known += entry.first;
+      known += entry.first;
     }
-    throw std::invalid_argument("unknown component type '" + type + "' (known: " +
-                                (known.empty() ? std::string("none") : known) + ")");
+    throw std::invalid_argument("unknown component type '" + type +
+                                "' (known: " + (known.empty() ? std::string("none") : known) + ")");
   }
   auto component = it->second.factory();
   if (!component) {

@@ -11,10 +11,14 @@ namespace wbi::runtime {
 
 const char* to_string(LifecycleState state) {
   switch (state) {
-    case LifecycleState::unconfigured: return "unconfigured";
-    case LifecycleState::inactive: return "inactive";
-    case LifecycleState::active: return "active";
-    case LifecycleState::finalized: return "finalized";
+    case LifecycleState::unconfigured:
+      return "unconfigured";
+    case LifecycleState::inactive:
+      return "inactive";
+    case LifecycleState::active:
+      return "active";
+    case LifecycleState::finalized:
+      return "finalized";
   }
   return "unknown";
 }
@@ -22,10 +26,14 @@ const char* to_string(LifecycleState state) {
 namespace {
 msg::LifecycleState to_msg(LifecycleState state) {
   switch (state) {
-    case LifecycleState::unconfigured: return msg::UNCONFIGURED;
-    case LifecycleState::inactive: return msg::INACTIVE;
-    case LifecycleState::active: return msg::ACTIVE;
-    case LifecycleState::finalized: return msg::FINALIZED;
+    case LifecycleState::unconfigured:
+      return msg::UNCONFIGURED;
+    case LifecycleState::inactive:
+      return msg::INACTIVE;
+    case LifecycleState::active:
+      return msg::ACTIVE;
+    case LifecycleState::finalized:
+      return msg::FINALIZED;
   }
   return msg::FINALIZED;
 }
@@ -87,9 +95,8 @@ void ComponentRunner::require(LifecycleState from, const char* transition) const
 }
 
 void ComponentRunner::fail(const char* transition, const std::exception& error) {
-  const std::string text =
-      "component '" + context_.instance + "' (" + context_.type + "): " + transition + " failed: " +
-      error.what();
+  const std::string text = "component '" + context_.instance + "' (" + context_.type +
+                           "): " + transition + " failed: " + error.what();
   {
     std::lock_guard lock(mutex_);
     last_error_ = error.what();
@@ -279,7 +286,8 @@ void ComponentRunner::run_heartbeat() {
     if (!first) {
       const auto woken = [&] { return status.stop || status.kicks != seen; };
       if (options_.status_period_s > 0.0) {
-        status.kicked.wait_for(lock, std::chrono::duration<double>(options_.status_period_s), woken);
+        status.kicked.wait_for(lock, std::chrono::duration<double>(options_.status_period_s),
+                               woken);
       } else {
         status.kicked.wait(lock, woken);
       }

@@ -10,9 +10,9 @@
 #include <span>
 #include <stdexcept>
 
+#include <urdf_parser/urdf_parser.h>
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
-#include <urdf_parser/urdf_parser.h>
 
 #include "wbi/model/aba.hpp"
 #include "wbi/model/com.hpp"
@@ -101,20 +101,20 @@ struct SimBackend::Impl {
   model::Model model;
   std::optional<model::Data> data;   // dynamics (substeps)
   std::optional<model::Data> sense;  // kinematics for read() and helpers
-  int n = 0;                          // joints
+  int n = 0;                         // joints
 
   // ---- per joint (size n) ----
   Eigen::VectorXd damping, friction, lower, upper, effort, m_diag, k_limit, d_limit;
   Eigen::VectorXd k_t, k_e;
   std::vector<OutputMode> cmd_mode;
   Eigen::VectorXd cmd_value;
-  Eigen::VectorXd tau;       // [nv] joint-space generalized force of the substep
-  Eigen::VectorXd tau_act;   // [n] actuator torque of the substep
-  Eigen::VectorXd pwm;       // [n] motor duty of the substep (PWM mode: the command; else the
-                             //     duty the motor model needs for the actuator torque)
+  Eigen::VectorXd tau;      // [nv] joint-space generalized force of the substep
+  Eigen::VectorXd tau_act;  // [n] actuator torque of the substep
+  Eigen::VectorXd pwm;      // [n] motor duty of the substep (PWM mode: the command; else the
+                            //     duty the motor model needs for the actuator torque)
 
   // ---- contacts ----
-  std::vector<int> contact_link_frame;  // [n_links]
+  std::vector<int> contact_link_frame;          // [n_links]
   std::vector<model::ExternalWrench> wrenches;  // [n_links + n_pushes], used prefix n_wrenches
   std::size_t n_wrenches = 0;
   bool contacts_on = false;
@@ -126,11 +126,11 @@ struct SimBackend::Impl {
   };
   std::vector<Imu> imus;
   struct Ft {
-    int frame = 0;  // sensor frame
-    std::vector<int> bodies;            // bodies with mass beyond the joint
-    std::vector<MassPiece> pieces;      // their mass beyond the joint, in body axes
-    std::vector<int> contact_links;     // contact links beyond the joint
-    std::vector<int> pushes;            // pushes on links beyond the joint
+    int frame = 0;                   // sensor frame
+    std::vector<int> bodies;         // bodies with mass beyond the joint
+    std::vector<MassPiece> pieces;   // their mass beyond the joint, in body axes
+    std::vector<int> contact_links;  // contact links beyond the joint
+    std::vector<int> pushes;         // pushes on links beyond the joint
     double force_noise = 0.0, torque_noise = 0.0;
     Vector6d wrench = Vector6d::Zero();  // latest, sensor frame
   };
@@ -218,9 +218,8 @@ actuation::BackendDescription SimBackend::on_configure() {
       }
     }
     const double stall = std::isfinite(s.effort[j]) ? s.effort[j] : 100.0;
-    s.k_t[j] = c.motor.torque_constant > 0.0
-                   ? c.motor.torque_constant
-                   : stall * c.motor.resistance / c.motor.voltage;
+    s.k_t[j] = c.motor.torque_constant > 0.0 ? c.motor.torque_constant
+                                             : stall * c.motor.resistance / c.motor.voltage;
     s.k_e[j] = c.motor.back_emf > 0.0 ? c.motor.back_emf : s.k_t[j];
   }
   s.cmd_mode.assign(static_cast<std::size_t>(n), OutputMode::kIdle);
@@ -287,8 +286,8 @@ actuation::BackendDescription SimBackend::on_configure() {
             ContactPoint cp;
             cp.link = li;
             cp.frame = s.contact_link_frame[static_cast<std::size_t>(li)];
-            cp.p_F = p + R * Vector3d(0.5 * sx * box->dim.x, 0.5 * sy * box->dim.y,
-                                      -0.5 * box->dim.z);
+            cp.p_F =
+                p + R * Vector3d(0.5 * sx * box->dim.x, 0.5 * sy * box->dim.y, -0.5 * box->dim.z);
             truth_.contact_points.push_back(cp);
           }
         }
@@ -311,8 +310,8 @@ actuation::BackendDescription SimBackend::on_configure() {
     for (const auto& cp : truth_.contact_points) {
       const auto fi = static_cast<std::size_t>(cp.frame);
       const auto b = static_cast<std::size_t>(m.frame_body[fi]);
-      const Vector3d p = s.sense->p_WB[b] + s.sense->R_WB[b] * (m.frame_R_BF[fi] * cp.p_F +
-                                                               m.frame_p_BF[fi]);
+      const Vector3d p =
+          s.sense->p_WB[b] + s.sense->R_WB[b] * (m.frame_R_BF[fi] * cp.p_F + m.frame_p_BF[fi]);
       z_min = std::min(z_min, p.z());
     }
     q[2] -= z_min;
@@ -322,16 +321,16 @@ actuation::BackendDescription SimBackend::on_configure() {
   const double h = c.step / c.substeps;
   // m_eff,j = 1/(M⁻¹)_jj: the inertia a torque on joint j alone meets, all
   // other joints and the base free (the smallest it can be).
-  const Eigen::MatrixXd M_inv = model::mass_matrix(m, *s.sense, q).llt().solve(
-      Eigen::MatrixXd::Identity(m.nv, m.nv));
+  const Eigen::MatrixXd M_inv =
+      model::mass_matrix(m, *s.sense, q).llt().solve(Eigen::MatrixXd::Identity(m.nv, m.nv));
   s.m_diag.resize(n);
   s.k_limit.resize(n);
   s.d_limit.resize(n);
   for (int j = 0; j < n; ++j) {
     const double mjj = 1.0 / M_inv(m.base_nv + j, m.base_nv + j);
     s.m_diag[j] = mjj;
-    s.k_limit[j] = c.joint_limits.stiffness > 0.0 ? c.joint_limits.stiffness
-                                                  : mjj * (0.5 / h) * (0.5 / h);
+    s.k_limit[j] =
+        c.joint_limits.stiffness > 0.0 ? c.joint_limits.stiffness : mjj * (0.5 / h) * (0.5 / h);
     s.d_limit[j] = c.joint_limits.damping > 0.0 ? c.joint_limits.damping : mjj / h;
   }
 
@@ -374,8 +373,8 @@ actuation::BackendDescription SimBackend::on_configure() {
                                   ft.joint + "' in " + c.urdf);
     }
     if (uj->type != urdf::Joint::FIXED) {
-      throw std::invalid_argument(where + ": force_torque '" + ft.name + "': joint '" +
-                                  ft.joint + "' is not a fixed joint");
+      throw std::invalid_argument(where + ": force_torque '" + ft.name + "': joint '" + ft.joint +
+                                  "' is not a fixed joint");
     }
     Impl::Ft x;
     x.frame = frame_of(uj->child_link_name, "force_torque '" + ft.name + "'");
@@ -411,8 +410,8 @@ actuation::BackendDescription SimBackend::on_configure() {
         x.pieces.emplace_back();
         it = x.bodies.end() - 1;
       }
-      x.pieces[static_cast<std::size_t>(it - x.bodies.begin())].add(
-          in.mass, c_B, R_BI * I_I * R_BI.transpose());
+      x.pieces[static_cast<std::size_t>(it - x.bodies.begin())].add(in.mass, c_B,
+                                                                    R_BI * I_I * R_BI.transpose());
     }
     for (std::size_t i = 0; i < truth_.contact_links.size(); ++i) {
       if (beyond.count(truth_.contact_links[i]) != 0) {
@@ -430,9 +429,8 @@ actuation::BackendDescription SimBackend::on_configure() {
   }
 
   s.noise = Gaussian(c.seed);
-  s.encoder_step = c.encoders.counts_per_revolution > 0.0
-                       ? 2.0 * M_PI / c.encoders.counts_per_revolution
-                       : 0.0;
+  s.encoder_step =
+      c.encoders.counts_per_revolution > 0.0 ? 2.0 * M_PI / c.encoders.counts_per_revolution : 0.0;
 
   // ---- ground truth buffers ----
   truth_.q = q;
@@ -517,7 +515,8 @@ void SimBackend::compute_contacts() {
         }
       } else {
         const Eigen::Vector2d vt = v.head<2>();
-        ft = -cc.friction * fn * vt / std::sqrt(vt.squaredNorm() + cc.slip_velocity * cc.slip_velocity);
+        ft = -cc.friction * fn * vt /
+             std::sqrt(vt.squaredNorm() + cc.slip_velocity * cc.slip_velocity);
       }
       f << ft.x(), ft.y(), fn;
       cp.in_contact = true;
@@ -580,10 +579,11 @@ void SimBackend::substep(double h) {
     }
     act = std::clamp(act, -s.effort[j], s.effort[j]);
     s.tau_act[j] = act;
-    s.pwm[j] = s.cmd_mode[static_cast<std::size_t>(j)] == OutputMode::kPwm
-                   ? std::clamp(s.cmd_value[j], -1.0, 1.0)
-                   : std::clamp((act * c.motor.resistance / s.k_t[j] + s.k_e[j] * dq) /
-                                    c.motor.voltage, -1.0, 1.0);
+    s.pwm[j] =
+        s.cmd_mode[static_cast<std::size_t>(j)] == OutputMode::kPwm
+            ? std::clamp(s.cmd_value[j], -1.0, 1.0)
+            : std::clamp((act * c.motor.resistance / s.k_t[j] + s.k_e[j] * dq) / c.motor.voltage,
+                         -1.0, 1.0);
     // limits: spring-damper beyond the limit, never pulling towards it
     double lim = 0.0;
     if (qj > s.upper[j]) {
@@ -635,8 +635,7 @@ void SimBackend::step() {
   for (int k = 0; k < config_.substeps; ++k) {
     substep(h);
     ++impl_->substep_count;
-    time_ = static_cast<double>(step_count_) * config_.step +
-            static_cast<double>(k + 1) * h;
+    time_ = static_cast<double>(step_count_) * config_.step + static_cast<double>(k + 1) * h;
   }
   ++step_count_;
   time_ = static_cast<double>(step_count_) * config_.step;

@@ -57,8 +57,8 @@ class Reader {
     }
   }
 
-  void get_positive(const YAML::Node& node, const std::string& path, const char* key,
-                    double& out, bool allow_zero) const {
+  void get_positive(const YAML::Node& node, const std::string& path, const char* key, double& out,
+                    bool allow_zero) const {
     get(node, path, key, out);
     if (!(out > 0.0 || (allow_zero && out >= 0.0))) {
       fail(join(path, key), allow_zero ? "must be >= 0" : "must be > 0");
@@ -102,10 +102,26 @@ SimConfig sim_config_from_yaml(const YAML::Node& root, const std::string& contex
   const Reader r(context);
   SimConfig c;
   r.check_keys(root, "",
-               {"urdf", "fixed_base", "step", "substeps", "gravity", "initial_joint_positions",
-                "initial_base_position", "initial_base_orientation", "place_on_ground",
-                "joint_damping", "joint_friction", "friction_velocity", "joint_limits", "contact",
-                "encoders", "motor", "imus", "force_torque", "pushes", "seed"});
+               {"urdf",
+                "fixed_base",
+                "step",
+                "substeps",
+                "gravity",
+                "initial_joint_positions",
+                "initial_base_position",
+                "initial_base_orientation",
+                "place_on_ground",
+                "joint_damping",
+                "joint_friction",
+                "friction_velocity",
+                "joint_limits",
+                "contact",
+                "encoders",
+                "motor",
+                "imus",
+                "force_torque",
+                "pushes",
+                "seed"});
   r.get(root, "", "urdf", c.urdf);
   r.get(root, "", "fixed_base", c.fixed_base);
   r.get_positive(root, "", "step", c.step, false);
@@ -140,10 +156,10 @@ SimConfig sim_config_from_yaml(const YAML::Node& root, const std::string& contex
   }
   if (const auto n = root["contact"]) {
     const std::string p = "contact";
-    r.check_keys(n, p,
-                 {"enable", "stiffness", "damping", "friction", "tangential",
-                  "tangential_stiffness", "tangential_damping", "slip_velocity", "links",
-                  "points"});
+    r.check_keys(
+        n, p,
+        {"enable", "stiffness", "damping", "friction", "tangential", "tangential_stiffness",
+         "tangential_damping", "slip_velocity", "links", "points"});
     if (const auto e = n["enable"]) {
       const auto v = e.as<std::string>();
       if (v == "auto") {
@@ -192,7 +208,8 @@ SimConfig sim_config_from_yaml(const YAML::Node& root, const std::string& contex
   }
   if (const auto n = root["encoders"]) {
     const std::string p = "encoders";
-    r.check_keys(n, p, {"counts_per_revolution", "position_noise", "velocity_noise", "torque_noise"});
+    r.check_keys(n, p,
+                 {"counts_per_revolution", "position_noise", "velocity_noise", "torque_noise"});
     r.get_positive(n, p, "counts_per_revolution", c.encoders.counts_per_revolution, true);
     r.get_positive(n, p, "position_noise", c.encoders.position_noise, true);
     r.get_positive(n, p, "velocity_noise", c.encoders.velocity_noise, true);
@@ -264,8 +281,8 @@ SimConfig parse_sim_config(std::string_view yaml_text, const std::string& contex
   try {
     root = YAML::Load(std::string(yaml_text));
   } catch (const YAML::Exception& e) {
-    throw std::invalid_argument(context + ": YAML error at line " + std::to_string(e.mark.line + 1) +
-                                ": " + e.msg);
+    throw std::invalid_argument(context + ": YAML error at line " +
+                                std::to_string(e.mark.line + 1) + ": " + e.msg);
   }
   return sim_config_from_yaml(root, context);
 }

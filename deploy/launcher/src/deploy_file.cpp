@@ -77,7 +77,8 @@ class Reader {
     }
     std::vector<std::string> out;
     for (std::size_t i = 0; i < node.size(); ++i) {
-      out.push_back(scalar<std::string>(node[i], field + "[" + std::to_string(i) + "]", "a string"));
+      out.push_back(
+          scalar<std::string>(node[i], field + "[" + std::to_string(i) + "]", "a string"));
     }
     return out;
   }
@@ -181,7 +182,8 @@ DeployFile load_deploy_file(const std::filesystem::path& path) {
                              ": YAML syntax error: " + e.msg);
   }
   if (!root.IsMap()) {
-    throw std::runtime_error(path.string() + ": a deploy file is a mapping with a 'processes' list");
+    throw std::runtime_error(path.string() +
+                             ": a deploy file is a mapping with a 'processes' list");
   }
   in.only_keys(root, "", {"domain_id", "qos_file", "environment", "summary", "processes"});
   DeployFile deploy;
@@ -194,7 +196,8 @@ DeployFile load_deploy_file(const std::filesystem::path& path) {
     deploy.domain_id = id;
   }
   if (root["qos_file"]) {
-    deploy.qos_file = path.parent_path() / in.scalar<std::string>(root["qos_file"], "qos_file", "a path");
+    deploy.qos_file =
+        path.parent_path() / in.scalar<std::string>(root["qos_file"], "qos_file", "a path");
     if (!std::filesystem::exists(deploy.qos_file)) {
       in.fail(root["qos_file"], "qos_file", "no such file: " + deploy.qos_file.string());
     }

@@ -76,8 +76,8 @@ std::string resolve_program(const std::string& program) {
 struct Managed {
   const ProcessSpec* spec = nullptr;
   pid_t pid = -1;
-  int output_fd = -1;     // read end of the pipe carrying its stdout and stderr
-  std::string partial;    // output not yet ended by a newline
+  int output_fd = -1;   // read end of the pipe carrying its stdout and stderr
+  std::string partial;  // output not yet ended by a newline
   int restarts = 0;
   std::optional<int> exit_code;  // of the last run; 128 + signal when killed
   bool stopped_by_us = false;
@@ -223,8 +223,8 @@ class Launcher {
     sigaddset(&defaults, SIGINT);
     sigaddset(&defaults, SIGTERM);
     posix_spawnattr_setsigdefault(&attributes, &defaults);
-    const int rc = posix_spawn(&process.pid, program.c_str(), &actions, &attributes, argv.data(),
-                               envp.data());
+    const int rc =
+        posix_spawn(&process.pid, program.c_str(), &actions, &attributes, argv.data(), envp.data());
     posix_spawn_file_actions_destroy(&actions);
     posix_spawnattr_destroy(&attributes);
     close(fds[1]);
@@ -322,8 +322,8 @@ class Launcher {
         continue;
       }
       const bool ok = *process.exit_code == 0;
-      say(process.spec->name + (ok ? ": exited" : ": failed with exit code " +
-                                                      std::to_string(*process.exit_code)));
+      say(process.spec->name +
+          (ok ? ": exited" : ": failed with exit code " + std::to_string(*process.exit_code)));
       if (process.spec->shutdown_on_exit) {
         say(process.spec->name + " ended: stopping the launch");
         stop = true;
@@ -357,9 +357,9 @@ class Launcher {
           }
         }
       }
-      const bool all_ended = std::all_of(processes_.begin(), processes_.end(), [](const Managed& p) {
-        return p.pid <= 0 && !p.restart_at;
-      });
+      const bool all_ended =
+          std::all_of(processes_.begin(), processes_.end(),
+                      [](const Managed& p) { return p.pid <= 0 && !p.restart_at; });
       if (all_ended) {
         say("every process has ended");
         return failed;
@@ -384,8 +384,8 @@ class Launcher {
     }
     const auto deadline = Clock::now() + seconds(options_.stop_grace_s);
     bool failed_ignored = false;
-    while (Clock::now() < deadline &&
-           std::any_of(processes_.begin(), processes_.end(), [](const Managed& p) { return p.pid > 0; })) {
+    while (Clock::now() < deadline && std::any_of(processes_.begin(), processes_.end(),
+                                                  [](const Managed& p) { return p.pid > 0; })) {
       pump_output(std::chrono::milliseconds(20));
       reap(failed_ignored);
     }
@@ -425,8 +425,9 @@ class Launcher {
     say("summary:");
     for (const auto& process : processes_) {
       std::string state = !process.exit_code ? "not started"
-                          : process.stopped_by_us ? "stopped (exit code " + std::to_string(*process.exit_code) + ")"
-                                                  : "exit code " + std::to_string(*process.exit_code);
+                          : process.stopped_by_us
+                              ? "stopped (exit code " + std::to_string(*process.exit_code) + ")"
+                              : "exit code " + std::to_string(*process.exit_code);
       if (process.restarts > 0) {
         state += ", " + std::to_string(process.restarts) + " restart(s)";
       }

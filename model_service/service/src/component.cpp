@@ -38,8 +38,8 @@ void ModelServiceComponent::on_configure(const runtime::Parameters& parameters,
   try {
     model_ = std::make_unique<model::Model>(model::load_urdf_file(urdf, options));
   } catch (const std::exception& error) {
-    throw runtime::ParameterError(parameters.where("urdf") + ": cannot load the model: " +
-                                  error.what());
+    throw runtime::ParameterError(parameters.where("urdf") +
+                                  ": cannot load the model: " + error.what());
   }
   robot_ = robot.empty() ? model_->name : robot;
   evaluator_ = std::make_unique<Evaluator>(*model_, robot_);

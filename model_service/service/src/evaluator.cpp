@@ -32,18 +32,30 @@ bool needs_frame(msg::ModelOperation operation) {
 
 const char* name_of(msg::ModelOperation operation) {
   switch (operation) {
-    case msg::MASS_MATRIX: return "MASS_MATRIX";
-    case msg::BIAS_FORCES: return "BIAS_FORCES";
-    case msg::GRAVITY_FORCES: return "GRAVITY_FORCES";
-    case msg::FRAME_POSE: return "FRAME_POSE";
-    case msg::JACOBIAN: return "JACOBIAN";
-    case msg::DJNU: return "DJNU";
-    case msg::COM: return "COM";
-    case msg::COM_JACOBIAN: return "COM_JACOBIAN";
-    case msg::CENTROIDAL_MOMENTUM: return "CENTROIDAL_MOMENTUM";
-    case msg::CENTROIDAL_MOMENTUM_MATRIX: return "CENTROIDAL_MOMENTUM_MATRIX";
-    case msg::INVERSE_DYNAMICS: return "INVERSE_DYNAMICS";
-    case msg::FORWARD_DYNAMICS: return "FORWARD_DYNAMICS";
+    case msg::MASS_MATRIX:
+      return "MASS_MATRIX";
+    case msg::BIAS_FORCES:
+      return "BIAS_FORCES";
+    case msg::GRAVITY_FORCES:
+      return "GRAVITY_FORCES";
+    case msg::FRAME_POSE:
+      return "FRAME_POSE";
+    case msg::JACOBIAN:
+      return "JACOBIAN";
+    case msg::DJNU:
+      return "DJNU";
+    case msg::COM:
+      return "COM";
+    case msg::COM_JACOBIAN:
+      return "COM_JACOBIAN";
+    case msg::CENTROIDAL_MOMENTUM:
+      return "CENTROIDAL_MOMENTUM";
+    case msg::CENTROIDAL_MOMENTUM_MATRIX:
+      return "CENTROIDAL_MOMENTUM_MATRIX";
+    case msg::INVERSE_DYNAMICS:
+      return "INVERSE_DYNAMICS";
+    case msg::FORWARD_DYNAMICS:
+      return "FORWARD_DYNAMICS";
   }
   return "unknown";
 }
@@ -137,7 +149,8 @@ bool Evaluator::load(const msg::ModelRequest& request, std::string& error) {
   }
   if (wants_id) {
     if (request.nu_dot().size() != static_cast<std::size_t>(model_.nv)) {
-      error = "INVERSE_DYNAMICS: " + size_error("nu_dot", request.nu_dot().size(), model_.nv, robot_);
+      error =
+          "INVERSE_DYNAMICS: " + size_error("nu_dot", request.nu_dot().size(), model_.nv, robot_);
       return false;
     }
     for (int k = 0; k < model_.nv; ++k) {
@@ -154,8 +167,8 @@ bool Evaluator::load(const msg::ModelRequest& request, std::string& error) {
       const auto& w = applied.wrench();
       model::ExternalWrench external;
       external.frame = it->second;
-      external.wrench << w.force().x(), w.force().y(), w.force().z(), w.torque().x(), w.torque().y(),
-          w.torque().z();
+      external.wrench << w.force().x(), w.force().y(), w.force().z(), w.torque().x(),
+          w.torque().y(), w.torque().z();
       wrenches_.push_back(external);
     }
   }
@@ -280,9 +293,9 @@ void Evaluator::evaluate(const msg::ModelRequest& request, msg::ModelReply& repl
     resize_results(reply, 0);
     reply.error() = error;
   }
-  reply.compute_ns(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                       std::chrono::steady_clock::now() - start)
-                       .count());
+  reply.compute_ns(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start)
+          .count());
 }
 
 msg::RobotDescription Evaluator::description(const std::string& urdf_path) const {

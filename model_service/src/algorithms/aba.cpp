@@ -40,7 +40,8 @@ const Eigen::VectorXd& forward_dynamics(const Model& model, Data& data, const Co
     data.pA[b].head<3>() -= w.wrench.head<3>();
     data.pA[b].tail<3>() -= w.wrench.tail<3>() + p_F.cross(w.wrench.head<3>());
   }
-  // pass 2, in: U = IA S, D = Sᵀ U, u = τ − Sᵀ pA;  Ia = IA − U Uᵀ/D;  IA_λ += Ia, pA_λ += pA + Ia c + U u/D
+  // pass 2, in: U = IA S, D = Sᵀ U, u = τ − Sᵀ pA;  Ia = IA − U Uᵀ/D;  IA_λ += Ia, pA_λ += pA + Ia
+  // c + U u/D
   for (int i = model.n_bodies - 1; i > 0; --i) {
     const int lambda = model.parent[i];
     data.U[i].noalias() = data.IA[i] * data.S[i];

@@ -35,8 +35,7 @@ const Eigen::MatrixXd& centroidal_momentum_matrix(const Model& model, Data& data
   Eigen::MatrixXd& Ag = data.Ag;
   // joint columns: I_C[j] S_j, moment taken about the CoM
   for (int j = 1; j < model.n_bodies; ++j) {
-    Ag.col(model.body_v_index[j]) =
-        force_at_point(data.I_C[j] * data.S[j], data.com);
+    Ag.col(model.body_v_index[j]) = force_at_point(data.I_C[j] * data.S[j], data.com);
   }
   // base columns: I_C[0] S_B e_k, moment about the CoM
   if (model.floating_base) {

@@ -49,8 +49,9 @@ class PdGravityComponent final : public runtime::Component {
     const int n = robot_->dofs();
     const auto check = [&](const char* key, std::size_t size) {
       if (size != static_cast<std::size_t>(n)) {
-        throw runtime::ParameterError(parameters.where(key) + ": " + key + " has " + std::to_string(size) +
-                                      " values for " + std::to_string(n) + " controlled joints");
+        throw runtime::ParameterError(parameters.where(key) + ": " + key + " has " +
+                                      std::to_string(size) + " values for " + std::to_string(n) +
+                                      " controlled joints");
       }
     };
     check("target", target.size());
@@ -88,8 +89,8 @@ class PdGravityComponent final : public runtime::Component {
     }
     if (progress_period_s_ > 0 && time_ns >= next_progress_ns_) {
       next_progress_ns_ += static_cast<std::int64_t>(progress_period_s_ * 1e9);
-      std::printf("t = %6.2f s  max joint error %.4f rad\n", 1e-9 * static_cast<double>(time_ns - start_ns_),
-                  controller_->max_error());
+      std::printf("t = %6.2f s  max joint error %.4f rad\n",
+                  1e-9 * static_cast<double>(time_ns - start_ns_), controller_->max_error());
       std::fflush(stdout);
     }
   }
@@ -118,8 +119,8 @@ class PdGravityComponent final : public runtime::Component {
 }  // namespace
 
 void register_components(runtime::Registry& registry) {
-  registry.add<PdGravityComponent>("pd_gravity",
-                                   "PD + gravity compensation through the DDS whole-body interface");
+  registry.add<PdGravityComponent>(
+      "pd_gravity", "PD + gravity compensation through the DDS whole-body interface");
 }
 
 }  // namespace wbi::controllers

@@ -45,7 +45,7 @@ struct ClientOptions {
 };
 
 template <class Req, class Rep>
-  requires RequestReply<Req, Rep>
+requires RequestReply<Req, Rep>
 class Client : private detail::ReaderSink {
  public:
   // service: the service name, e.g. topics::model_service("icub").
@@ -95,8 +95,8 @@ class Client : private detail::ReaderSink {
       return sent;
     }
     std::unique_lock lock(mutex_);
-    auto resend_at = resend_period_.count() > 0 ? std::chrono::steady_clock::now() + resend_period_
-                                                : deadline;
+    auto resend_at =
+        resend_period_.count() > 0 ? std::chrono::steady_clock::now() + resend_period_ : deadline;
     while (!replied_.wait_until(lock, std::min(deadline, resend_at), [&] { return ready_; })) {
       if (std::chrono::steady_clock::now() >= deadline) {
         awaited_ = 0;  // a late reply is dropped
@@ -188,9 +188,9 @@ class Client : private detail::ReaderSink {
     request.seq() = seq;
     if constexpr (HasDeadline<Req>) {
       request.deadline_ns() =
-          detail::system_now_ns() +
-          std::chrono::duration_cast<std::chrono::nanoseconds>(deadline - std::chrono::steady_clock::now())
-              .count();
+          detail::system_now_ns() + std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                        deadline - std::chrono::steady_clock::now())
+                                        .count();
     }
     {
       std::lock_guard lock(mutex_);

@@ -16,11 +16,11 @@ namespace wbi::dds {
 template <class T>
 struct MessageTraits;  // specialised below for every top-level message
 
-#define WBI_DDS_MESSAGE(Type)                                        \
-  template <>                                                        \
-  struct MessageTraits<wbi::msg::Type> {                             \
-    using TypeSupport = wbi::msg::Type##PubSubType;                  \
-    static constexpr const char* kName = "wbi::msg::" #Type;         \
+#define WBI_DDS_MESSAGE(Type)                                \
+  template <>                                                \
+  struct MessageTraits<wbi::msg::Type> {                     \
+    using TypeSupport = wbi::msg::Type##PubSubType;          \
+    static constexpr const char* kName = "wbi::msg::" #Type; \
   };
 
 WBI_DDS_MESSAGE(RobotDescription)
@@ -38,6 +38,8 @@ WBI_DDS_MESSAGE(SimulationClock)
 #undef WBI_DDS_MESSAGE
 
 template <class T>
-concept Message = requires { typename MessageTraits<T>::TypeSupport; };
+concept Message = requires {
+  typename MessageTraits<T>::TypeSupport;
+};
 
 }  // namespace wbi::dds

@@ -27,11 +27,11 @@ enum class Discovery {
 
 // The names of the QoS profiles in deploy/qos_profiles.xml.
 namespace qos {
-inline constexpr const char* kStream = "wbi.stream";                 // sensors, state, clock
-inline constexpr const char* kCommand = "wbi.command";               // actuator commands, parameters
-inline constexpr const char* kLatched = "wbi.latched";               // robot descriptions
-inline constexpr const char* kRequestReply = "wbi.request_reply";    // services
-inline constexpr const char* kStatus = "wbi.status";                 // heartbeats
+inline constexpr const char* kStream = "wbi.stream";               // sensors, state, clock
+inline constexpr const char* kCommand = "wbi.command";             // actuator commands, parameters
+inline constexpr const char* kLatched = "wbi.latched";             // robot descriptions
+inline constexpr const char* kRequestReply = "wbi.request_reply";  // services
+inline constexpr const char* kStatus = "wbi.status";               // heartbeats
 }  // namespace qos
 
 // WBI_DOMAIN_ID from the environment, 0 when unset. Throws std::invalid_argument

@@ -30,7 +30,9 @@ class Publisher {
 
   // Reliable profiles: waits until every matched reader acknowledged every
   // sample written so far. False on timeout.
-  bool wait_acknowledged(std::chrono::nanoseconds timeout) { return writer_.wait_acknowledged(timeout); }
+  bool wait_acknowledged(std::chrono::nanoseconds timeout) {
+    return writer_.wait_acknowledged(timeout);
+  }
 
   // Remote and local readers currently matched.
   int matched() const { return writer_.matched(); }

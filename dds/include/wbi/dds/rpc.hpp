@@ -32,11 +32,15 @@ concept RequestReply = Message<Req> && Message<Rep> && requires(Req& request, Re
 // A request that carries the caller's deadline (system clock, ns since the Unix
 // epoch, 0 for none): the server drops it when it cannot start it in time.
 template <class Req>
-concept HasDeadline = requires(Req& request) { request.deadline_ns() = std::int64_t{0}; };
+concept HasDeadline = requires(Req& request) {
+  request.deadline_ns() = std::int64_t{0};
+};
 
 // A reply with an error text: the server puts a handler's exception there.
 template <class Rep>
-concept HasErrorText = requires(Rep& reply) { reply.error() = "text"; };
+concept HasErrorText = requires(Rep& reply) {
+  reply.error() = "text";
+};
 
 namespace topics {
 inline std::string service_request(const std::string& service) { return service + "/request"; }

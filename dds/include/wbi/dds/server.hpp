@@ -66,7 +66,7 @@ struct ServerStats {
 };
 
 template <class Req, class Rep>
-  requires RequestReply<Req, Rep>
+requires RequestReply<Req, Rep>
 class Server : private detail::ReaderSink, private detail::MatchObserver {
  public:
   // Called with a request; fills reply. Runs on the worker (or DDS) thread.
@@ -84,7 +84,8 @@ class Server : private detail::ReaderSink, private detail::MatchObserver {
         reply_writer_(participant, topics::service_reply(service_),
                       new typename MessageTraits<Rep>::TypeSupport(), options.qos_profile, this),
         request_reader_(participant, topics::service_request(service_),
-                        new typename MessageTraits<Req>::TypeSupport(), options.qos_profile, *this) {
+                        new typename MessageTraits<Req>::TypeSupport(), options.qos_profile,
+                        *this) {
     worker_ = std::thread([this] { work(); });
   }
 
@@ -255,7 +256,9 @@ class Server : private detail::ReaderSink, private detail::MatchObserver {
         }
       }
       const std::uint64_t seen = held_changes_;
-      const auto woken = [&] { return stop_ || (queued_ > 0 && !running_) || held_changes_ != seen; };
+      const auto woken = [&] {
+        return stop_ || (queued_ > 0 && !running_) || held_changes_ != seen;
+      };
       if (next == INT64_MAX) {
         wake_.wait(lock, woken);
       } else {
@@ -341,10 +344,10 @@ class Server : private detail::ReaderSink, private detail::MatchObserver {
   std::vector<int> ring_;  // queued slot indices, FIFO
   std::size_t head_ = 0;
   std::size_t queued_ = 0;
-  bool running_ = false;  // a handler is running
+  bool running_ = false;            // a handler is running
   std::uint64_t held_changes_ = 0;  // +1 per newly held request
   bool stop_ = false;
-  std::vector<detail::Guid> matched_;  // client reply readers matched with reply_writer_
+  std::vector<detail::Guid> matched_;    // client reply readers matched with reply_writer_
   std::array<detail::Guid, 64> gone_{};  // the last reply readers that unmatched
   std::size_t gone_next_ = 0;
   std::size_t gone_count_ = 0;

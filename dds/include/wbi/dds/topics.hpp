@@ -10,9 +10,13 @@ inline std::string robot_topic(const std::string& robot, const char* what) {
   return "wbi/" + robot + "/" + what;
 }
 
-inline std::string description(const std::string& robot) { return robot_topic(robot, "description"); }
+inline std::string description(const std::string& robot) {
+  return robot_topic(robot, "description");
+}
 inline std::string sensors(const std::string& robot) { return robot_topic(robot, "sensors"); }
-inline std::string ground_truth(const std::string& robot) { return robot_topic(robot, "ground_truth"); }
+inline std::string ground_truth(const std::string& robot) {
+  return robot_topic(robot, "ground_truth");
+}
 inline std::string commands(const std::string& robot) { return robot_topic(robot, "commands"); }
 inline std::string control_parameters(const std::string& robot) {
   return robot_topic(robot, "control_parameters");
@@ -29,8 +33,12 @@ inline std::string model_service(const std::string& robot) { return robot_topic(
 inline std::string model_description(const std::string& robot) {
   return robot_topic(robot, "model/description");
 }
-inline std::string model_request(const std::string& robot) { return robot_topic(robot, "model/request"); }
-inline std::string model_reply(const std::string& robot) { return robot_topic(robot, "model/reply"); }
+inline std::string model_request(const std::string& robot) {
+  return robot_topic(robot, "model/request");
+}
+inline std::string model_reply(const std::string& robot) {
+  return robot_topic(robot, "model/reply");
+}
 
 inline const char* kStatus = "wbi/status";
 inline const char* kClock = "wbi/clock";

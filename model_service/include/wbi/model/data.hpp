@@ -25,20 +25,23 @@ struct Data {
   // ---- position stage: forward_kinematics() ----
   std::vector<Matrix3d> R_WB;  // [n_bodies] rotation of body i in the world
   std::vector<Vector3d> p_WB;  // [n_bodies] origin of body i in the world
-  std::vector<Vector6d> S;     // [n_bodies] motion axis of the joint of body i, world, entry 0 unused
-  std::vector<int> support;    // [n_bodies] frame_jacobian(q): bodies from the frame body to the root
+  std::vector<Vector6d> S;   // [n_bodies] motion axis of the joint of body i, world, entry 0 unused
+  std::vector<int> support;  // [n_bodies] frame_jacobian(q): bodies from the frame body to the root
 
   // ---- inertias: world_inertias() (called by crba, rnea, aba, centroidal, com) ----
   std::vector<SpatialInertia> I_W;  // [n_bodies] body inertia, world axes about world origin
-  std::vector<SpatialInertia> I_C;  // [n_bodies] composite inertia of the subtree (crba, centroidal, com)
+  std::vector<SpatialInertia>
+      I_C;  // [n_bodies] composite inertia of the subtree (crba, centroidal, com)
   Eigen::Matrix<double, 6, Eigen::Dynamic> F;  // [6×n_bodies] crba: I_C[j] S_j (col 0 unused)
   Eigen::RowVectorXd M_row;                    // [n_bodies] crba: one row of M in body order
 
   // ---- velocity / acceleration stage: forward_velocity_kinematics(), rnea, aba ----
   std::vector<Vector6d> v;  // [n_bodies] spatial velocity of body i
-  std::vector<Vector6d> a;  // [n_bodies] spatial acceleration (fvk: bias part with ν̇ = 0, no gravity;
-                            //            rnea/aba: full, gravity included as a_0 = (−g, 0))
-  std::vector<Vector6d> f;  // [n_bodies] rnea: force transmitted by the joint of body i (subtree sum)
+  std::vector<Vector6d>
+      a;  // [n_bodies] spatial acceleration (fvk: bias part with ν̇ = 0, no gravity;
+          //            rnea/aba: full, gravity included as a_0 = (−g, 0))
+  std::vector<Vector6d>
+      f;  // [n_bodies] rnea: force transmitted by the joint of body i (subtree sum)
 
   // ---- articulated-body stage: forward_dynamics() ----
   std::vector<Matrix6d> IA;  // [n_bodies] articulated inertia
@@ -49,18 +52,18 @@ struct Data {
   std::vector<double> u;     // [n_bodies] τ_i − S_iᵀ pA_i
 
   // ---- outputs ----
-  Eigen::MatrixXd M;        // [nv×nv] mass matrix, symmetric: mass_matrix()
-  Eigen::VectorXd tau;      // [nv] inverse_dynamics()
-  Eigen::VectorXd h;        // [nv] bias forces C(q,ν)ν + G(q): bias_forces()
-  Eigen::VectorXd g;        // [nv] gravity forces G(q): gravity_forces()
-  Eigen::VectorXd ddq;      // [nv] ν̇: forward_dynamics()
-  Eigen::MatrixXd J;        // [6×nv] frame Jacobian (ṗ_F, ω_F), world axes: frame_jacobian()
-  Vector6d dJnu;            // [6] J̇ν of a frame: frame_bias_acceleration()
-  Eigen::MatrixXd Ag;       // [6×nv] centroidal momentum matrix: centroidal_momentum_matrix()
-  Vector6d hg;              // [6] centroidal momentum (L, K_G), world axes: centroidal_momentum()
-  Vector3d com;             // [3] centre of mass in the world: center_of_mass(), com_jacobian(), …
-  Eigen::MatrixXd J_com;    // [3×nv] CoM Jacobian: com_jacobian()
-  Vector3d dJnu_com;        // [3] J̇_com ν: com_bias_acceleration()
+  Eigen::MatrixXd M;      // [nv×nv] mass matrix, symmetric: mass_matrix()
+  Eigen::VectorXd tau;    // [nv] inverse_dynamics()
+  Eigen::VectorXd h;      // [nv] bias forces C(q,ν)ν + G(q): bias_forces()
+  Eigen::VectorXd g;      // [nv] gravity forces G(q): gravity_forces()
+  Eigen::VectorXd ddq;    // [nv] ν̇: forward_dynamics()
+  Eigen::MatrixXd J;      // [6×nv] frame Jacobian (ṗ_F, ω_F), world axes: frame_jacobian()
+  Vector6d dJnu;          // [6] J̇ν of a frame: frame_bias_acceleration()
+  Eigen::MatrixXd Ag;     // [6×nv] centroidal momentum matrix: centroidal_momentum_matrix()
+  Vector6d hg;            // [6] centroidal momentum (L, K_G), world axes: centroidal_momentum()
+  Vector3d com;           // [3] centre of mass in the world: center_of_mass(), com_jacobian(), …
+  Eigen::MatrixXd J_com;  // [3×nv] CoM Jacobian: com_jacobian()
+  Vector3d dJnu_com;      // [3] J̇_com ν: com_bias_acceleration()
 };
 
 // A wrench applied at a frame's origin: (force, moment about the frame origin),

@@ -7,8 +7,8 @@ namespace wbi::model {
 
 // frame_jacobian — J_F [6×nv] with J_F ν = (ṗ_F, ω_F), world axes, at the frame
 // origin p_F (RBDA §4.4 eq. 4.29, columns S_k of the supporting joints, moved
-// from the world origin to p_F: (s_O + ω_k × p_F, ω_k)). Base columns: [[1, −[p_F − p_B]×], [0, 1]].
-// Pre: forward_kinematics current.  Writes: J (columns outside the support are 0).
+// from the world origin to p_F: (s_O + ω_k × p_F, ω_k)). Base columns: [[1, −[p_F − p_B]×], [0,
+// 1]]. Pre: forward_kinematics current.  Writes: J (columns outside the support are 0).
 const Eigen::MatrixXd& frame_jacobian(const Model& model, Data& data, int frame);
 
 // frame_jacobian from q — forward kinematics of the frame's supporting bodies

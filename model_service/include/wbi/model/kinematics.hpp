@@ -8,8 +8,8 @@
 namespace wbi::model {
 
 // forward_kinematics — RBDA §4.1 (eqs. 4.1–4.3) in world coordinates:
-//   R_WB[i] = R_WB[λ] R_PJ[i] R_J(q_i),  p_WB[i] = p_WB[λ] + R_WB[λ] p_PJ[i] + R_WB[λ] R_PJ[i] p_J(q_i)
-//   S[i]    = motion axis of joint i in world axes at the world origin.
+//   R_WB[i] = R_WB[λ] R_PJ[i] R_J(q_i),  p_WB[i] = p_WB[λ] + R_WB[λ] p_PJ[i] + R_WB[λ] R_PJ[i]
+//   p_J(q_i) S[i]    = motion axis of joint i in world axes at the world origin.
 // Root: (p_WB, quaternion) from q for a floating base, identity for a fixed base.
 // In:  q [nq] (checked, unit quaternion).  Writes: R_WB, p_WB, S.
 void forward_kinematics(const Model& model, Data& data, const ConstVectorRef& q);

@@ -47,15 +47,16 @@ struct Model {
   int base_nq = 7;            // 7 when floating, else 0: index of the first joint in q
 
   // ---- bodies (size n_bodies) ----
-  std::vector<int> parent;                // parent body, −1 for the root
-  std::vector<std::string> body_name;     // the URDF link that starts the body
-  std::vector<double> body_mass;          // lumped mass [kg]
-  std::vector<Vector3d> body_com;         // lumped CoM in body axes [m]
-  std::vector<Matrix3d> body_inertia_c;   // lumped rotational inertia about the CoM, body axes
+  std::vector<int> parent;                   // parent body, −1 for the root
+  std::vector<std::string> body_name;        // the URDF link that starts the body
+  std::vector<double> body_mass;             // lumped mass [kg]
+  std::vector<Vector3d> body_com;            // lumped CoM in body axes [m]
+  std::vector<Matrix3d> body_inertia_c;      // lumped rotational inertia about the CoM, body axes
   std::vector<SpatialInertia> body_inertia;  // same, as spatial inertia about the body origin
-  std::vector<int> body_joint;            // joint index of body i (−1 for the root)
-  std::vector<int> body_subtree_size;     // bodies in the subtree of i, which are i … i + size − 1
-  bool joint_order_is_body_order = true;  // joint k moves body k + 1 (false for a reordered reduced model)
+  std::vector<int> body_joint;               // joint index of body i (−1 for the root)
+  std::vector<int> body_subtree_size;  // bodies in the subtree of i, which are i … i + size − 1
+  bool joint_order_is_body_order =
+      true;  // joint k moves body k + 1 (false for a reordered reduced model)
 
   // ---- joint of body i (size n_bodies, entry 0 unused) ----
   std::vector<Matrix3d> joint_R_PJ;  // rotation of the joint frame in the parent body frame (q = 0)
@@ -72,7 +73,7 @@ struct Model {
 
   // ---- joints, in ν order (size n_joints) ----
   std::vector<std::string> joint_name;
-  std::vector<int> joint_body;   // body moved by joint k
+  std::vector<int> joint_body;     // body moved by joint k
   std::vector<int> joint_q_index;  // index in q  (= base_nq + k)
   std::vector<int> joint_v_index;  // index in ν  (= base_nv + k)
   std::vector<JointType> joint_type;
@@ -89,9 +90,9 @@ struct Model {
 
   // ---- frames (size n_frames): one per URDF link ----
   std::vector<std::string> frame_name;
-  std::vector<int> frame_body;        // body the frame is attached to
-  std::vector<Matrix3d> frame_R_BF;   // rotation of the frame in its body frame
-  std::vector<Vector3d> frame_p_BF;   // origin of the frame in its body frame
+  std::vector<int> frame_body;       // body the frame is attached to
+  std::vector<Matrix3d> frame_R_BF;  // rotation of the frame in its body frame
+  std::vector<Vector3d> frame_p_BF;  // origin of the frame in its body frame
 
   double total_mass = 0.0;  // Σ body_mass
 

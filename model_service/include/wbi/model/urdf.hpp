@@ -15,8 +15,8 @@
 //   order their joints appear in the file.
 // Errors: std::runtime_error naming the file and what is wrong (missing or
 // empty file, XML error with line, several roots or a loop, zero axis, negative
-// mass, non-physical inertia (see LoadOptions::strict_inertia), unsupported joint type); std::invalid_argument for
-// unknown joint names in the options.
+// mass, non-physical inertia (see LoadOptions::strict_inertia), unsupported joint type);
+// std::invalid_argument for unknown joint names in the options.
 #pragma once
 
 #include <map>
@@ -29,7 +29,7 @@ namespace wbi::model {
 
 struct LoadOptions {
   bool fixed_base = false;
-  std::vector<std::string> joints;                // empty: all movable joints
+  std::vector<std::string> joints;                 // empty: all movable joints
   std::map<std::string, double> locked_positions;  // for joints not kept
   // Inertia checks. Always: mass ≥ 0, finite values, ixx, iyy, izz ≥ 0.
   // strict_inertia also requires a positive semi-definite inertia satisfying the

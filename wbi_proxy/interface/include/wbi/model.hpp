@@ -26,10 +26,10 @@ class Model {
  public:
   virtual ~Model() = default;
 
-  virtual int dofs() const = 0;                     // controlled joints
-  virtual const IdList& joint_list() const = 0;     // controlled joints, in order
+  virtual int dofs() const = 0;                  // controlled joints
+  virtual const IdList& joint_list() const = 0;  // controlled joints, in order
   virtual JointLimits joint_limits(int joint) const = 0;
-  virtual const IdList& frame_list() const = 0;     // every link and frame of the URDF
+  virtual const IdList& frame_list() const = 0;                 // every link and frame of the URDF
   virtual int frame_index(const std::string& frame) const = 0;  // throws Error naming it
 
   // world_H_frame of a frame (forward kinematics).
@@ -64,8 +64,10 @@ class Model {
   virtual void centroidal_momentum_matrix(const ConstVectorRef& q, const Transform& world_H_base,
                                           MatrixRef A) = 0;
   // Centre of mass in the world (3) and its Jacobian, 3 × (6 + dofs()).
-  virtual void com(const ConstVectorRef& q, const Transform& world_H_base, Eigen::Vector3d& com) = 0;
-  virtual void com_jacobian(const ConstVectorRef& q, const Transform& world_H_base, MatrixRef J) = 0;
+  virtual void com(const ConstVectorRef& q, const Transform& world_H_base,
+                   Eigen::Vector3d& com) = 0;
+  virtual void com_jacobian(const ConstVectorRef& q, const Transform& world_H_base,
+                            MatrixRef J) = 0;
 };
 
 }  // namespace wbi

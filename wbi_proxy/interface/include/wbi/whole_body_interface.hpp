@@ -6,10 +6,9 @@
 //
 //   std::unique_ptr<wbi::WholeBodyInterface> robot = wbi::make_dds_interface(options);
 //   robot->add_joints({"shoulder", "elbow"});
-//   robot->init();                       // waits for the robot's components, names the missing ones
-//   robot->read_estimates(wbi::EstimateKind::joint_position, q);
-//   robot->gravity_forces(q, world_H_base, gravity, g);
-//   robot->set_control_reference(tau);
+//   robot->init();                       // waits for the robot's components, names the missing
+//   ones robot->read_estimates(wbi::EstimateKind::joint_position, q); robot->gravity_forces(q,
+//   world_H_base, gravity, g); robot->set_control_reference(tau);
 #pragma once
 
 #include <chrono>

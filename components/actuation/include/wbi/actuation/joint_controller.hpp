@@ -74,19 +74,19 @@ struct JointControllerConfig {
   // kd = kp/200 [s], ki = 0 (kp = 100 N·m/rad when the effort is unlimited).
   // Tune them: explicit PD at rate 1/h is stable for kd ≲ m_eff/h.
   std::vector<PidGains> gains;
-  double reference_speed = 0.5;        // POSITION default peak speed [rad/s]
-  double min_trajectory_time = 0.02;   // [s]
-  double watchdog_timeout = 0.1;       // [s]; ≤ 0 disables the watchdog
+  double reference_speed = 0.5;       // POSITION default peak speed [rad/s]
+  double min_trajectory_time = 0.02;  // [s]
+  double watchdog_timeout = 0.1;      // [s]; ≤ 0 disables the watchdog
   WatchdogAction watchdog_action = WatchdogAction::kHold;
-  double damping_gain = 0.0;           // kDamp [N·m·s/rad]; ≤ 0: the joint's kd
+  double damping_gain = 0.0;  // kDamp [N·m·s/rad]; ≤ 0: the joint's kd
 };
 
 // One command message: joints by name (empty = every joint in order).
 struct JointCommandBatch {
   std::vector<std::string> joints;
-  std::vector<ControlMode> modes;         // empty: keep modes; else one per joint
-  std::vector<double> values;             // empty: mode switch only; else one per joint
-  std::vector<double> reference_speeds;   // POSITION only; empty or one per joint [rad/s]
+  std::vector<ControlMode> modes;        // empty: keep modes; else one per joint
+  std::vector<double> values;            // empty: mode switch only; else one per joint
+  std::vector<double> reference_speeds;  // POSITION only; empty or one per joint [rad/s]
 };
 
 struct CommandResult {
@@ -95,15 +95,15 @@ struct CommandResult {
 };
 
 struct JointControlStatus {
-  std::vector<ControlMode> mode;             // [n] active mode
+  std::vector<ControlMode> mode;               // [n] active mode
   std::vector<std::uint8_t> watchdog_tripped;  // [n] 1 while tripped
-  Eigen::VectorXd position_reference;        // [n] q_r of the last tick
-  Eigen::VectorXd velocity_reference;        // [n] q̇_r of the last tick
-  Eigen::VectorXd output;                    // [n] torque or PWM sent
-  std::uint64_t watchdog_trips = 0;          // total since construction
+  Eigen::VectorXd position_reference;          // [n] q_r of the last tick
+  Eigen::VectorXd velocity_reference;          // [n] q̇_r of the last tick
+  Eigen::VectorXd output;                      // [n] torque or PWM sent
+  std::uint64_t watchdog_trips = 0;            // total since construction
   std::uint64_t accepted_batches = 0;
   std::uint64_t rejected_batches = 0;
-  std::string last_error;                    // of the last rejected batch
+  std::string last_error;  // of the last rejected batch
 };
 
 class JointController {
@@ -135,8 +135,8 @@ class JointController {
   };
   struct Joint {
     ControlMode mode = ControlMode::kIdle;
-    double target = 0.0;      // command value (position, velocity, torque, PWM)
-    double speed = 0.0;       // POSITION reference speed
+    double target = 0.0;  // command value (position, velocity, torque, PWM)
+    double speed = 0.0;   // POSITION reference speed
     double q_r = 0.0, dq_r = 0.0;
     double integral = 0.0;
     Time last_command{0};

@@ -47,11 +47,12 @@ const char* to_string(LifecycleState state);
 
 // One inertial measurement unit, in the IMU frame's axes.
 struct ImuReading {
-  Vector4d orientation{1.0, 0.0, 0.0, 0.0};  // IMU frame in the world (R_WI), unit quaternion (w, x, y, z)
-  Vector3d gyro = Vector3d::Zero();           // angular velocity [rad/s], IMU axes
-  Vector3d accel = Vector3d::Zero();          // proper acceleration p̈ − g [m/s²], IMU axes
-                                              // (at rest, level: (0, 0, +9.81))
-  Time stamp{0};                              // source stamp of the sample
+  Vector4d orientation{1.0, 0.0, 0.0,
+                       0.0};          // IMU frame in the world (R_WI), unit quaternion (w, x, y, z)
+  Vector3d gyro = Vector3d::Zero();   // angular velocity [rad/s], IMU axes
+  Vector3d accel = Vector3d::Zero();  // proper acceleration p̈ − g [m/s²], IMU axes
+                                      // (at rest, level: (0, 0, +9.81))
+  Time stamp{0};                      // source stamp of the sample
 };
 
 // One 6-axis force/torque sensor: (force [N], torque [N·m] about the sensor
@@ -83,12 +84,12 @@ struct BackendDescription {
 
 // Everything read() delivers. Sized once (resize()); read() overwrites values only.
 struct SensorReadings {
-  Eigen::VectorXd position;  // [n] encoder positions [rad] (quantised, possibly noisy)
-  Eigen::VectorXd velocity;  // [n] joint velocities [rad/s]
-  Eigen::VectorXd torque;    // [n] joint torques [N·m] (torque sensors / motor current)
-  Eigen::VectorXd pwm;       // [n] motor PWM duty cycle applied, in [−1, 1]
-  Time joint_stamp{0};       // source stamp of the joint quantities
-  std::vector<ImuReading> imus;                // [n_imus]
+  Eigen::VectorXd position;      // [n] encoder positions [rad] (quantised, possibly noisy)
+  Eigen::VectorXd velocity;      // [n] joint velocities [rad/s]
+  Eigen::VectorXd torque;        // [n] joint torques [N·m] (torque sensors / motor current)
+  Eigen::VectorXd pwm;           // [n] motor PWM duty cycle applied, in [−1, 1]
+  Time joint_stamp{0};           // source stamp of the joint quantities
+  std::vector<ImuReading> imus;  // [n_imus]
   std::vector<ForceTorqueReading> force_torque;  // [n_ft]
 
   void resize(const BackendDescription& description);

@@ -37,13 +37,13 @@ class AdaptiveWindowEstimator final : public DerivativeEstimator {
   double quadratic_curvature(const Eigen::VectorXd& y) const;
 
   AdaptiveWindowParameters params_;
-  Eigen::Index capacity_;         // max(velocity_window, acceleration_window)
-  Eigen::MatrixXd q_history_;     // (capacity × joints) ring buffer of positions, rad
-  Eigen::VectorXd dt_history_;    // (capacity) interval before each stored sample, s
-  Eigen::Index newest_ = 0;       // ring index of the newest sample
-  Eigen::Index count_ = 0;        // samples stored
-  Eigen::VectorXd tau_;           // (capacity) time of the i-th newest sample minus the newest, periods
-  Eigen::VectorXd y_;             // (capacity) one joint's positions minus the newest, newest first
+  Eigen::Index capacity_;       // max(velocity_window, acceleration_window)
+  Eigen::MatrixXd q_history_;   // (capacity × joints) ring buffer of positions, rad
+  Eigen::VectorXd dt_history_;  // (capacity) interval before each stored sample, s
+  Eigen::Index newest_ = 0;     // ring index of the newest sample
+  Eigen::Index count_ = 0;      // samples stored
+  Eigen::VectorXd tau_;  // (capacity) time of the i-th newest sample minus the newest, periods
+  Eigen::VectorXd y_;    // (capacity) one joint's positions minus the newest, newest first
   // Inverse normal matrices of the fits over the n newest samples, index n;
   // shared by all joints because they share the stamps.
   std::vector<Eigen::Matrix2d> linear_inverse_;

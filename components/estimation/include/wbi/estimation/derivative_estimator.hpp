@@ -37,7 +37,7 @@ class DerivativeEstimator {
   // Forgets the history: the next sample is treated as the first. Counters are kept.
   void reset();
 
-  const Eigen::VectorXd& velocity() const { return dq_; }      // rad/s, size joints()
+  const Eigen::VectorXd& velocity() const { return dq_; }       // rad/s, size joints()
   const Eigen::VectorXd& acceleration() const { return ddq_; }  // rad/s², size joints()
   Eigen::Index joints() const { return dq_.size(); }
   const StampCounters& stamp_counters() const { return stamps_.counters(); }
@@ -51,8 +51,8 @@ class DerivativeEstimator {
   // Restart from q alone (history forgotten). dq and ddq are already zero.
   virtual void start(const Eigen::Ref<const Eigen::VectorXd>& q) = 0;
   // The next sample, dt_s > 0 seconds after the previous used one. Writes dq and ddq.
-  virtual void step(double dt_s, const Eigen::Ref<const Eigen::VectorXd>& q,
-                    Eigen::VectorXd& dq, Eigen::VectorXd& ddq) = 0;
+  virtual void step(double dt_s, const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::VectorXd& dq,
+                    Eigen::VectorXd& ddq) = 0;
 
  private:
   StampMonitor stamps_;

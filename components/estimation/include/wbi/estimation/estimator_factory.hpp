@@ -13,18 +13,18 @@
 namespace wbi::estimation {
 
 struct ParameterSpec {
-  std::string name;        // e.g. "velocity-window"
-  std::string metavar;     // e.g. "N"
+  std::string name;     // e.g. "velocity-window"
+  std::string metavar;  // e.g. "N"
   double default_value;
-  double min;              // inclusive
-  double max;              // inclusive
+  double min;  // inclusive
+  double max;  // inclusive
   bool integer;
-  std::string help;        // one line, with the unit
+  std::string help;  // one line, with the unit
 };
 
 struct MethodInfo {
   std::string name;
-  std::string summary;                   // one line
+  std::string summary;                    // one line
   std::vector<ParameterSpec> parameters;  // including the stream parameters
 };
 
@@ -39,8 +39,7 @@ using Parameters = std::map<std::string, double>;
 // Builds the estimator `method` for `joints` joints. `given` holds the
 // parameters to change from their defaults. Throws std::invalid_argument for an
 // unknown method, a parameter the method does not have, or a value out of range.
-std::unique_ptr<DerivativeEstimator> make_estimator(const std::string& method,
-                                                    Eigen::Index joints,
+std::unique_ptr<DerivativeEstimator> make_estimator(const std::string& method, Eigen::Index joints,
                                                     const Parameters& given = {});
 
 }  // namespace wbi::estimation

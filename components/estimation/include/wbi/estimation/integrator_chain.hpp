@@ -29,8 +29,7 @@ class IntegratorChain {
 
   // order 2, 3 or 4; counts >= 2; sigma_w > 0 (σ_w, rad/s^(order+1)/√Hz);
   // period_s > 0. Throws std::invalid_argument naming `method` otherwise.
-  IntegratorChain(const char* method, int order, double counts, double sigma_w,
-                  double period_s);
+  IntegratorChain(const char* method, int order, double counts, double sigma_w, double period_s);
 
   // F for an interval of h nominal periods (scaled units).
   Matrix transition(double h) const;

@@ -11,7 +11,7 @@
 namespace wbi::estimation {
 
 struct KalmanParameters {
-  int model_order = 3;                 // 2: constant acceleration, 3: constant jerk, 4: constant snap
+  int model_order = 3;  // 2: constant acceleration, 3: constant jerk, 4: constant snap
   double resolution_counts = 16384.0;  // encoder counts per revolution (2^14)
   double process_noise = 300.0;        // σ_w, rad/s^(order+1)/√Hz
 };

@@ -50,8 +50,8 @@ class FixedLinkBaseEstimator {
   int link_ = 0;
   bool started_ = false;
   Eigen::Matrix4d world_H_link_ = Eigen::Matrix4d::Identity();
-  Eigen::VectorXd q_model_;   // [nq]
-  Eigen::VectorXd nu_;        // [nv]
+  Eigen::VectorXd q_model_;  // [nq]
+  Eigen::VectorXd nu_;       // [nv]
   BaseState state_;
 };
 

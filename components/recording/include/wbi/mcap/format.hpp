@@ -50,7 +50,7 @@ std::string opcode_name(std::uint8_t opcode);
 // and "zstd".
 enum class Compression { none, lz4, zstd };
 
-const char* compression_name(Compression compression);  // "none", "lz4", "zstd"
+const char* compression_name(Compression compression);   // "none", "lz4", "zstd"
 const char* compression_field(Compression compression);  // "", "lz4", "zstd": as in the file
 
 using KeyValues = std::map<std::string, std::string>;
@@ -58,8 +58,8 @@ using KeyValues = std::map<std::string, std::string>;
 // A message type. id 0 is reserved ("no schema").
 struct Schema {
   std::uint16_t id = 0;
-  std::string name;      // e.g. "wbi::msg::JointState"
-  std::string encoding;  // e.g. "omgidl"
+  std::string name;                // e.g. "wbi::msg::JointState"
+  std::string encoding;            // e.g. "omgidl"
   std::vector<std::uint8_t> data;  // e.g. the type's self-contained IDL text
 };
 

@@ -43,7 +43,7 @@ struct FileInfo {
   Statistics statistics;
   std::map<std::uint16_t, Schema> schemas;
   std::map<std::uint16_t, Channel> channels;
-  std::vector<ChunkInfo> chunks;  // in file order
+  std::vector<ChunkInfo> chunks;      // in file order
   std::vector<std::string> warnings;  // e.g. where a truncated file was cut
 };
 

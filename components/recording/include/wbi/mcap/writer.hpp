@@ -34,7 +34,7 @@
 namespace wbi::mcap {
 
 struct WriterOptions {
-  std::string profile = "wbi";          // Header.profile
+  std::string profile = "wbi";           // Header.profile
   std::string library = "wbi-mcap 0.1";  // Header.library
   // A chunk is closed when its uncompressed records reach this many bytes.
   std::size_t chunk_size = 1024 * 1024;

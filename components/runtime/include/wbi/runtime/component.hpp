@@ -39,10 +39,10 @@ const char* to_string(LifecycleState state);
 
 // What a component is given when it is configured.
 struct ComponentContext {
-  std::string instance;            // unique name in the deploy, e.g. "model"
-  std::string type;                // registered type, e.g. "model_service"
-  dds::Participant* participant;   // the process's participant
-  Clock* clock;                    // the time of the periodic cycle and of stamps
+  std::string instance;           // unique name in the deploy, e.g. "model"
+  std::string type;               // registered type, e.g. "model_service"
+  dds::Participant* participant;  // the process's participant
+  Clock* clock;                   // the time of the periodic cycle and of stamps
 };
 
 class Component {

@@ -22,7 +22,8 @@ class Registry {
   void add(const std::string& type, Factory factory, std::string description = "");
   template <class C>
   void add(const std::string& type, std::string description = "") {
-    add(type, [] { return std::make_unique<C>(); }, std::move(description));
+    add(
+        type, [] { return std::make_unique<C>(); }, std::move(description));
   }
 
   // Throws std::invalid_argument naming the type and listing the known ones.

@@ -24,19 +24,20 @@ class TransitionError : public std::runtime_error {
 };
 
 struct RunnerOptions {
-  double rate_hz = 0.0;         // periodic cycle rate; 0: no cycle (event-driven component)
+  double rate_hz = 0.0;          // periodic cycle rate; 0: no cycle (event-driven component)
   double status_period_s = 1.0;  // heartbeat period on wbi/status; 0: on transitions only
 };
 
 // Timing of the periodic cycle since the last activation.
 struct LoopStats {
   std::uint64_t iterations = 0;
-  std::uint64_t overruns = 0;       // cycles that ended after the next cycle's start (those ticks are skipped)
-  std::uint64_t errors = 0;         // cycles whose read/update/write threw
-  double period_mean_s = 0.0;       // measured start-to-start period
-  double period_jitter_s = 0.0;     // its standard deviation
+  std::uint64_t overruns =
+      0;  // cycles that ended after the next cycle's start (those ticks are skipped)
+  std::uint64_t errors = 0;      // cycles whose read/update/write threw
+  double period_mean_s = 0.0;    // measured start-to-start period
+  double period_jitter_s = 0.0;  // its standard deviation
   double period_max_s = 0.0;
-  double cycle_mean_s = 0.0;        // time spent in read + update + write
+  double cycle_mean_s = 0.0;  // time spent in read + update + write
   double cycle_max_s = 0.0;
 };
 

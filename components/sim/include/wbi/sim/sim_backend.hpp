@@ -34,8 +34,8 @@ using actuation::Time;
 
 // One contact point and its state.
 struct ContactPoint {
-  int link = 0;  // index into GroundTruth::contact_links
-  int frame = 0;  // model frame of the link
+  int link = 0;                                   // index into GroundTruth::contact_links
+  int frame = 0;                                  // model frame of the link
   Eigen::Vector3d p_F = Eigen::Vector3d::Zero();  // position in the link frame
   // state (ground truth)
   Eigen::Vector3d p_W = Eigen::Vector3d::Zero();      // world position
@@ -47,14 +47,15 @@ struct ContactPoint {
 
 // Exact state of the simulation, for tests and benchmarks.
 struct GroundTruth {
-  double time = 0.0;     // [s]
-  Eigen::VectorXd q;     // [nq] (base p, quaternion w,x,y,z, joints) or joints
-  Eigen::VectorXd nu;    // [nv] mixed velocity (ṗ_B, ω_B world axes, q̇)
-  Eigen::VectorXd dnu;   // [nv] ν̇ of the last substep
-  Eigen::VectorXd tau;   // [n] total joint torque of the last substep (actuators + limits + friction)
+  double time = 0.0;    // [s]
+  Eigen::VectorXd q;    // [nq] (base p, quaternion w,x,y,z, joints) or joints
+  Eigen::VectorXd nu;   // [nv] mixed velocity (ṗ_B, ω_B world axes, q̇)
+  Eigen::VectorXd dnu;  // [nv] ν̇ of the last substep
+  Eigen::VectorXd
+      tau;  // [n] total joint torque of the last substep (actuators + limits + friction)
   Eigen::VectorXd tau_actuator;  // [n] actuator torque of the last substep
   Eigen::Vector3d base_position = Eigen::Vector3d::Zero();
-  Eigen::Vector4d base_orientation{1.0, 0.0, 0.0, 0.0};  // w, x, y, z
+  Eigen::Vector4d base_orientation{1.0, 0.0, 0.0, 0.0};                             // w, x, y, z
   Eigen::Matrix<double, 6, 1> base_velocity = Eigen::Matrix<double, 6, 1>::Zero();  // (ṗ, ω), world
   Eigen::Matrix<double, 6, 1> base_acceleration = Eigen::Matrix<double, 6, 1>::Zero();  // (p̈, ω̇)
   std::vector<std::string> contact_links;  // links with contact points

@@ -23,8 +23,8 @@ struct ReaderImpl;
 
 // Metadata of a received sample.
 struct SampleInfo {
-  std::int64_t source_stamp_ns = 0;   // DDS source timestamp set by the writer
-  std::int64_t received_ns = 0;       // steady-clock time of arrival
+  std::int64_t source_stamp_ns = 0;  // DDS source timestamp set by the writer
+  std::int64_t received_ns = 0;      // steady-clock time of arrival
 };
 
 // The 16-byte RTPS GUID of an endpoint (participant prefix, then entity id).
@@ -46,7 +46,7 @@ class MatchObserver {
 class ReaderSink {
  public:
   virtual ~ReaderSink() = default;
-  virtual void* storage() = 0;                        // a T to deserialize into
+  virtual void* storage() = 0;                         // a T to deserialize into
   virtual void on_sample(const SampleInfo& info) = 0;  // storage() now holds a new sample
 };
 

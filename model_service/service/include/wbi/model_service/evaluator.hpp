@@ -19,10 +19,10 @@
 
 #include <Eigen/Core>
 
-#include <wbi/model/data.hpp>
-#include <wbi/model/model.hpp>
 #include <wbi/msg/description.h>
 #include <wbi/msg/model.h>
+#include <wbi/model/data.hpp>
+#include <wbi/model/model.hpp>
 
 namespace wbi::model_service {
 
@@ -62,9 +62,9 @@ class Evaluator {
   Eigen::VectorXd dnu_;  // [nv] nu_dot (INVERSE_DYNAMICS)
   Eigen::VectorXd tau_;  // [nv] base forces 0, then the request's joint torques (FORWARD_DYNAMICS)
   Eigen::Vector3d gravity_;
-  std::vector<model::ExternalWrench> wrenches_;  // capacity 16
-  std::vector<int> frame_ids_;                   // per operation, capacity 64
-  std::vector<msg::OperationResult> spare_;      // parked results, capacity 64
+  std::vector<model::ExternalWrench> wrenches_;       // capacity 16
+  std::vector<int> frame_ids_;                        // per operation, capacity 64
+  std::vector<msg::OperationResult> spare_;           // parked results, capacity 64
   std::unordered_map<std::string_view, int> frames_;  // views into model_.frame_name
   bool kinematics_done_ = false;  // forward_kinematics(q_) current for this request
 };
