@@ -5,6 +5,8 @@
 // with contacts, IMU, F/T sensors, a push and noise.
 #include <gtest/gtest.h>
 
+#include "allocation_counter.hpp"
+
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
@@ -12,19 +14,6 @@
 
 #include "sim_test_common.hpp"
 
-namespace {
-std::atomic<long> g_allocations{0};
-}  // namespace
-
-void* operator new(std::size_t size) {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size == 0 ? 1 : size)) {
-    return p;
-  }
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace wbi::sim::test {
 namespace {
@@ -51,7 +40,7 @@ void run_without_allocation(SimConfig c, ControlMode mode) {
   ctl.submit(batch, sim.stamp());
   tick(sim, ctl);  // first tick outside (nothing should allocate there either)
 
-  const long before = g_allocations.load();
+  const long before = wbi::test::allocation_count();
   Eigen::internal::set_is_malloc_allowed(false);
   for (int k = 0; k < 100; ++k) {
     const auto t = sim.stamp();
@@ -63,7 +52,7 @@ void run_without_allocation(SimConfig c, ControlMode mode) {
     sim.step();
   }
   Eigen::internal::set_is_malloc_allowed(true);
-  EXPECT_EQ(g_allocations.load() - before, 0) << "operator new called in the loop";
+  EXPECT_EQ(wbi::test::allocation_count() - before, 0) << "operator new called in the loop";
   EXPECT_TRUE(sim.ground_truth().q.allFinite());
 }
 
