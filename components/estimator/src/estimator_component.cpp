@@ -108,7 +108,11 @@ class EstimatorComponent final : public runtime::Component {
         [this](const wbi::msg::SensorSample& s, const dds::detail::SampleInfo&) { on_sample(s); });
   }
 
-  void on_activate() override { active_ = true; }
+  void on_activate() override {
+    std::lock_guard lock(mutex_);
+    active_ = true;
+    process_pending();
+  }
   void on_deactivate() override { active_ = false; }
 
   void on_cleanup() override {
@@ -154,23 +158,25 @@ class EstimatorComponent final : public runtime::Component {
     return true;
   }
 
-  // A sample that came before the description is kept and estimated once the
-  // description is here (a lockstep robot sends its next sample only after this one).
+  // A sample that came before activation or before the description is kept and
+  // estimated once both are there: a lockstep robot sends its next sample only
+  // after this one has been answered.
   void on_description() {
     std::lock_guard lock(mutex_);
-    if (active_ && !estimator_ && pending_ && prepare(pending_->encoder_position().size())) {
+    process_pending();
+  }
+
+  void process_pending() {  // caller holds mutex_
+    if (active_ && pending_ && (estimator_ || prepare(pending_->encoder_position().size()))) {
       estimate(*pending_);
       pending_.reset();
     }
   }
 
   void on_sample(const wbi::msg::SensorSample& sample) {
-    if (!active_) {
-      return;
-    }
     std::lock_guard lock(mutex_);
-    if (!estimator_ && !prepare(sample.encoder_position().size())) {
-      pending_ = sample;  // start-up only: the description has not arrived yet
+    if (!active_ || (!estimator_ && !prepare(sample.encoder_position().size()))) {
+      pending_ = sample;  // start-up only: not active yet, or no description yet
       return;
     }
     estimate(sample);

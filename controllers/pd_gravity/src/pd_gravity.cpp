@@ -35,9 +35,16 @@ void PdGravity::set_reference(const ConstVectorRef& q_desired) {
 
 // The paper's loop: read the state, compute the gravity bias forces, send torques.
 void PdGravity::update(ReadMode mode) {
-  robot_.read_estimates(EstimateKind::joint_position, q_, mode);
-  robot_.read_estimates(EstimateKind::joint_velocity, dq_);
-  robot_.read_base_pose(world_H_base_);
+  // q, q̇ and the base pose of one and the same estimate: a newer one may arrive
+  // between two reads, so read again until the three agree.
+  Stamp position = robot_.read_estimates(EstimateKind::joint_position, q_, mode);
+  Stamp velocity = robot_.read_estimates(EstimateKind::joint_velocity, dq_);
+  Stamp base = robot_.read_base_pose(world_H_base_);
+  while (position.seq != velocity.seq || velocity.seq != base.seq) {
+    position = robot_.read_estimates(EstimateKind::joint_position, q_);
+    velocity = robot_.read_estimates(EstimateKind::joint_velocity, dq_);
+    base = robot_.read_base_pose(world_H_base_);
+  }
   robot_.gravity_forces(q_, world_H_base_, gravity_, g_);
   tau_ = g_.tail(robot_.dofs()) - gains_.kp.cwiseProduct(q_ - q_desired_) -
          gains_.kd.cwiseProduct(dq_);

@@ -97,7 +97,7 @@ class PdGravityComponent final : public runtime::Component {
 
   void on_shutdown() override {
     if (controller_) {
-      std::printf("stale cycles: %llu\nfinal max joint error: %.6f rad\n",
+      std::printf("stale cycles: %llu\nfinal max joint error: %.9g rad\n",
                   static_cast<unsigned long long>(stale_), controller_->max_error());
       std::fflush(stdout);
     }
