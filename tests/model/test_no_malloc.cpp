@@ -16,7 +16,6 @@
 #include "test_support.hpp"
 #include "wbi/model/algorithms.hpp"
 
-
 namespace wm = wbi::model;
 
 namespace {

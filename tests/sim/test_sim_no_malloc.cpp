@@ -14,7 +14,6 @@
 
 #include "sim_test_common.hpp"
 
-
 namespace wbi::sim::test {
 namespace {
 
