@@ -230,6 +230,34 @@ TEST(SimActuation, ModeSwitchesAreAtomic) {
   EXPECT_LT((sim.ground_truth().q - kHome).cwiseAbs().maxCoeff(), 0.03);
 }
 
+// Joints by index (what the wire carries) act like joints by name, and are checked.
+TEST(SimActuation, JointsByIndex) {
+  SimBackend sim(arm_config(true));
+  sim.configure();
+  sim.activate();
+  JointController ctl(sim.description(), arm_control());
+  JointCommandBatch by_index;
+  by_index.joint_indices = {6, 1};
+  by_index.modes = {ControlMode::kTorque, ControlMode::kPositionDirect};
+  ASSERT_TRUE(ctl.submit(by_index, sim.stamp()).ok);
+  tick(sim, ctl);
+  EXPECT_EQ(ctl.status().mode[6], ControlMode::kTorque);
+  EXPECT_EQ(ctl.status().mode[1], ControlMode::kPositionDirect);
+  EXPECT_EQ(ctl.status().mode[0], ControlMode::kIdle);
+
+  by_index.joint_indices = {6, 7};
+  auto r = ctl.submit(by_index, sim.stamp());
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("joint index 7 out of range"), std::string::npos) << r.error;
+  by_index.joint_indices = {2, 2};
+  r = ctl.submit(by_index, sim.stamp());
+  EXPECT_NE(r.error.find("'joint_3' appears twice"), std::string::npos) << r.error;
+  by_index.joint_indices = {2, 3};
+  by_index.joints = {"joint_3", "joint_4"};
+  r = ctl.submit(by_index, sim.stamp());
+  EXPECT_NE(r.error.find("both by name and by index"), std::string::npos) << r.error;
+}
+
 // PWM through the DC-motor model: τ = k_t (V pwm − k_e q̇)/R, k_t = k_e = effort·R/V.
 TEST(SimActuation, PwmDrivesTheMotorModel) {
   SimBackend sim(arm_config(true));

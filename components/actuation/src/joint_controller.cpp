@@ -98,8 +98,14 @@ CommandResult JointController::submit(const JointCommandBatch& batch, Time now) 
     status_.last_error = error;
     return CommandResult{false, std::move(error)};
   };
-  const bool all = batch.joints.empty();
-  const std::size_t k = all ? static_cast<std::size_t>(n_) : batch.joints.size();
+  const bool by_index = !batch.joint_indices.empty();
+  if (by_index && !batch.joints.empty()) {
+    return reject("command names joints both by name and by index");
+  }
+  const bool all = !by_index && batch.joints.empty();
+  const std::size_t k = all        ? static_cast<std::size_t>(n_)
+                        : by_index ? batch.joint_indices.size()
+                                   : batch.joints.size();
   if (k > static_cast<std::size_t>(n_)) {
     return reject("command names " + std::to_string(k) + " joints, the robot has " +
                   std::to_string(n_));
@@ -122,13 +128,20 @@ CommandResult JointController::submit(const JointCommandBatch& batch, Time now) 
   }
   // resolve names, reject unknown and repeated joints
   for (std::size_t b = 0; b < k; ++b) {
-    const int i = all ? static_cast<int>(b) : find(batch.joints[b]);
+    const int i = all        ? static_cast<int>(b)
+                  : by_index ? batch.joint_indices[b]
+                             : find(batch.joints[b]);
+    if (by_index && (i < 0 || i >= n_)) {
+      return reject("joint index " + std::to_string(i) + " out of range (the robot has " +
+                    std::to_string(n_) + " joints)");
+    }
     if (i < 0) {
       return reject("unknown joint '" + batch.joints[b] + "'");
     }
     for (std::size_t e = 0; e < b; ++e) {
       if (scratch_index_[e] == i) {
-        return reject("joint '" + batch.joints[b] + "' appears twice");
+        return reject("joint '" + description_.joint_names[static_cast<std::size_t>(i)] +
+                      "' appears twice");
       }
     }
     scratch_index_[b] = i;

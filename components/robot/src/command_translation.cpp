@@ -21,7 +21,6 @@ actuation::ControlMode to_mode(wbi::msg::ControlMode mode) {
 }
 
 std::string to_batch(const wbi::msg::ActuatorCommand& command,
-                     const actuation::BackendDescription& description,
                      const std::vector<double>& reference_speed,
                      actuation::JointCommandBatch& batch) {
   const auto& joints = command.joints();
@@ -31,20 +30,16 @@ std::string to_batch(const wbi::msg::ActuatorCommand& command,
            std::to_string(command.modes().size()) + " modes and " +
            std::to_string(command.references().size()) + " references";
   }
-  batch.joints.resize(joints.size());
+  batch.joint_indices.resize(joints.size());  // indices: the controller checks their range
   batch.modes.resize(joints.size());
   batch.values.resize(joints.size());
   batch.reference_speeds.resize(joints.size());
   for (std::size_t k = 0; k < joints.size(); ++k) {
-    if (joints[k] >= description.joint_names.size()) {
-      return "command from '" + command.controller().to_string() + "': joint index " +
-             std::to_string(joints[k]) + " out of range (robot '" + description.robot + "' has " +
-             std::to_string(description.joint_names.size()) + " joints)";
-    }
-    batch.joints[k] = description.joint_names[joints[k]];
+    batch.joint_indices[k] = joints[k];
     batch.modes[k] = to_mode(command.modes()[k]);
     batch.values[k] = command.references()[k];
-    batch.reference_speeds[k] = reference_speed[joints[k]];
+    batch.reference_speeds[k] =
+        joints[k] < reference_speed.size() ? reference_speed[joints[k]] : reference_speed.front();
   }
   return {};
 }

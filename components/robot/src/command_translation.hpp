@@ -9,10 +9,10 @@
 
 namespace wbi::robot {
 
-// Fills batch from command; returns an error text (empty when valid). Joint
-// indices out of range and sizes that disagree are errors: nothing is applied.
+// Fills batch from command (joints by index: no name lookup per command);
+// returns an error text when the sizes disagree, else empty. The joint
+// controller checks the indices; on any error nothing is applied.
 std::string to_batch(const wbi::msg::ActuatorCommand& command,
-                     const actuation::BackendDescription& description,
                      const std::vector<double>& reference_speed,
                      actuation::JointCommandBatch& batch);
 

@@ -137,7 +137,7 @@ class SimRobot final : public runtime::Component {
   // Runs on a DDS thread: stages the command for the next tick; never throws into DDS.
   void on_command(const wbi::msg::ActuatorCommand& command) {
     std::lock_guard lock(mutex_);
-    const std::string error = to_batch(command, sim_->description(), reference_speed_, batch_);
+    const std::string error = to_batch(command, reference_speed_, batch_);
     const auto result = error.empty()
                             ? controller_->submit(batch_, actuation::Time(tick_stamp_ns_.load()))
                             : actuation::CommandResult{false, error};

@@ -81,9 +81,12 @@ struct JointControllerConfig {
   double damping_gain = 0.0;  // kDamp [N·m·s/rad]; ≤ 0: the joint's kd
 };
 
-// One command message: joints by name (empty = every joint in order).
+// One command message: joints by name, or by index in the description's order
+// (what the wire carries: no name lookup per command); both empty = every joint
+// in order.
 struct JointCommandBatch {
   std::vector<std::string> joints;
+  std::vector<int> joint_indices;        // alternative to joints (give one or the other)
   std::vector<ControlMode> modes;        // empty: keep modes; else one per joint
   std::vector<double> values;            // empty: mode switch only; else one per joint
   std::vector<double> reference_speeds;  // POSITION only; empty or one per joint [rad/s]
