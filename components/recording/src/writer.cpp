@@ -40,6 +40,30 @@ struct MetadataIndexEntry {
 // Which running CRC the bytes written count towards.
 enum class Section { data, data_end, summary };
 
+// Schema: id, name, encoding, data (uint32 length). Written in the data section
+// when added and again in the summary.
+void encode_schema(ByteBuffer& out, const Schema& schema) {
+  out.clear();
+  const auto at = out.begin_record(Opcode::schema);
+  out.put(schema.id);
+  out.put_string(schema.name);
+  out.put_string(schema.encoding);
+  out.put_bytes32(schema.data);
+  out.end_record(at);
+}
+
+// Channel: id, schema id, topic, message encoding, metadata. Likewise.
+void encode_channel(ByteBuffer& out, const Channel& channel) {
+  out.clear();
+  const auto at = out.begin_record(Opcode::channel);
+  out.put(channel.id);
+  out.put(channel.schema_id);
+  out.put_string(channel.topic);
+  out.put_string(channel.message_encoding);
+  out.put_key_values(channel.metadata);
+  out.end_record(at);
+}
+
 }  // namespace
 
 struct Writer::Impl {
@@ -210,26 +234,13 @@ void Writer::Impl::write_summary_and_footer() {
 
   write_group(Opcode::schema, [&] {
     for (const auto& schema : schemas) {
-      scratch.clear();
-      const auto at = scratch.begin_record(Opcode::schema);
-      scratch.put(schema.id);
-      scratch.put_string(schema.name);
-      scratch.put_string(schema.encoding);
-      scratch.put_bytes32(schema.data);
-      scratch.end_record(at);
+      encode_schema(scratch, schema);
       write_scratch();
     }
   });
   write_group(Opcode::channel, [&] {
     for (const auto& channel : channels) {
-      scratch.clear();
-      const auto at = scratch.begin_record(Opcode::channel);
-      scratch.put(channel.id);
-      scratch.put(channel.schema_id);
-      scratch.put_string(channel.topic);
-      scratch.put_string(channel.message_encoding);
-      scratch.put_key_values(channel.metadata);
-      scratch.end_record(at);
+      encode_channel(scratch, channel);
       write_scratch();
     }
   });
@@ -378,14 +389,7 @@ std::uint16_t Writer::add_schema(std::string_view name, std::string_view encodin
                 std::string(name),
                 std::string(encoding),
                 {data.begin(), data.end()}};
-  // Schema: id, name, encoding, data (uint32 length).
-  w.scratch.clear();
-  const auto at = w.scratch.begin_record(Opcode::schema);
-  w.scratch.put(schema.id);
-  w.scratch.put_string(schema.name);
-  w.scratch.put_string(schema.encoding);
-  w.scratch.put_bytes32(schema.data);
-  w.scratch.end_record(at);
+  encode_schema(w.scratch, schema);
   w.write_scratch();
   w.schemas.push_back(std::move(schema));
   return w.schemas.back().id;
@@ -405,15 +409,7 @@ std::uint16_t Writer::add_channel(std::uint16_t schema_id, std::string_view topi
   }
   Channel channel{static_cast<std::uint16_t>(w.channels.size() + 1), schema_id, std::string(topic),
                   std::string(message_encoding), metadata};
-  // Channel: id, schema id, topic, message encoding, metadata.
-  w.scratch.clear();
-  const auto at = w.scratch.begin_record(Opcode::channel);
-  w.scratch.put(channel.id);
-  w.scratch.put(channel.schema_id);
-  w.scratch.put_string(channel.topic);
-  w.scratch.put_string(channel.message_encoding);
-  w.scratch.put_key_values(channel.metadata);
-  w.scratch.end_record(at);
+  encode_channel(w.scratch, channel);
   w.write_scratch();
   w.channels.push_back(std::move(channel));
   w.channel_message_counts.push_back(0);
