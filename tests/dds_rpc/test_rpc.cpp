@@ -432,7 +432,9 @@ TEST(Rpc, ConcurrentClientsNeverGetEachOthersReplies) {
   for (auto& result : results) {
     EXPECT_EQ(result.get(), "");
   }
-  EXPECT_EQ(server.stats().answered, static_cast<std::uint64_t>(kClients * kCalls));
+  // A call resends its request after 100 ms without a reply (client.hpp), so under
+  // load the server may answer a request twice; every call got its own reply above.
+  EXPECT_GE(server.stats().answered, static_cast<std::uint64_t>(kClients * kCalls));
 }
 
 }  // namespace
