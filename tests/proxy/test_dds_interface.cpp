@@ -169,9 +169,16 @@ TEST(DdsInterface, CommandsCarryTheRobotsJointIndices) {
   wbi::dds::Subscriber<wbi::msg::EstimatorParameter> estimator_parameters(
       estimator, topics::estimator_parameters("arm_cmd"), qos::kCommand);
   ASSERT_TRUE(estimator_parameters.wait_for_publishers(1, 10s));
-  robot->set_estimation_parameter("fixed_link", robot->frame_index("ee_link"));
+  // The proxy's writer may match this new reader a moment after the reader
+  // matched it (docs: dds/README.md), and the parameter topic is volatile:
+  // send until one arrives.
   wbi::dds::Received<wbi::msg::EstimatorParameter> parameter;
-  ASSERT_TRUE(estimator_parameters.wait_newer(parameter, 0, 5s));
+  bool received = false;
+  for (int attempt = 0; attempt < 25 && !received; ++attempt) {
+    robot->set_estimation_parameter("fixed_link", robot->frame_index("ee_link"));
+    received = estimator_parameters.wait_newer(parameter, 0, 200ms);
+  }
+  ASSERT_TRUE(received);
   EXPECT_EQ(parameter.sample.name(), "fixed_link");
   EXPECT_EQ(parameter.sample.text(), "ee_link");
   EXPECT_THROW(robot->set_estimation_parameter("fixed_link", 1e6), wbi::Error);
