@@ -32,7 +32,7 @@ double shifted_rmse(const Motion& motion, const EncoderRecording& recording,
       double q = 0.0;
       double dq = 0.0;
       double ddq = 0.0;
-      motion.joints[static_cast<std::size_t>(j)].evaluate(t - lag_s, q, dq, ddq);
+      motion.evaluate(static_cast<int>(j), t - lag_s, q, dq, ddq);
       const double truth = derivative == Derivative::velocity ? dq : ddq;
       const double error = estimate(j, k) - truth;
       sum += error * error;

@@ -14,6 +14,7 @@
 
 #include "accuracy.hpp"
 #include "motion.hpp"
+#include "simulated_motion.hpp"
 #include "wbi/estimation/estimator_factory.hpp"
 
 namespace wbi::bench {
@@ -22,6 +23,7 @@ namespace {
 constexpr double kRateHz = 1000.0;
 constexpr double kCounts = 16384.0;  // 14-bit encoders
 constexpr double kWarmUpS = 0.5;
+constexpr double kHumanoidDurationS = 6.0;
 
 struct Configuration {
   std::string label;
@@ -39,12 +41,19 @@ const std::vector<Configuration>& configurations() {
       {"kalman", "kalman", {}},
       {"kalman-agile", "kalman", {{"process-noise", 3000.0}}},
       {"kalman-order2", "kalman", {{"model-order", 2.0}, {"process-noise", 30.0}}},
+      {"split-kalman", "split-kalman", {}},
+      {"split-kalman-loop-lp30",
+       "split-kalman",
+       {{"velocity-order", 2.0}, {"velocity-process-noise", 3000.0}, {"velocity-cutoff", 30.0}}},
+      {"split-kalman-loop-lp50",
+       "split-kalman",
+       {{"velocity-order", 2.0}, {"velocity-process-noise", 3000.0}, {"velocity-cutoff", 50.0}}},
   };
   return all;
 }
 
 struct Scenario {
-  Motion motion;
+  std::shared_ptr<const Motion> motion;
   double duration_s;
   double drop_probability;
   std::string label;
@@ -53,13 +62,21 @@ struct Scenario {
 const std::vector<Scenario>& scenarios() {
   // Amplitudes keep the peak velocity between 1.6 and 3.1 rad/s, as for
   // humanoid joints; 8 joints with spread phases average the quantisation.
+  const auto sine = [](double hz, double amplitude) {
+    return std::make_shared<AnalyticMotion>(sinusoid_motion(hz, amplitude, 8));
+  };
+  static const std::shared_ptr<const Motion> humanoid = std::make_shared<SampledMotion>(
+      simulate_humanoid_motion(WBI_PROJECT_MODELS_DIR "/humanoid.urdf", kHumanoidDurationS));
+  static const std::shared_ptr<const Motion> frictionless = std::make_shared<SampledMotion>(
+      simulate_humanoid_motion(WBI_PROJECT_MODELS_DIR "/humanoid.urdf", kHumanoidDurationS, false));
   static const std::vector<Scenario> all = {
-      {sinusoid_motion(0.5, 0.5, 8), 5.0, 0.0, "sine_0.5Hz"},
-      {sinusoid_motion(1.0, 0.4, 8), 5.0, 0.0, "sine_1Hz"},
-      {sinusoid_motion(2.0, 0.2, 8), 5.0, 0.0, "sine_2Hz"},
-      {sinusoid_motion(5.0, 0.1, 8), 5.0, 0.0, "sine_5Hz"},
-      {humanoid_motion(32), 10.0, 0.0, "humanoid"},
-      {humanoid_motion(32), 10.0, 0.01, "humanoid_1pc_dropped"},
+      {sine(0.5, 0.5), 5.0, 0.0, "sine_0.5Hz"},
+      {sine(1.0, 0.4), 5.0, 0.0, "sine_1Hz"},
+      {sine(2.0, 0.2), 5.0, 0.0, "sine_2Hz"},
+      {sine(5.0, 0.1), 5.0, 0.0, "sine_5Hz"},
+      {humanoid, kHumanoidDurationS, 0.0, "humanoid_sim"},
+      {humanoid, kHumanoidDurationS, 0.01, "humanoid_sim_1pc_dropped"},
+      {frictionless, kHumanoidDurationS, 0.0, "humanoid_sim_no_friction"},
   };
   return all;
 }
@@ -67,23 +84,23 @@ const std::vector<Scenario>& scenarios() {
 void accuracy(benchmark::State& state, const Scenario& scenario,
               const Configuration& configuration) {
   const EncoderRecording recording =
-      record(scenario.motion, kRateHz, scenario.duration_s, kCounts, scenario.drop_probability);
-  const auto estimator = estimation::make_estimator(
-      configuration.method, static_cast<Eigen::Index>(scenario.motion.joints.size()),
-      configuration.parameters);
+      record(*scenario.motion, kRateHz, scenario.duration_s, kCounts, scenario.drop_probability);
+  const auto estimator = estimation::make_estimator(configuration.method, scenario.motion->joints(),
+                                                    configuration.parameters);
   Estimates estimates;
   for (auto _ : state) {
     run_estimator(*estimator, recording, estimates);
     benchmark::DoNotOptimize(estimates.dq.data());
   }
-  const Fit dq = accuracy(scenario.motion, recording, estimates.dq, Derivative::velocity, kWarmUpS);
+  const Fit dq =
+      accuracy(*scenario.motion, recording, estimates.dq, Derivative::velocity, kWarmUpS);
   const Fit ddq =
-      accuracy(scenario.motion, recording, estimates.ddq, Derivative::acceleration, kWarmUpS);
+      accuracy(*scenario.motion, recording, estimates.ddq, Derivative::acceleration, kWarmUpS);
   state.counters["rmse_dq"] = dq.rmse;
   state.counters["rmse_ddq"] = ddq.rmse;
   state.counters["lag_dq_ms"] = 1e3 * dq.lag_s;
   state.counters["lag_ddq_ms"] = 1e3 * ddq.lag_s;
-  state.counters["joints"] = static_cast<double>(scenario.motion.joints.size());
+  state.counters["joints"] = scenario.motion->joints();
   state.counters["us_per_sample"] = benchmark::Counter(
       1e-6 * static_cast<double>(recording.stamp_ns.size()),
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
@@ -92,7 +109,7 @@ void accuracy(benchmark::State& state, const Scenario& scenario,
 void cost(benchmark::State& state, const Configuration& configuration) {
   constexpr Eigen::Index kJoints = 32;
   const EncoderRecording recording =
-      record(humanoid_motion(static_cast<int>(kJoints)), kRateHz, 2.0, kCounts);
+      record(sinusoid_motion(1.0, 0.4, static_cast<int>(kJoints)), kRateHz, 2.0, kCounts);
   const auto estimator =
       estimation::make_estimator(configuration.method, kJoints, configuration.parameters);
   const auto samples = static_cast<std::int64_t>(recording.stamp_ns.size());

@@ -36,48 +36,21 @@ void JointMotion::evaluate(double t, double& q, double& dq, double& ddq) const {
   }
 }
 
-Motion sinusoid_motion(double frequency_hz, double amplitude_rad, int joints) {
-  Motion motion;
-  motion.name = "sine_" + std::to_string(frequency_hz).substr(0, 3) + "Hz";
+AnalyticMotion sinusoid_motion(double frequency_hz, double amplitude_rad, int joints) {
+  std::vector<JointMotion> motion;
   for (int j = 0; j < joints; ++j) {
     JointMotion joint;
     joint.waves.push_back({amplitude_rad, frequency_hz, 2.0 * std::numbers::pi * j / joints});
-    motion.joints.push_back(joint);
+    motion.push_back(joint);
   }
-  return motion;
-}
-
-Motion humanoid_motion(int joints, std::uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  const auto between = [&](double a, double b) { return a + (b - a) * uniform(rng); };
-  const double gait_hz = 0.9;
-  Motion motion;
-  motion.name = "humanoid";
-  for (int j = 0; j < joints; ++j) {
-    JointMotion joint;
-    joint.offset_rad = between(-0.5, 0.5);
-    // Legs (first half) swing more than arms and torso.
-    const double a1 = j < joints / 2 ? between(0.1, 0.45) : between(0.03, 0.2);
-    joint.waves.push_back({a1, gait_hz, between(0.0, 6.3)});
-    joint.waves.push_back({a1 * between(0.1, 0.4), 2.0 * gait_hz, between(0.0, 6.3)});
-    joint.waves.push_back({a1 * between(0.05, 0.2), 3.0 * gait_hz, between(0.0, 6.3)});
-    // Repositioning: a few minimum-jerk steps at random times.
-    const int steps = 2 + static_cast<int>(uniform(rng) * 3.0);
-    for (int k = 0; k < steps; ++k) {
-      const double height = between(0.1, 0.6) * (uniform(rng) < 0.5 ? -1.0 : 1.0);
-      joint.steps.push_back({between(0.5, 9.0), between(0.25, 0.8), height});
-    }
-    motion.joints.push_back(joint);
-  }
-  return motion;
+  return AnalyticMotion(std::move(motion));
 }
 
 EncoderRecording record(const Motion& motion, double rate_hz, double duration_s, double counts,
                         double drop_probability, std::uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  const auto joints = static_cast<Eigen::Index>(motion.joints.size());
+  const auto joints = static_cast<Eigen::Index>(motion.joints());
   const double step = 2.0 * std::numbers::pi / counts;
   Eigen::VectorXd zero(joints);
   for (Eigen::Index j = 0; j < joints; ++j) {
@@ -104,7 +77,7 @@ EncoderRecording record(const Motion& motion, double rate_hz, double duration_s,
       double q = 0.0;
       double dq = 0.0;
       double ddq = 0.0;
-      motion.joints[static_cast<std::size_t>(j)].evaluate(t, q, dq, ddq);
+      motion.evaluate(static_cast<int>(j), t, q, dq, ddq);
       out.q_true(j, k) = q;
       out.dq_true(j, k) = dq;
       out.ddq_true(j, k) = ddq;

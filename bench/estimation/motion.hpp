@@ -1,8 +1,7 @@
-// Ground-truth joint motions for the estimator benchmark: sums of sinusoids and
-// minimum-jerk smooth steps, with exact position, velocity and acceleration.
-// The humanoid-like motion is synthetic: the simulator does not exist yet, so
-// it imitates a gait (0.9 Hz and two harmonics per joint) with arm/torso
-// repositioning (smooth steps) instead of replaying a simulated humanoid.
+// Ground-truth joint motions for the estimator benchmark and how an encoder
+// samples them. A Motion gives exact q, dq, ddq of every joint at any time:
+// analytic ones (sums of sinusoids and minimum-jerk steps, this file) and the
+// humanoid motion recorded from the simulator (simulated_motion.hpp).
 #pragma once
 
 #include <Eigen/Core>
@@ -11,6 +10,14 @@
 #include <vector>
 
 namespace wbi::bench {
+
+class Motion {
+ public:
+  virtual ~Motion() = default;
+  virtual int joints() const = 0;
+  // Ground truth of joint j at time t (s).
+  virtual void evaluate(int j, double t, double& q, double& dq, double& ddq) const = 0;
+};
 
 struct Sinusoid {
   double amplitude_rad;
@@ -35,16 +42,21 @@ struct JointMotion {
   void evaluate(double t, double& q, double& dq, double& ddq) const;
 };
 
-struct Motion {
-  std::string name;
-  std::vector<JointMotion> joints;
+class AnalyticMotion final : public Motion {
+ public:
+  explicit AnalyticMotion(std::vector<JointMotion> joints) : joints_(std::move(joints)) {}
+  int joints() const override { return static_cast<int>(joints_.size()); }
+  void evaluate(int j, double t, double& q, double& dq, double& ddq) const override {
+    joints_[static_cast<std::size_t>(j)].evaluate(t, q, dq, ddq);
+  }
+
+ private:
+  std::vector<JointMotion> joints_;
 };
 
 // `joints` joints moving as one sinusoid of the given frequency and amplitude,
 // with phases spread over the joints.
-Motion sinusoid_motion(double frequency_hz, double amplitude_rad, int joints);
-// 32 joints: gait-like harmonics plus smooth repositioning steps; fixed seed.
-Motion humanoid_motion(int joints = 32, std::uint32_t seed = 7);
+AnalyticMotion sinusoid_motion(double frequency_hz, double amplitude_rad, int joints);
 
 // Samples of a motion as an encoder sees them.
 struct EncoderRecording {

@@ -61,7 +61,7 @@ TEST(Sizes, WrongSizeIsAClearError) {
 TEST(Factory, ListsTheMethods) {
   const auto names = method_names();
   ASSERT_GE(names.size(), 3u);
-  EXPECT_EQ(names[0], "kalman");
+  EXPECT_EQ(names[0], "split-kalman");  // the recommended one first
   for (const auto& name : names) {
     EXPECT_EQ(make_estimator(name, 1)->method(), name);
   }

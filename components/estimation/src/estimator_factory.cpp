@@ -7,6 +7,7 @@
 #include "wbi/estimation/adaptive_window.hpp"
 #include "wbi/estimation/backward_difference.hpp"
 #include "wbi/estimation/kalman_derivative.hpp"
+#include "wbi/estimation/split_kalman.hpp"
 
 namespace wbi::estimation {
 namespace {
@@ -22,9 +23,35 @@ std::vector<ParameterSpec> with_stream_parameters(std::vector<ParameterSpec> spe
 
 std::vector<MethodInfo> build_methods() {
   const KalmanParameters kalman;
+  const SplitKalmanParameters split;
   const AdaptiveWindowParameters window;
   const BackwardDifferenceParameters difference;
   return {
+      {"split-kalman",
+       "a Kalman filter for the velocity (loop-safe) and, for the acceleration, a bank of "
+       "Kalman filters from quiet to agile blended per joint by the likelihood of their "
+       "innovations; gains from the encoder resolution, the sample rate and the process noises",
+       with_stream_parameters({
+           {"resolution", "COUNTS", split.resolution_counts, 2, 1e12, false,
+            "encoder counts per revolution (quantisation noise)"},
+           {"velocity-order", "M", static_cast<double>(split.velocity_order), 2, 4, true,
+            "model order of the velocity filter: 2 constant acceleration, 3 constant jerk, 4 "
+            "constant snap"},
+           {"velocity-process-noise", "SIGMA", split.velocity_process_noise, 1e-12, 1e15, false,
+            "process noise of the velocity filter, rad/s^(M+1)/sqrt(Hz)"},
+           {"velocity-cutoff", "HZ", split.velocity_cutoff_hz, 0, 1e9, false,
+            "first-order low-pass on the velocity, Hz; 0: none"},
+           {"acceleration-order", "M", static_cast<double>(split.acceleration_order), 2, 4, true,
+            "model order of the acceleration filters"},
+           {"acceleration-noise-min", "SIGMA", split.acceleration_noise_min, 1e-12, 1e15, false,
+            "process noise of the quietest acceleration filter, rad/s^(M+1)/sqrt(Hz)"},
+           {"acceleration-noise-max", "SIGMA", split.acceleration_noise_max, 1e-12, 1e15, false,
+            "process noise of the most agile acceleration filter (>= the minimum)"},
+           {"acceleration-models", "N", static_cast<double>(split.acceleration_models), 1, 8, true,
+            "acceleration filters, process noises spaced geometrically from min to max"},
+           {"acceleration-memory", "S", split.acceleration_memory_s, 1e-4, 1e3, false,
+            "forgetting time of the likelihoods that blend the acceleration filters, s"},
+       })},
       {"kalman",
        "Kalman filter on a constant-jerk model (by default), its gain computed from the "
        "encoder resolution, the sample rate and the process noise",
@@ -129,6 +156,18 @@ std::unique_ptr<DerivativeEstimator> make_estimator(const std::string& method, E
   const MethodInfo& info = method_info(method);
   const Parameters p = resolve(info, given);
   const StreamParameters stream{p.at("sample-rate"), p.at("max-gap")};
+  if (method == "split-kalman") {
+    const SplitKalmanParameters params{p.at("resolution"),
+                                       static_cast<int>(p.at("velocity-order")),
+                                       p.at("velocity-process-noise"),
+                                       p.at("velocity-cutoff"),
+                                       static_cast<int>(p.at("acceleration-order")),
+                                       p.at("acceleration-noise-min"),
+                                       p.at("acceleration-noise-max"),
+                                       static_cast<int>(p.at("acceleration-models")),
+                                       p.at("acceleration-memory")};
+    return std::make_unique<SplitKalmanEstimator>(joints, params, stream);
+  }
   if (method == "kalman") {
     const KalmanParameters params{static_cast<int>(p.at("model-order")), p.at("resolution"),
                                   p.at("process-noise")};

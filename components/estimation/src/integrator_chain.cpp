@@ -28,8 +28,7 @@ IntegratorChain::IntegratorChain(const char* method, int order, double counts, d
     throw std::invalid_argument(name + ": process noise must be > 0, got " +
                                 std::to_string(sigma_w));
   }
-  const double step_rad = 2.0 * std::numbers::pi / counts;
-  measurement_variance_ = step_rad * step_rad / 12.0;
+  measurement_variance_ = quantisation_variance(counts);
   noise_density_ = sigma_w * sigma_w * std::pow(period_s, 2 * order + 1);
 
   // Steady state of the Riccati recursion at the nominal period; it converges
@@ -43,6 +42,11 @@ IntegratorChain::IntegratorChain(const char* method, int order, double counts, d
     }
   }
   P_ = P_steady_;
+}
+
+double IntegratorChain::quantisation_variance(double counts) {
+  const double step_rad = 2.0 * std::numbers::pi / counts;
+  return step_rad * step_rad / 12.0;
 }
 
 IntegratorChain::Matrix IntegratorChain::transition(double h) const {

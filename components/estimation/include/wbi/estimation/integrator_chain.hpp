@@ -40,6 +40,8 @@ class IntegratorChain {
   void restart() { P_ = P_steady_; }
 
   double period_s() const { return period_s_; }
+  // r = Δ²/12 of an encoder with `counts` per revolution, rad².
+  static double quantisation_variance(double counts);
   // Steady-state gain at the nominal rate in SI units (for documentation and tests).
   Vector steady_state_gain() const;
 

@@ -6,7 +6,7 @@
 #pragma once
 
 #include "wbi/estimation/derivative_estimator.hpp"
-#include "wbi/estimation/integrator_chain.hpp"
+#include "wbi/estimation/joint_kalman_filters.hpp"
 
 namespace wbi::estimation {
 
@@ -21,15 +21,14 @@ class KalmanEstimator final : public DerivativeEstimator {
   KalmanEstimator(Eigen::Index joints, const KalmanParameters& params,
                   const StreamParameters& stream = {});
   const char* method() const override { return "kalman"; }
-  const IntegratorChain& model() const { return chain_; }
+  const IntegratorChain& model() const { return filters_.model(); }
 
  private:
   void start(const Eigen::Ref<const Eigen::VectorXd>& q) override;
   void step(double dt_s, const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::VectorXd& dq,
             Eigen::VectorXd& ddq) override;
 
-  IntegratorChain chain_;
-  IntegratorChain::States x_;  // (kStates × joints) scaled state per joint
+  JointKalmanFilters filters_;
 };
 
 }  // namespace wbi::estimation
