@@ -1,0 +1,488 @@
+// wbi.DdsInterface: the whole-body interface over DDS (make_dds_interface) for
+// Python, with the interface's vocabulary (ControlMode, SensorKind, …, Stamp,
+// the errors). Same semantics as the C++ interface (wbi_proxy/README.md): joint
+// vectors follow the add_joints order; model quantities have 6 + dofs entries
+// (mixed base velocity, base first) with the base pose as an explicit 4x4
+// argument. Reads return (values, Stamp); every read and model call accepts
+// `out=` to fill a preallocated array instead of creating one. Blocking calls
+// release the GIL.
+#include <chrono>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+#include <wbi/dds_interface.hpp>
+
+#include "bindings.hpp"
+#include "numpy_out.hpp"
+
+namespace wbi::python {
+
+namespace {
+
+using ConstVector = Eigen::Ref<const Eigen::VectorXd>;
+const Eigen::Vector3d kGravity(0.0, 0.0, -9.81);
+
+std::chrono::milliseconds milliseconds(double seconds) {
+  return std::chrono::milliseconds(static_cast<std::int64_t>(seconds * 1000.0));
+}
+
+dds::Discovery discovery_from(const std::string& name) {
+  if (name == "localhost") {
+    return dds::Discovery::localhost;
+  }
+  if (name == "multicast") {
+    return dds::Discovery::multicast;
+  }
+  throw py::value_error("discovery is '" + name + "'; expected localhost or multicast");
+}
+
+DdsInterfaceOptions::ModelSource model_source_from(const std::string& name) {
+  if (name == "local") {
+    return DdsInterfaceOptions::ModelSource::local;
+  }
+  if (name == "remote") {
+    return DdsInterfaceOptions::ModelSource::remote;
+  }
+  throw py::value_error("model is '" + name + "'; expected local or remote");
+}
+
+int sensor_width(SensorKind kind) {
+  switch (kind) {
+    case SensorKind::imu:
+      return 10;
+    case SensorKind::force_torque:
+      return 6;
+    case SensorKind::accelerometer:
+    case SensorKind::gyroscope:
+      return 3;
+    default:
+      return 1;
+  }
+}
+
+int estimate_width(EstimateKind kind) {
+  switch (kind) {
+    case EstimateKind::base_pose:
+      return 7;
+    case EstimateKind::base_velocity:
+    case EstimateKind::base_acceleration:
+    case EstimateKind::force_torque:
+      return 6;
+    default:
+      return 1;
+  }
+}
+
+// Runs a call that may wait (blocking reads, DDS) with the GIL released, so
+// that other Python threads run meanwhile.
+template <typename Call>
+auto without_gil(Call&& call) {
+  py::gil_scoped_release release;
+  return call();
+}
+
+// The interface and the sizes its reads need.
+class PythonInterface {
+ public:
+  explicit PythonInterface(const DdsInterfaceOptions& options)
+      : robot_(make_dds_interface(options)) {}
+
+  WholeBodyInterface& robot() { return *robot_; }
+  Eigen::Index nv() const { return 6 + robot_->dofs(); }
+
+  Eigen::Index sensor_count(SensorKind kind) const {
+    return static_cast<Eigen::Index>(robot_->sensor_list(kind).size());
+  }
+  Eigen::Index estimate_count(EstimateKind kind) const {
+    switch (kind) {
+      case EstimateKind::base_pose:
+      case EstimateKind::base_velocity:
+      case EstimateKind::base_acceleration:
+        return 1;
+      case EstimateKind::force_torque:
+        return sensor_count(SensorKind::force_torque);
+      default:
+        return robot_->dofs();
+    }
+  }
+
+ private:
+  std::unique_ptr<WholeBodyInterface> robot_;
+};
+
+PythonInterface make_interface(const std::string& robot, const std::string& urdf,
+                               const std::optional<std::vector<std::string>>& joints,
+                               const std::string& controller, const std::string& model,
+                               const std::map<std::string, double>& locked_positions,
+                               double max_age_s, double blocking_read_timeout_s,
+                               double model_timeout_s, std::optional<int> domain_id,
+                               const std::string& discovery, const std::string& participant_name,
+                               const std::string& qos_file) {
+  DdsInterfaceOptions options;
+  options.robot = robot;
+  options.urdf = urdf;
+  options.controller = controller;
+  options.model_source = model_source_from(model);
+  options.locked_positions = locked_positions;
+  options.max_age_s = max_age_s;
+  options.blocking_read_timeout = milliseconds(blocking_read_timeout_s);
+  options.model_timeout = milliseconds(model_timeout_s);
+  if (domain_id) {
+    options.participant.domain_id = *domain_id;
+  }
+  options.participant.discovery = discovery_from(discovery);
+  options.participant.name = participant_name;
+  options.participant.qos_file = qos_file;
+  PythonInterface result(options);
+  if (joints) {
+    result.robot().add_joints(*joints);
+  }
+  return result;
+}
+
+void bind_vocabulary(py::module_& module) {
+  py::enum_<ControlMode>(module, "ControlMode")
+      .value("idle", ControlMode::idle)
+      .value("position", ControlMode::position)
+      .value("position_direct", ControlMode::position_direct)
+      .value("velocity", ControlMode::velocity)
+      .value("torque", ControlMode::torque)
+      .value("pwm", ControlMode::pwm);
+  py::enum_<ControlParameter>(module, "ControlParameter")
+      .value("kp", ControlParameter::kp)
+      .value("ki", ControlParameter::ki)
+      .value("kd", ControlParameter::kd)
+      .value("reference_speed", ControlParameter::reference_speed);
+  py::enum_<SensorKind>(module, "SensorKind")
+      .value("encoder_position", SensorKind::encoder_position)
+      .value("encoder_velocity", SensorKind::encoder_velocity)
+      .value("encoder_acceleration", SensorKind::encoder_acceleration)
+      .value("joint_torque", SensorKind::joint_torque)
+      .value("motor_pwm", SensorKind::motor_pwm)
+      .value("imu", SensorKind::imu)
+      .value("force_torque", SensorKind::force_torque)
+      .value("accelerometer", SensorKind::accelerometer)
+      .value("gyroscope", SensorKind::gyroscope);
+  py::enum_<EstimateKind>(module, "EstimateKind")
+      .value("joint_position", EstimateKind::joint_position)
+      .value("joint_velocity", EstimateKind::joint_velocity)
+      .value("joint_acceleration", EstimateKind::joint_acceleration)
+      .value("joint_torque", EstimateKind::joint_torque)
+      .value("base_pose", EstimateKind::base_pose)
+      .value("base_velocity", EstimateKind::base_velocity)
+      .value("base_acceleration", EstimateKind::base_acceleration)
+      .value("force_torque", EstimateKind::force_torque);
+  py::enum_<ReadMode>(module, "ReadMode")
+      .value("latest", ReadMode::latest)
+      .value("blocking", ReadMode::blocking);
+  py::class_<Stamp>(module, "Stamp", "When and how fresh the data of a read is")
+      .def_readonly("source_ns", &Stamp::source_ns, "source stamp of the sample [ns]")
+      .def_readonly("seq", &Stamp::seq, "sequence number of the sample")
+      .def_readonly("age_s", &Stamp::age_s, "time since the sample arrived [s]")
+      .def("__repr__", [](const Stamp& s) {
+        return "Stamp(source_ns=" + std::to_string(s.source_ns) + ", seq=" + std::to_string(s.seq) +
+               ", age_s=" + std::to_string(s.age_s) + ")";
+      });
+  // Subclasses of RuntimeError, so that `except RuntimeError` still catches them.
+  static py::exception<Error> error(module, "Error", PyExc_RuntimeError);
+  static py::exception<StaleDataError> stale(module, "StaleDataError", error.ptr());
+  static py::exception<TimeoutError> timeout(module, "TimeoutError", error.ptr());
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) {
+        std::rethrow_exception(p);
+      }
+    } catch (const TimeoutError& e) {
+      timeout(e.what());
+    } catch (const StaleDataError& e) {
+      stale(e.what());
+    } catch (const Error& e) {
+      error(e.what());
+    }
+  });
+}
+
+void bind_reads(py::class_<PythonInterface>& interface) {
+  using py::arg;
+  const auto none = py::none();
+  interface
+      .def(
+          "read_sensors",
+          [](PythonInterface& self, SensorKind kind, ReadMode mode, const py::object& out) {
+            Array values =
+                vector_out(out, self.sensor_count(kind) * sensor_width(kind), "read_sensors");
+            auto map = as_vector(values);
+            const Stamp stamp = without_gil([&] { return self.robot().read_sensors(kind, map, mode); });
+            return py::make_tuple(values, stamp);
+          },
+          arg("kind"), arg("mode") = ReadMode::latest, arg("out") = none,
+          "(values, Stamp): every sensor of a kind, stacked")
+      .def(
+          "read_sensor",
+          [](PythonInterface& self, SensorKind kind, int index, ReadMode mode,
+             const py::object& out) {
+            Array values = vector_out(out, sensor_width(kind), "read_sensor");
+            auto map = as_vector(values);
+            const Stamp stamp = without_gil([&] { return self.robot().read_sensor(kind, index, map, mode); });
+            return py::make_tuple(values, stamp);
+          },
+          arg("kind"), arg("index"), arg("mode") = ReadMode::latest, arg("out") = none)
+      .def(
+          "read_estimates",
+          [](PythonInterface& self, EstimateKind kind, ReadMode mode, const py::object& out) {
+            Array values =
+                vector_out(out, self.estimate_count(kind) * estimate_width(kind), "read_estimates");
+            auto map = as_vector(values);
+            const Stamp stamp = without_gil([&] { return self.robot().read_estimates(kind, map, mode); });
+            return py::make_tuple(values, stamp);
+          },
+          arg("kind"), arg("mode") = ReadMode::latest, arg("out") = none,
+          "(values, Stamp): every estimate of a kind, stacked")
+      .def(
+          "read_estimate",
+          [](PythonInterface& self, EstimateKind kind, int index, ReadMode mode,
+             const py::object& out) {
+            Array values = vector_out(out, estimate_width(kind), "read_estimate");
+            auto map = as_vector(values);
+            const Stamp stamp = without_gil([&] { return self.robot().read_estimate(kind, index, map, mode); });
+            return py::make_tuple(values, stamp);
+          },
+          arg("kind"), arg("index"), arg("mode") = ReadMode::latest, arg("out") = none)
+      .def(
+          "read_base_pose",
+          [](PythonInterface& self, ReadMode mode) {
+            Transform world_H_base;
+            const Stamp stamp =
+                without_gil([&] { return self.robot().read_base_pose(world_H_base, mode); });
+            return py::make_tuple(world_H_base, stamp);
+          },
+          arg("mode") = ReadMode::latest, "(world_H_base 4x4, Stamp)")
+      .def(
+          "set_estimation_parameter",
+          [](PythonInterface& self, const std::string& name, double value) {
+            self.robot().set_estimation_parameter(name, value);
+          },
+          arg("name"), arg("value"));
+}
+
+void bind_actuators(py::class_<PythonInterface>& interface) {
+  using py::arg;
+  interface
+      .def(
+          "set_control_mode",
+          [](PythonInterface& self, ControlMode mode, std::optional<int> joint) {
+            if (joint) {
+              self.robot().set_control_mode(mode, *joint);
+            } else {
+              self.robot().set_control_mode(mode);
+            }
+          },
+          arg("mode"), arg("joint") = py::none(),
+          "every controlled joint, or one (its index in joint_list)")
+      .def(
+          "set_control_reference",
+          [](PythonInterface& self, const ConstVector& reference) {
+            self.robot().set_control_reference(reference);
+          },
+          arg("reference"), "references of every controlled joint (size dofs)")
+      .def(
+          "set_control_reference",
+          [](PythonInterface& self, double reference, int joint) {
+            self.robot().set_control_reference(reference, joint);
+          },
+          arg("reference"), arg("joint"))
+      .def(
+          "set_control_parameter",
+          [](PythonInterface& self, ControlParameter parameter, const ConstVector& values) {
+            self.robot().set_control_parameter(parameter, values);
+          },
+          arg("parameter"), arg("values"))
+      .def(
+          "set_control_parameter",
+          [](PythonInterface& self, ControlParameter parameter, double value, int joint) {
+            self.robot().set_control_parameter(parameter, value, joint);
+          },
+          arg("parameter"), arg("value"), arg("joint"));
+}
+
+void bind_model_element(py::class_<PythonInterface>& interface) {
+  using py::arg;
+  const auto none = py::none();
+  interface
+      .def(
+          "joint_limits",
+          [](PythonInterface& self, int joint) {
+            const JointLimits limits = self.robot().joint_limits(joint);
+            py::dict result;
+            result["position_min"] = limits.position_min;
+            result["position_max"] = limits.position_max;
+            result["velocity_max"] = limits.velocity_max;
+            result["effort_max"] = limits.effort_max;
+            return result;
+          },
+          arg("joint"))
+      .def(
+          "frame_index",
+          [](PythonInterface& self, const std::string& frame) {
+            return self.robot().frame_index(frame);
+          },
+          arg("frame"))
+      .def(
+          "frame_pose",
+          [](PythonInterface& self, const ConstVector& q, const Transform& world_H_base,
+             int frame) {
+            Transform world_H_frame;
+            py::gil_scoped_release release;  // a remote model asks the model service
+            self.robot().frame_pose(q, world_H_base, frame, world_H_frame);
+            return world_H_frame;
+          },
+          arg("q"), arg("world_H_base"), arg("frame"))
+      .def(
+          "jacobian",
+          [](PythonInterface& self, const ConstVector& q, const Transform& world_H_base, int frame,
+             const py::object& out) {
+            ColumnMajorArray J = matrix_out(out, 6, self.nv(), "jacobian");
+            self.robot().jacobian(q, world_H_base, frame, as_matrix(J));
+            return J;
+          },
+          arg("q"), arg("world_H_base"), arg("frame"), arg("out") = none)
+      .def(
+          "dj_nu",
+          [](PythonInterface& self, const ConstVector& q, const Transform& world_H_base,
+             const ConstVector& dq, const ConstVector& base_velocity, int frame,
+             const py::object& out) {
+            Array result = vector_out(out, 6, "dj_nu");
+            self.robot().dj_nu(q, world_H_base, dq, base_velocity, frame, as_vector(result));
+            return result;
+          },
+          arg("q"), arg("world_H_base"), arg("dq"), arg("base_velocity"), arg("frame"),
+          arg("out") = none)
+      .def(
+          "mass_matrix",
+          [](PythonInterface& self, const ConstVector& q, const Transform& world_H_base,
+             const py::object& out) {
+            ColumnMajorArray M = matrix_out(out, self.nv(), self.nv(), "mass_matrix");
+            self.robot().mass_matrix(q, world_H_base, as_matrix(M));
+            return M;
+          },
+          arg("q"), arg("world_H_base"), arg("out") = none)
+      .def(
+          "bias_forces",
+          [](PythonInterface& self, const ConstVector& q, const Transform& world_H_base,
+             const ConstVector& dq, const ConstVector& base_velocity,
+             const Eigen::Vector3d& gravity, const py::object& out) {
+            Array h = vector_out(out, self.nv(), "bias_forces");
+            self.robot().bias_forces(q, world_H_base, dq, base_velocity, gravity, as_vector(h));
+            return h;
+          },
+          arg("q"), arg("world_H_base"), arg("dq"), arg("base_velocity"),
+          arg("gravity") = kGravity, arg("out") = none)
+      .def(
+          "gravity_forces",
+          [](PythonInterface& self, const ConstVector& q, const Transform& world_H_base,
+             const Eigen::Vector3d& gravity, const py::object& out) {
+            Array g = vector_out(out, self.nv(), "gravity_forces");
+            self.robot().gravity_forces(q, world_H_base, gravity, as_vector(g));
+            return g;
+          },
+          arg("q"), arg("world_H_base"), arg("gravity") = kGravity, arg("out") = none)
+      .def(
+          "inverse_dynamics",
+          [](PythonInterface& self, const ConstVector& q, const Transform& world_H_base,
+             const ConstVector& dq, const ConstVector& base_velocity, const ConstVector& ddq,
+             const ConstVector& base_acceleration, const Eigen::Vector3d& gravity,
+             const py::object& out) {
+            Array tau = vector_out(out, self.nv(), "inverse_dynamics");
+            self.robot().inverse_dynamics(q, world_H_base, dq, base_velocity, ddq,
+                                          base_acceleration, gravity, as_vector(tau));
+            return tau;
+          },
+          arg("q"), arg("world_H_base"), arg("dq"), arg("base_velocity"), arg("ddq"),
+          arg("base_acceleration"), arg("gravity") = kGravity, arg("out") = none)
+      .def(
+          "centroidal_momentum",
+          [](PythonInterface& self, const ConstVector& q, const Transform& world_H_base,
+             const ConstVector& dq, const ConstVector& base_velocity, const py::object& out) {
+            Array h = vector_out(out, 6, "centroidal_momentum");
+            self.robot().centroidal_momentum(q, world_H_base, dq, base_velocity, as_vector(h));
+            return h;
+          },
+          arg("q"), arg("world_H_base"), arg("dq"), arg("base_velocity"), arg("out") = none)
+      .def(
+          "centroidal_momentum_matrix",
+          [](PythonInterface& self, const ConstVector& q, const Transform& world_H_base,
+             const py::object& out) {
+            ColumnMajorArray A = matrix_out(out, 6, self.nv(), "centroidal_momentum_matrix");
+            self.robot().centroidal_momentum_matrix(q, world_H_base, as_matrix(A));
+            return A;
+          },
+          arg("q"), arg("world_H_base"), arg("out") = none)
+      .def(
+          "com",
+          [](PythonInterface& self, const ConstVector& q, const Transform& world_H_base) {
+            Eigen::Vector3d c;
+            self.robot().com(q, world_H_base, c);
+            return c;
+          },
+          arg("q"), arg("world_H_base"))
+      .def(
+          "com_jacobian",
+          [](PythonInterface& self, const ConstVector& q, const Transform& world_H_base,
+             const py::object& out) {
+            ColumnMajorArray J = matrix_out(out, 3, self.nv(), "com_jacobian");
+            self.robot().com_jacobian(q, world_H_base, as_matrix(J));
+            return J;
+          },
+          arg("q"), arg("world_H_base"), arg("out") = none);
+}
+
+}  // namespace
+
+void bind_interface(py::module_& module) {
+  using py::arg;
+  bind_vocabulary(module);
+  py::class_<PythonInterface> interface(
+      module, "DdsInterface",
+      "The whole-body interface of a robot over DDS (make_dds_interface). Keyword options as "
+      "DdsInterfaceOptions; joints: the controlled joints (add_joints), in the order of every "
+      "joint vector. Call init() before reading.");
+  interface
+      .def(py::init(&make_interface), arg("robot"), arg("urdf") = "", arg("joints") = py::none(),
+           arg("controller") = "controller", arg("model") = "local",
+           arg("locked_positions") = std::map<std::string, double>{}, arg("max_age_s") = 0.1,
+           arg("blocking_read_timeout_s") = 1.0, arg("model_timeout_s") = 0.2,
+           arg("domain_id") = py::none(), arg("discovery") = "localhost",
+           arg("participant_name") = "wbi_python", arg("qos_file") = "")
+      .def(
+          "add_joints",
+          [](PythonInterface& self, const IdList& joints) { self.robot().add_joints(joints); },
+          arg("joints"))
+      .def(
+          "init",
+          [](PythonInterface& self, double timeout_s) {
+            py::gil_scoped_release release;
+            self.robot().init(milliseconds(timeout_s));
+          },
+          arg("timeout_s") = 10.0,
+          "waits for the robot's components; raises TimeoutError naming the missing ones")
+      .def("close", [](PythonInterface& self) { self.robot().close(); })
+      .def_property_readonly("dofs", [](PythonInterface& self) { return self.robot().dofs(); })
+      .def_property_readonly("joint_list",
+                             [](PythonInterface& self) { return self.robot().joint_list(); })
+      .def_property_readonly("frame_list",
+                             [](PythonInterface& self) { return self.robot().frame_list(); })
+      .def(
+          "sensor_list",
+          [](PythonInterface& self, SensorKind kind) { return self.robot().sensor_list(kind); },
+          arg("kind"));
+  bind_reads(interface);
+  bind_actuators(interface);
+  bind_model_element(interface);
+}
+
+}  // namespace wbi::python
