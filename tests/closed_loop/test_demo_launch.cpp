@@ -1,6 +1,7 @@
 // The README's main job, as a user runs it: `wbi launch deploy/demo.yaml`
-// starts the robot, the estimator and the controller as three processes; the
-// arm reaches its target and the launch ends with the final error.
+// starts the robot, the estimator, the model service and the controller (with
+// the remote model) as four processes; the arm reaches its target and the
+// launch ends with the final error.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -13,7 +14,7 @@ namespace {
 
 using namespace std::chrono_literals;
 
-TEST(DemoLaunch, ThreeProcessesBringTheArmToItsTarget) {
+TEST(DemoLaunch, FourProcessesBringTheArmToItsTarget) {
   wbi::test::ChildProcess launch(
       wbi::test::binary_dir() / "bin" / "wbi",
       {"launch", (wbi::test::source_dir() / "deploy" / "demo.yaml").string(), "--duration", "6"});
@@ -21,7 +22,7 @@ TEST(DemoLaunch, ThreeProcessesBringTheArmToItsTarget) {
   ASSERT_TRUE(code.has_value()) << launch.output();
   const std::string out = launch.output();
   EXPECT_EQ(*code, 0) << out;
-  for (const char* process : {"robot", "estimator", "controller"}) {
+  for (const char* process : {"robot", "estimator", "model_service", "controller"}) {
     EXPECT_NE(out.find(std::string("[launch] ") + process + ": started"), std::string::npos) << out;
   }
   EXPECT_NE(out.find("[controller] t =   1.00 s"), std::string::npos) << "no progress lines\n"

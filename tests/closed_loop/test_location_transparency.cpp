@@ -1,6 +1,9 @@
 // Location transparency: the same controller, the same components, only the
-// deploy file differs — three processes, or one — and in lockstep the run
-// ends with the same final error to the last printed digit.
+// deploy file differs — three processes, or one; the model evaluated in the
+// controller's process, or by the model service in a fourth — and in lockstep
+// the run ends with the same final error to the last printed digit (the
+// remote model runs the same model library on the same inputs, sent as exact
+// doubles, so no tolerance is needed).
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -31,12 +34,23 @@ std::string final_line(const std::string& deploy) {
   return last;
 }
 
+// The three-process run both comparisons start from, launched once.
+const std::string& three_processes() {
+  static const std::string last = final_line("demo_lockstep.yaml");
+  return last;
+}
+
 TEST(LocationTransparency, OneProcessOrThreeGiveTheSameRun) {
-  const std::string three = final_line("demo_lockstep.yaml");
+  const std::string& three = three_processes();
   const std::string one = final_line("demo_lockstep_one_process.yaml");
   EXPECT_EQ(three, one);
   const double error = std::stod(three.substr(std::string("final max joint error: ").size()));
   EXPECT_LT(error, 0.01);
+}
+
+TEST(LocationTransparency, LocalOrRemoteModelGiveTheSameRun) {
+  const std::string remote = final_line("demo_lockstep_remote_model.yaml");
+  EXPECT_EQ(three_processes(), remote);
 }
 
 }  // namespace

@@ -4,7 +4,8 @@
 // joint vector of the interface. The robot's order R comes from its
 // description; robot_index_[k] is the position in R of controlled joint k,
 // resolved once in init(). The local model is built over exactly C, so model
-// calls need no mapping.
+// calls need no mapping; the remote model maps C to the model service's order
+// (remote_model.hpp).
 #include "wbi/dds_interface.hpp"
 
 #include <algorithm>
@@ -19,6 +20,7 @@
 #include <wbi/dds/topics.hpp>
 
 #include "local_model.hpp"
+#include "remote_model.hpp"
 #include "size_check.hpp"
 
 namespace wbi::proxy {
@@ -111,7 +113,13 @@ class DdsInterface final : public WholeBodyInterface {
         parameters_(participant_, dds::topics::control_parameters(options.robot),
                     dds::qos::kCommand),
         estimator_parameters_(participant_, dds::topics::estimator_parameters(options.robot),
-                              dds::qos::kCommand) {}
+                              dds::qos::kCommand) {
+    if (options.model_source == DdsInterfaceOptions::ModelSource::remote) {
+      auto remote = std::make_unique<RemoteModel>(participant_, options);
+      remote_ = remote.get();
+      model_ = std::move(remote);
+    }
+  }
 
   // ---- WholeBodyInterface ----
 
@@ -141,7 +149,11 @@ class DdsInterface final : public WholeBodyInterface {
     sensors_.seen.fill(sensors_.received.count);
     state_.seen.fill(state_.received.count);
     resolve_joints();
-    model_.emplace(options_.urdf, controlled_, locked_positions());
+    if (remote_ != nullptr) {
+      remote_->bind(controlled_, locked_positions());
+    } else {
+      model_ = std::make_unique<LocalModel>(options_.urdf, controlled_, locked_positions());
+    }
     prepare_messages();
     initialized_ = true;
   }
@@ -338,11 +350,11 @@ class DdsInterface final : public WholeBodyInterface {
     }
   }
 
-  LocalModel& model() {
+  ModelBackend& model() {
     require_init();
     return *model_;
   }
-  const LocalModel& model() const {
+  const ModelBackend& model() const {
     require_init();
     return *model_;
   }
@@ -369,6 +381,12 @@ class DdsInterface final : public WholeBodyInterface {
     if (!commands_.wait_for_subscribers(1, remaining())) {
       missing.push_back("a reader of " + dds::topics::commands(options_.robot) +
                         " (actuator component)");
+    }
+    if (remote_ != nullptr) {
+      const std::string model_missing = remote_->wait_ready(deadline);
+      if (!model_missing.empty()) {
+        missing.push_back(model_missing);
+      }
     }
     if (!missing.empty()) {
       std::string text = "robot '" + options_.robot + "' not ready within " +
@@ -471,6 +489,10 @@ class DdsInterface final : public WholeBodyInterface {
     // (sensor and state samples carry the robot's tick as their sequence number).
     command_.tick(
         std::max(sensors_.received.sample.header().seq(), state_.received.sample.header().seq()));
+    // Latency: the sensor sample this command was computed from (a state
+    // estimate carries its sensor sample's stamp).
+    command_.source_stamp_ns(std::max(sensors_.received.sample.header().stamp_ns(),
+                                      state_.received.sample.header().stamp_ns()));
     for (std::size_t k = 0; k < modes_.size(); ++k) {
       command_.modes()[k] = to_message(modes_[k]);
       command_.references()[k] = references_[static_cast<Eigen::Index>(k)];
@@ -671,7 +693,8 @@ class DdsInterface final : public WholeBodyInterface {
       robot_index_;  // [dofs] position of controlled joint k in the robot's order
   IdList imu_names_;
   IdList force_torque_names_;
-  std::optional<LocalModel> model_;
+  std::unique_ptr<ModelBackend> model_;  // LocalModel, or RemoteModel from construction on
+  RemoteModel* remote_ = nullptr;        // model_ when the model is remote
 
   std::vector<ControlMode> modes_;  // [dofs] current mode per controlled joint
   Eigen::VectorXd references_;      // [dofs] current reference per controlled joint
@@ -691,11 +714,12 @@ std::unique_ptr<WholeBodyInterface> make_dds_interface(const DdsInterfaceOptions
   if (options.robot.empty()) {
     throw Error("DdsInterfaceOptions.robot is empty: name the robot whose topics to use");
   }
-  if (options.model_source == DdsInterfaceOptions::ModelSource::remote) {
-    throw Error("model_source remote: the remote model is not available in this build yet");
-  }
-  if (options.urdf.empty()) {
+  if (options.model_source == DdsInterfaceOptions::ModelSource::local && options.urdf.empty()) {
     throw Error("DdsInterfaceOptions.urdf is empty: a local model needs the robot's URDF");
+  }
+  if (options.model_source == DdsInterfaceOptions::ModelSource::remote &&
+      options.model_timeout.count() <= 0) {
+    throw Error("DdsInterfaceOptions.model_timeout must be > 0 for a remote model");
   }
   if (!(options.max_age_s > 0.0)) {
     throw Error("DdsInterfaceOptions.max_age_s must be > 0");

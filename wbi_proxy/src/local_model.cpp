@@ -4,6 +4,7 @@
 #include <wbi/model/algorithms.hpp>
 #include <wbi/model/urdf.hpp>
 
+#include "base_pose.hpp"
 #include "size_check.hpp"
 
 namespace wbi::proxy {
@@ -54,11 +55,7 @@ JointLimits LocalModel::joint_limits(int joint) const {
 void LocalModel::set_position(const ConstVectorRef& q, const Transform& world_H_base) {
   check_size("joint positions q", q.size(), dofs());
   if (model_.floating_base) {
-    const Eigen::Matrix3d R = world_H_base.topLeftCorner<3, 3>();
-    if (!(R.transpose() * R).isIdentity(1e-6) || R.determinant() < 0.0) {
-      throw Error("world_H_base: the rotation block is not a rotation matrix");
-    }
-    const Eigen::Quaterniond orientation(R);
+    const Eigen::Quaterniond orientation = base_orientation(world_H_base);
     q_.head<3>() = world_H_base.topRightCorner<3, 1>();
     q_.segment<4>(3) << orientation.w(), orientation.x(), orientation.y(), orientation.z();
   }

@@ -10,43 +10,44 @@
 #include <wbi/model/data.hpp>
 #include <wbi/model/model.hpp>
 
-#include "wbi/model.hpp"
+#include "model_backend.hpp"
 
 namespace wbi::proxy {
 
-class LocalModel {
+class LocalModel final : public ModelBackend {
  public:
   // Throws Error naming the file or joint when the URDF does not load.
   LocalModel(const std::string& urdf, const IdList& joints,
              const std::map<std::string, double>& locked_positions);
 
   int dofs() const { return model_.n_joints; }
-  const IdList& frames() const { return model_.frame_name; }
-  int frame_index(const std::string& frame) const;
-  JointLimits joint_limits(int joint) const;
+  const IdList& frames() const override { return model_.frame_name; }
+  int frame_index(const std::string& frame) const override;
+  JointLimits joint_limits(int joint) const override;
 
   void frame_pose(const ConstVectorRef& q, const Transform& world_H_base, int frame,
-                  Transform& out);
-  void jacobian(const ConstVectorRef& q, const Transform& world_H_base, int frame, MatrixRef J);
+                  Transform& out) override;
+  void jacobian(const ConstVectorRef& q, const Transform& world_H_base, int frame,
+                MatrixRef J) override;
   void dj_nu(const ConstVectorRef& q, const Transform& world_H_base, const ConstVectorRef& dq,
-             const ConstVectorRef& base_velocity, int frame, VectorRef out);
-  void mass_matrix(const ConstVectorRef& q, const Transform& world_H_base, MatrixRef M);
+             const ConstVectorRef& base_velocity, int frame, VectorRef out) override;
+  void mass_matrix(const ConstVectorRef& q, const Transform& world_H_base, MatrixRef M) override;
   void bias_forces(const ConstVectorRef& q, const Transform& world_H_base, const ConstVectorRef& dq,
                    const ConstVectorRef& base_velocity, const Eigen::Vector3d& gravity,
-                   VectorRef h);
+                   VectorRef h) override;
   void gravity_forces(const ConstVectorRef& q, const Transform& world_H_base,
-                      const Eigen::Vector3d& gravity, VectorRef g);
+                      const Eigen::Vector3d& gravity, VectorRef g) override;
   void inverse_dynamics(const ConstVectorRef& q, const Transform& world_H_base,
                         const ConstVectorRef& dq, const ConstVectorRef& base_velocity,
                         const ConstVectorRef& ddq, const ConstVectorRef& base_acceleration,
-                        const Eigen::Vector3d& gravity, VectorRef tau);
+                        const Eigen::Vector3d& gravity, VectorRef tau) override;
   void centroidal_momentum(const ConstVectorRef& q, const Transform& world_H_base,
                            const ConstVectorRef& dq, const ConstVectorRef& base_velocity,
-                           VectorRef out);
+                           VectorRef out) override;
   void centroidal_momentum_matrix(const ConstVectorRef& q, const Transform& world_H_base,
-                                  MatrixRef A);
-  void com(const ConstVectorRef& q, const Transform& world_H_base, Eigen::Vector3d& out);
-  void com_jacobian(const ConstVectorRef& q, const Transform& world_H_base, MatrixRef J);
+                                  MatrixRef A) override;
+  void com(const ConstVectorRef& q, const Transform& world_H_base, Eigen::Vector3d& out) override;
+  void com_jacobian(const ConstVectorRef& q, const Transform& world_H_base, MatrixRef J) override;
 
  private:
   // Fills q_ (and nu_ when velocities are given) from the interface's arguments.

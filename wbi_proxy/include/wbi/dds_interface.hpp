@@ -21,7 +21,9 @@ struct DdsInterfaceOptions {
 
   enum class ModelSource { local, remote };
   ModelSource model_source = ModelSource::local;
-  std::string urdf;  // local model: the robot's URDF
+  // Local model: the robot's URDF (required). Remote model: optional, only for
+  // frame_list() (else the model service's URDF path, when readable here).
+  std::string urdf;
 
   // Positions of the robot's joints outside the controlled list, for the model.
   // A joint not listed here is locked where init() measures it.
@@ -29,7 +31,8 @@ struct DdsInterfaceOptions {
 
   double max_age_s = 0.1;  // reads fail on samples older than this
   std::chrono::milliseconds blocking_read_timeout{1000};
-  std::chrono::milliseconds model_timeout{200};  // deadline of a remote model call
+  // Deadline of a remote model call (the model service at wbi/<robot>/model).
+  std::chrono::milliseconds model_timeout{200};
 
   dds::ParticipantOptions participant;  // domain, discovery, QoS file
 };

@@ -23,13 +23,29 @@ class PdGravityComponent final : public runtime::Component {
                     const runtime::ComponentContext& context) override {
     DdsInterfaceOptions options;
     options.robot = parameters.require<std::string>("robot");
-    std::filesystem::path urdf = parameters.require<std::string>("urdf");
-    if (urdf.is_relative() && !parameters.file().empty() && parameters.file() != "<string>") {
+    const std::string model = parameters.get<std::string>("model", "local");
+    if (model != "local" && model != "remote") {
+      throw runtime::ParameterError(parameters.where("model") + ": model is '" + model +
+                                    "'; expected local or remote");
+    }
+    options.model_source = model == "remote" ? DdsInterfaceOptions::ModelSource::remote
+                                             : DdsInterfaceOptions::ModelSource::local;
+    // A local model needs the URDF; a remote one uses it only for frame names.
+    std::filesystem::path urdf = model == "local" ? parameters.require<std::string>("urdf")
+                                                  : parameters.get<std::string>("urdf", "");
+    if (!urdf.empty() && urdf.is_relative() && !parameters.file().empty() &&
+        parameters.file() != "<string>") {
       urdf = std::filesystem::path(parameters.file()).parent_path() / urdf;
     }
     options.urdf = urdf.string();
+    options.model_timeout = std::chrono::milliseconds(
+        static_cast<std::int64_t>(parameters.get<double>("model_timeout_s", 0.2) * 1000));
     options.controller = parameters.get<std::string>("controller", context.instance);
     options.max_age_s = parameters.get<double>("max_age_s", 0.05);
+    wait_for_state_ = parameters.get<bool>("wait_for_state", false);
+    // A cycle waits at most this long for the next estimate (then: a stale cycle).
+    options.blocking_read_timeout = std::chrono::milliseconds(
+        static_cast<std::int64_t>(parameters.get<double>("state_timeout_s", 0.005) * 1000));
     options.participant.domain_id = context.participant->domain_id();
     const auto joints = parameters.require<std::vector<std::string>>("joints");
     const auto target = parameters.require<std::vector<double>>("target");
@@ -78,9 +94,12 @@ class PdGravityComponent final : public runtime::Component {
 
   void update(std::int64_t time_ns, std::int64_t /*period_ns*/) override {
     try {
-      controller_->update(ReadMode::latest);
+      controller_->update(wait_for_state_ ? ReadMode::blocking : ReadMode::latest);
     } catch (const StaleDataError&) {
       ++stale_;  // no fresh state this cycle: no command; the robot's watchdog guards
+      return;
+    } catch (const TimeoutError&) {
+      ++stale_;  // wait_for_state: no new estimate within state_timeout_s
       return;
     }
     if (start_ns_ < 0) {
@@ -111,6 +130,7 @@ class PdGravityComponent final : public runtime::Component {
   std::unique_ptr<WholeBodyInterface> robot_;
   std::optional<PdGravity> controller_;
   double progress_period_s_ = 1.0;
+  bool wait_for_state_ = false;
   std::int64_t start_ns_ = -1;
   std::int64_t next_progress_ns_ = 0;
   std::uint64_t stale_ = 0;

@@ -4,7 +4,11 @@
 //
 // Parameters:
 //   robot            required; the robot's name
-//   urdf             required; the robot's URDF (local model), relative to the host file
+//   model            local (default): evaluate the model in this process from urdf;
+//                    remote: ask the robot's model service (wbi/<robot>/model)
+//   urdf             the robot's URDF, relative to the host file; required for a local
+//                    model, optional for a remote one (frame names only)
+//   model_timeout_s  deadline of one remote model call (default 0.2 s)
 //   joints           required; the controlled joints, by name
 //   target           q_d, one per controlled joint [rad]
 //   bandwidth_hz     gains from the mass-matrix diagonal at q_d: kp = ω² M_jj, kd = 2ω M_jj
@@ -12,6 +16,11 @@
 //   kp, kd           explicit gains, one per joint (both or neither)
 //   controller       name on the commands (default: the instance name)
 //   max_age_s        oldest state accepted (default 0.05 s)
+//   wait_for_state   false (default): each cycle uses the newest estimate; true: each
+//                    cycle waits for an estimate newer than the last one (at most
+//                    state_timeout_s, default 0.005 s) and answers it at once, so the
+//                    command follows its sensor sample without waiting for the next
+//                    cycle (sensor-to-command latency of one pipeline pass)
 //   init_timeout_s   wait for the robot's components (default 30 s)
 //   progress_period_s  a progress line every so often (default 1 s; 0: none)
 // At shutdown it prints "final max joint error: X rad".

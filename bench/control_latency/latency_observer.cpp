@@ -1,0 +1,78 @@
+#include "latency_observer.hpp"
+
+#include <chrono>
+
+#include <wbi/dds/topics.hpp>
+
+namespace wbi::bench {
+
+namespace {
+
+std::int64_t system_now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace
+
+LatencyObserver::LatencyObserver(dds::Participant& participant, const std::string& robot,
+                                 const std::string& controller_instance, std::size_t max_samples)
+    : controller_instance_(controller_instance),
+      max_samples_(max_samples),
+      sensors_(participant, dds::topics::sensors(robot), dds::qos::kStream,
+               [this](const msg::SensorSample& sample, const dds::detail::SampleInfo& info) {
+                 on_sensor(sample, info);
+               }),
+      commands_(participant, dds::topics::commands(robot), dds::qos::kCommand,
+                [this](const msg::ActuatorCommand& command, const dds::detail::SampleInfo&) {
+                  on_command(command);
+                }),
+      status_(participant, dds::topics::kStatus, dds::qos::kStatus,
+              [this](const msg::ComponentStatus& status, const dds::detail::SampleInfo&) {
+                on_status(status);
+              }) {
+  result_.latencies_us.reserve(max_samples_);
+}
+
+// A sensor sample's slot is its sequence number (the robot's tick), which a
+// command carries back as its tick; the stamp confirms the match.
+void LatencyObserver::on_sensor(const msg::SensorSample& sample,
+                                const dds::detail::SampleInfo& info) {
+  std::lock_guard lock(mutex_);
+  seen_[sample.header().seq() % kSlots] = {sample.header().stamp_ns(), info.source_stamp_ns};
+  ++result_.sensor_samples;
+}
+
+void LatencyObserver::on_command(const msg::ActuatorCommand& command) {
+  const std::int64_t arrived_ns = system_now_ns();
+  std::lock_guard lock(mutex_);
+  ++result_.commands;
+  const Seen& sensor = seen_[command.tick() % kSlots];
+  if (command.source_stamp_ns() == 0 || sensor.stamp_ns != command.source_stamp_ns()) {
+    ++result_.unmatched_commands;
+    return;
+  }
+  if (result_.latencies_us.size() < max_samples_) {
+    result_.latencies_us.push_back(1e-3 * static_cast<double>(arrived_ns - sensor.published_ns));
+  }
+}
+
+void LatencyObserver::on_status(const msg::ComponentStatus& status) {
+  if (status.instance() != controller_instance_) {
+    return;
+  }
+  std::lock_guard lock(mutex_);
+  // The newest report counts; a restarted loop would start from 0 again.
+  if (status.iterations() >= result_.ticks) {
+    result_.ticks = status.iterations();
+    result_.overruns = status.overruns();
+  }
+}
+
+LatencyObserver::Result LatencyObserver::result() const {
+  std::lock_guard lock(mutex_);
+  return result_;
+}
+
+}  // namespace wbi::bench
