@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <optional>
 
 #include <wbi/dds/publisher.hpp>
 #include <wbi/dds/subscriber.hpp>
@@ -48,12 +49,14 @@ class EstimatorFixture {
     EXPECT_TRUE(state_.wait_for_publishers(1, 10s));
   }
 
-  // Publishes one sample (stamp k ms) and returns the estimate made from it.
-  wbi::msg::StateEstimate step(std::uint64_t k, const Eigen::VectorXd& q) {
+  // Publishes one sample (sequence k, stamp k ms unless given) and returns the
+  // estimate made from it.
+  wbi::msg::StateEstimate step(std::uint64_t k, const Eigen::VectorXd& q,
+                               std::int64_t stamp_ns = -1) {
     wbi::msg::SensorSample sample;
     sample.header().robot(robot_);
     sample.header().seq(k);
-    sample.header().stamp_ns(static_cast<std::int64_t>(k) * 1'000'000);
+    sample.header().stamp_ns(stamp_ns >= 0 ? stamp_ns : static_cast<std::int64_t>(k) * 1'000'000);
     sample.encoder_position().assign(q.data(), q.data() + q.size());
     // Best-effort stream: send again until this sample's estimate comes back.
     for (int attempt = 0; attempt < 50; ++attempt) {
@@ -69,6 +72,26 @@ class EstimatorFixture {
 
   wbi::dds::Publisher<wbi::msg::EstimatorParameter>& parameters() { return parameters_; }
 
+  // The estimator's status counter `name` as wbi/status carries it, once it is
+  // at least `at_least` (bounded wait; the last value seen otherwise, nullopt
+  // when the status never carried it).
+  std::optional<std::uint64_t> status_counter(const std::string& name, std::uint64_t at_least) {
+    wbi::dds::Received<wbi::msg::ComponentStatus> got;
+    std::optional<std::uint64_t> value;
+    const auto deadline = std::chrono::steady_clock::now() + 10s;
+    while ((!value || *value < at_least) && std::chrono::steady_clock::now() < deadline) {
+      runner_->publish_status();
+      if (status_.wait_newer(got, got.count, 200ms)) {
+        for (const auto& c : got.sample.counters()) {
+          if (c.name().to_string() == name) {
+            value = c.value();
+          }
+        }
+      }
+    }
+    return value;
+  }
+
  private:
   std::string robot_;
   wbi::dds::Participant participant_{"estimator_test"};
@@ -77,6 +100,8 @@ class EstimatorFixture {
   wbi::dds::Publisher<wbi::msg::SensorSample> sensors_;
   wbi::dds::Publisher<wbi::msg::EstimatorParameter> parameters_;
   wbi::dds::Subscriber<wbi::msg::StateEstimate> state_;
+  wbi::dds::Subscriber<wbi::msg::ComponentStatus> status_{participant_, topics::kStatus,
+                                                          qos::kStatus};
   wbi::dds::Received<wbi::msg::StateEstimate> received_;
   std::unique_ptr<wbi::runtime::ComponentRunner> runner_;
 };
@@ -96,6 +121,21 @@ TEST(EstimatorComponent, EstimatesFollowEverySampleWithItsStamp) {
   EXPECT_NEAR(state.ddq()[0], 0.0, 1e-2);
   EXPECT_DOUBLE_EQ(state.base_pose().orientation().w(), 1.0);  // base: fixed, identity
   EXPECT_EQ(state.warnings(), 0u);
+}
+
+TEST(EstimatorComponent, StampWarningsAreCountersOnTheStatusTopic) {
+  EstimatorFixture fixture("stamps", {"a"}, "robot: stamps\nmethod: backward-difference\n");
+  const Eigen::VectorXd q = Eigen::VectorXd::Constant(1, 0.1);
+  for (std::uint64_t k = 0; k < 10; ++k) {
+    fixture.step(k, q);
+  }
+  fixture.step(10, q, 9'000'000);   // the stamp of sample 9 again
+  fixture.step(11, q, 5'000'000);   // older than the last one
+  fixture.step(12, q, 30'000'000);  // 18 samples missing
+  EXPECT_GE(fixture.status_counter("duplicate_stamps", 1).value_or(0), 1u);
+  EXPECT_GE(fixture.status_counter("out_of_order_stamps", 1).value_or(0), 1u);
+  EXPECT_GE(fixture.status_counter("dropped_samples", 1).value_or(0), 1u);
+  EXPECT_EQ(fixture.status_counter("non_finite_samples", 0), std::optional<std::uint64_t>(0));
 }
 
 Eigen::Matrix4d pose_of(const wbi::msg::Pose& p) {

@@ -312,6 +312,50 @@ TEST_F(Loop, StatusHeartbeatCarriesStateAndTiming) {
       [&] { return status.latest_into(got) && got.sample.state() == wbi::msg::FINALIZED; }));
 }
 
+TEST_F(Loop, StatusCarriesTheComponentsCountersAndLastError) {
+  wbi::dds::Participant listener("listener");
+  wbi::dds::Subscriber<wbi::msg::ComponentStatus> status(listener, wbi::dds::topics::kStatus,
+                                                         wbi::dds::qos::kStatus);
+  auto r = runner(system, 100.0);
+  r->configure(Parameters::from_string("gain: 1"));
+  auto& report = r->component().report();
+  report.counter("rejected").add(3);
+  report.counter("trips").set(7);
+  report.counter("rejected").add();  // the same counter again
+  report.set_error("command from 'x' rejected: joint index 9 out of range");
+  ASSERT_TRUE(status.wait_for_publishers(1, 10s));
+  wbi::dds::Received<wbi::msg::ComponentStatus> got;
+  ASSERT_TRUE(eventually([&] {
+    return status.latest_into(got) && got.sample.counters().size() == 2 &&
+           got.sample.counters()[0].value() == 4;
+  }));
+  EXPECT_STREQ(got.sample.counters()[0].name().c_str(), "rejected");
+  EXPECT_STREQ(got.sample.counters()[1].name().c_str(), "trips");
+  EXPECT_EQ(got.sample.counters()[1].value(), 7u);
+  EXPECT_EQ(got.sample.last_error(), "command from 'x' rejected: joint index 9 out of range");
+  EXPECT_EQ(r->last_error(), got.sample.last_error());
+}
+
+TEST(StatusReport, BoundedCountersAndErrorText) {
+  wbi::runtime::StatusReport report;
+  for (std::size_t i = 0; i < wbi::runtime::StatusReport::kMaxCounters; ++i) {
+    report.counter(std::to_string(100 + i));
+  }
+  EXPECT_NO_THROW(report.counter("100"));  // existing: no new slot
+  try {
+    report.counter("one_too_many");
+    FAIL() << "a 17th counter was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'one_too_many': at most 16 counters"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(report.counter(""), std::invalid_argument);
+  const auto before = report.error_count();
+  report.set_error(std::string(2000, 'e'));
+  EXPECT_EQ(report.last_error().size(), wbi::runtime::StatusReport::kMaxErrorLength);
+  EXPECT_EQ(report.error_count(), before + 1);
+}
+
 TEST(Registry, CreatesByTypeAndNamesUnknownTypes) {
   wbi::runtime::Registry registry;
   wbi::runtime::register_builtin_components(registry);

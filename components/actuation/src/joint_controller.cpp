@@ -146,6 +146,7 @@ CommandResult JointController::submit(const JointCommandBatch& batch, Time now) 
     }
     scratch_index_[b] = i;
   }
+  int clamped = 0;
   for (std::size_t b = 0; b < k; ++b) {
     const auto i = static_cast<std::size_t>(scratch_index_[b]);
     const ControlMode mode = !batch.modes.empty()  ? batch.modes[b]
@@ -161,6 +162,7 @@ CommandResult JointController::submit(const JointCommandBatch& batch, Time now) 
       if (mode == ControlMode::kIdle && batch.modes.empty()) {
         return reject("joint '" + name + "' is IDLE: it takes no value");
       }
+      clamped += outside_limits(mode, batch.values[b], i) ? 1 : 0;
     }
     if (!batch.reference_speeds.empty() && !(batch.reference_speeds[b] > 0.0)) {
       return reject("joint '" + name + "': reference speed must be > 0");
@@ -184,7 +186,27 @@ CommandResult JointController::submit(const JointCommandBatch& batch, Time now) 
     s.time = now;
   }
   ++status_.accepted_batches;
-  return {};
+  return {true, {}, clamped};
+}
+
+// What update() will clamp: positions to [lower, upper], velocities to
+// ±velocity_limit, torques to ±effort_limit, PWM to [−1, 1].
+bool JointController::outside_limits(ControlMode mode, double value, std::size_t joint) const {
+  switch (mode) {
+    case ControlMode::kPosition:
+    case ControlMode::kPositionDirect:
+      return value < description_.position_lower[joint] ||
+             value > description_.position_upper[joint];
+    case ControlMode::kVelocity:
+      return std::abs(value) > description_.velocity_limit[joint];
+    case ControlMode::kTorque:
+      return std::abs(value) > description_.effort_limit[joint];
+    case ControlMode::kPwm:
+      return std::abs(value) > 1.0;
+    case ControlMode::kIdle:
+      return false;
+  }
+  return false;
 }
 
 // Quintic from (q, q̇, q̈) to (target, 0, 0) in time T (minimum jerk when starting at rest).

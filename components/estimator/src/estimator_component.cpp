@@ -86,6 +86,14 @@ class EstimatorComponent final : public runtime::Component {
     const auto base_topic =
         parameters.get<std::string>("base_topic", dds::topics::ground_truth(robot_));
 
+    // The stamp monitor's counts, on the status topic (also summed in StateEstimate.warnings).
+    dropped_ = &report().counter("dropped_samples");
+    duplicated_ = &report().counter("duplicate_stamps");
+    out_of_order_ = &report().counter("out_of_order_stamps");
+    gaps_ = &report().counter("stamp_gaps");
+    non_finite_ = &report().counter("non_finite_samples");
+    wrong_size_ = &report().counter("wrong_size_samples");
+
     auto& participant = *context.participant;
     description_ = std::make_unique<dds::Subscriber<wbi::msg::RobotDescription>>(
         participant, dds::topics::description(robot_), dds::qos::kLatched,
@@ -186,6 +194,7 @@ class EstimatorComponent final : public runtime::Component {
     const auto& positions = sample.encoder_position();
     if (positions.size() != static_cast<std::size_t>(q_.size())) {
       ++ignored_;  // a sample of the wrong size is not this robot's: never applied
+      wrong_size_->set(ignored_);
       return;
     }
     q_ = Eigen::Map<const Eigen::VectorXd>(positions.data(), q_.size());
@@ -215,6 +224,11 @@ class EstimatorComponent final : public runtime::Component {
     fill_base(dq, ddq);
     const auto& counters = estimator_->stamp_counters();
     state.warnings(static_cast<std::uint32_t>(counters.anomalies()) + ignored_);
+    dropped_->set(counters.dropped);
+    duplicated_->set(counters.duplicated);
+    out_of_order_->set(counters.out_of_order);
+    gaps_->set(counters.gaps);
+    non_finite_->set(counters.non_finite);
     state_publisher_->publish(state);
   }
 
@@ -247,8 +261,10 @@ class EstimatorComponent final : public runtime::Component {
     try {
       apply_parameter(parameter);
     } catch (const std::exception& e) {
-      std::cerr << "estimator of robot '" << robot_ << "': parameter '"
-                << parameter.name().to_string() << "' rejected: " << e.what() << std::endl;
+      const std::string text = "estimator of robot '" + robot_ + "': parameter '" +
+                               parameter.name().to_string() + "' rejected: " + e.what();
+      report().set_error(text);
+      std::cerr << text << std::endl;
     }
   }
 
@@ -294,6 +310,12 @@ class EstimatorComponent final : public runtime::Component {
   Eigen::VectorXd q_;
   Eigen::VectorXd tau_;
   std::uint32_t ignored_ = 0;
+  runtime::StatusCounter* dropped_ = nullptr;  // the report's counters (on_configure)
+  runtime::StatusCounter* duplicated_ = nullptr;
+  runtime::StatusCounter* out_of_order_ = nullptr;
+  runtime::StatusCounter* gaps_ = nullptr;
+  runtime::StatusCounter* non_finite_ = nullptr;
+  runtime::StatusCounter* wrong_size_ = nullptr;
   wbi::msg::StateEstimate state_;
   dds::Received<wbi::msg::GroundTruth> ground_truth_rx_;
 

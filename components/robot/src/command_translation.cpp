@@ -25,10 +25,8 @@ std::string to_batch(const wbi::msg::ActuatorCommand& command,
                      actuation::JointCommandBatch& batch) {
   const auto& joints = command.joints();
   if (command.modes().size() != joints.size() || command.references().size() != joints.size()) {
-    return "command from '" + command.controller().to_string() +
-           "': " + std::to_string(joints.size()) + " joints but " +
-           std::to_string(command.modes().size()) + " modes and " +
-           std::to_string(command.references().size()) + " references";
+    return std::to_string(joints.size()) + " joints but " + std::to_string(command.modes().size()) +
+           " modes and " + std::to_string(command.references().size()) + " references";
   }
   batch.joint_indices.resize(joints.size());  // indices: the controller checks their range
   batch.modes.resize(joints.size());

@@ -10,14 +10,13 @@
 #include <stdexcept>
 #include <thread>
 
-#include <wbi/actuation/joint_controller.hpp>
 #include <wbi/dds/publisher.hpp>
-#include <wbi/dds/subscriber.hpp>
 #include <wbi/dds/topics.hpp>
 #include <wbi/sim/sim_backend.hpp>
 
-#include "command_translation.hpp"
+#include "actuator_side.hpp"
 #include "messages.hpp"
+#include "sensor_side.hpp"
 
 namespace wbi::robot {
 
@@ -53,54 +52,31 @@ class SimRobot final : public runtime::Component {
     sim_->configure();
     const auto& description =
         sim_->description();  // its robot name is the URDF's; topics use robot_
-    controller_ = std::make_unique<actuation::JointController>(description, control);
-    reference_speed_.assign(description.joint_names.size(), control.reference_speed);
     answered_.clear();
     for (const auto& name : controllers) {
       answered_[name] = -1;
     }
+    lockstep_timeouts_ = &report().counter("lockstep_timeouts");
 
     auto& participant = *context.participant;
-    description_ = std::make_unique<dds::Publisher<wbi::msg::RobotDescription>>(
-        participant, dds::topics::description(robot_), dds::qos::kLatched);
-    sensors_ = std::make_unique<dds::Publisher<wbi::msg::SensorSample>>(
-        participant, dds::topics::sensors(robot_), dds::qos::kStream);
+    // The description names the URDF the simulation loaded (a model service or a
+    // proxy may load it for frames), not the simulation's YAML.
+    sensors_ = std::make_unique<SensorSide>(participant, robot_, description, sim_->config().urdf,
+                                            sim_->model().floating_base);
     ground_truth_ = std::make_unique<dds::Publisher<wbi::msg::GroundTruth>>(
         participant, dds::topics::ground_truth(robot_), dds::qos::kStream);
     clock_ = std::make_unique<dds::Publisher<wbi::msg::SimulationClock>>(
         participant, dds::topics::kClock, dds::qos::kStream);
-    commands_ = std::make_unique<dds::Subscriber<wbi::msg::ActuatorCommand>>(
-        participant, dds::topics::commands(robot_), dds::qos::kCommand,
-        [this](const wbi::msg::ActuatorCommand& c, const dds::detail::SampleInfo&) {
-          on_command(c);
-        });
-    parameters_ = std::make_unique<dds::Subscriber<wbi::msg::ControlParameters>>(
-        participant, dds::topics::control_parameters(robot_), dds::qos::kCommand,
-        [this](const wbi::msg::ControlParameters& p, const dds::detail::SampleInfo&) {
-          on_parameters(p);
-        });
-
-    describe(description, robot_, config_path.string(), sim_->model().floating_base,
-             description_message_);
-    description_->publish(description_message_);
-    prepare_sensor_sample(description, robot_, sensor_message_);
+    actuators_ = std::make_unique<ActuatorSide>(
+        participant, robot_, description, control, report(),
+        [this](const wbi::msg::ActuatorCommand& command) { on_answer(command); });
   }
 
   void on_activate() override {
     sim_->activate();
     if (hold_at_start_) {
-      // Like a real robot's boards: joints hold where they are until a controller
-      // commands them (without a watchdog: POSITION is not a streaming mode).
-      actuation::JointCommandBatch hold;
-      hold.modes.assign(sim_->description().joint_names.size(), actuation::ControlMode::kPosition);
       sim_->read(sim_->stamp(), std::chrono::nanoseconds(0));
-      const auto& q = sim_->readings().position;
-      hold.values.assign(q.data(), q.data() + q.size());
-      std::lock_guard lock(mutex_);
-      const auto result = controller_->submit(hold, sim_->stamp());
-      if (!result.ok) {
-        throw std::runtime_error("cannot hold the initial posture: " + result.error);
-      }
+      actuators_->hold(sim_->readings(), sim_->stamp());
     }
     running_ = true;
     loop_ = std::thread([this] { run(); });
@@ -113,13 +89,10 @@ class SimRobot final : public runtime::Component {
 
   void on_cleanup() override {
     stop_loop();
-    commands_.reset();  // first: no callback after this
-    parameters_.reset();
+    actuators_.reset();  // first: no command callback after this
     clock_.reset();
     ground_truth_.reset();
     sensors_.reset();
-    description_.reset();
-    controller_.reset();
     sim_.reset();
   }
 
@@ -134,43 +107,13 @@ class SimRobot final : public runtime::Component {
     }
   }
 
-  // Runs on a DDS thread: stages the command for the next tick; never throws into DDS.
-  void on_command(const wbi::msg::ActuatorCommand& command) {
+  // Lockstep bookkeeping, on the DDS thread after the actuator side staged the command.
+  void on_answer(const wbi::msg::ActuatorCommand& command) {
     std::lock_guard lock(mutex_);
-    const std::string error = to_batch(command, reference_speed_, batch_);
-    const auto result = error.empty()
-                            ? controller_->submit(batch_, actuation::Time(tick_stamp_ns_.load()))
-                            : actuation::CommandResult{false, error};
-    if (!result.ok) {
-      ++rejected_;
-      std::cerr << "sim_robot '" << robot_ << "': command rejected: " << result.error << std::endl;
-    }
     const auto sender = answered_.find(command.controller().to_string());
     if (sender != answered_.end()) {
       sender->second = std::max(sender->second, static_cast<std::int64_t>(command.tick()));
       answered_changed_.notify_all();
-    }
-  }
-
-  void on_parameters(const wbi::msg::ControlParameters& message) {
-    std::lock_guard lock(mutex_);
-    const auto& names = sim_->description().joint_names;
-    for (std::size_t k = 0; k < message.joints().size(); ++k) {
-      const auto joint = message.joints()[k];
-      if (joint >= names.size()) {
-        std::cerr << "sim_robot '" << robot_ << "': control parameters for joint index " << joint
-                  << " out of range: ignored" << std::endl;
-        return;
-      }
-      const auto value = [&](const std::vector<double>& values, double current) {
-        return k < values.size() && !std::isnan(values[k]) ? values[k] : current;
-      };
-      auto gains = controller_->gains(joint);
-      gains.kp = value(message.kp(), gains.kp);
-      gains.ki = value(message.ki(), gains.ki);
-      gains.kd = value(message.kd(), gains.kd);
-      controller_->set_gains(names[joint], gains);
-      reference_speed_[joint] = value(message.reference_speed(), reference_speed_[joint]);
     }
   }
 
@@ -189,7 +132,7 @@ class SimRobot final : public runtime::Component {
     const double timeout_s = tick == 0 ? lockstep_start_timeout_s_ : lockstep_timeout_s_;
     if (!answered_changed_.wait_for(lock, std::chrono::duration<double>(timeout_s),
                                     [&] { return !running_ || all_answered(); })) {
-      ++lockstep_timeouts_;
+      lockstep_timeouts_->add();
       std::cerr << "sim_robot '" << robot_ << "': tick " << tick
                 << " not answered by every controller within " << timeout_s << " s: stepping on"
                 << std::endl;
@@ -205,7 +148,7 @@ class SimRobot final : public runtime::Component {
         break;
       }
       const auto now = sim_->stamp();
-      tick_stamp_ns_ = now.count();  // the command callbacks' notion of "now" (watchdog)
+      actuators_->begin_tick(now);  // the command callbacks' notion of "now" (watchdog)
       sim_->read(now, period);
       publish_tick(tick);
       if (lockstep_) {
@@ -213,18 +156,14 @@ class SimRobot final : public runtime::Component {
       } else {
         std::this_thread::sleep_until(start + period * (tick + 1));  // real-time pacing
       }
-      {
-        std::lock_guard lock(mutex_);
-        controller_->update(now, period, sim_->readings(), sim_->commands());
-      }
+      actuators_->update(now, period, sim_->readings(), sim_->commands());
       sim_->write(now, period);
       sim_->step();
     }
   }
 
   void publish_tick(std::uint64_t tick) {
-    fill_sensor_sample(sim_->readings(), tick, sim_->stamp().count(), sensor_message_);
-    sensors_->publish(sensor_message_);
+    sensors_->publish(sim_->readings(), tick, sim_->stamp().count());
     fill_ground_truth(sim_->ground_truth(), robot_, tick, sim_->stamp().count(), truth_message_);
     ground_truth_->publish(truth_message_);
     clock_message_.time_ns(sim_->stamp().count());
@@ -238,33 +177,24 @@ class SimRobot final : public runtime::Component {
   bool lockstep_ = false;
   double lockstep_timeout_s_ = 2.0;
   double lockstep_start_timeout_s_ = 60.0;
-  std::atomic<std::int64_t> tick_stamp_ns_{0};
   double duration_s_ = 0.0;
   bool hold_at_start_ = true;
 
   std::unique_ptr<sim::SimBackend> sim_;
-  std::unique_ptr<actuation::JointController> controller_;
-  std::vector<double> reference_speed_;  // [n] POSITION-mode speed per joint
-  actuation::JointCommandBatch batch_;   // reused for every command
 
-  std::mutex mutex_;  // guards controller_, batch_, answered_ between DDS threads and the loop
+  std::mutex mutex_;  // guards answered_ between DDS threads and the loop
   std::condition_variable answered_changed_;
   std::map<std::string, std::int64_t> answered_;  // lockstep: newest tick answered per controller
-  std::uint64_t rejected_ = 0;
-  std::uint64_t lockstep_timeouts_ = 0;
+  runtime::StatusCounter* lockstep_timeouts_ = nullptr;
   std::atomic<bool> running_{false};
   std::thread loop_;
 
-  wbi::msg::RobotDescription description_message_;
-  wbi::msg::SensorSample sensor_message_;
   wbi::msg::GroundTruth truth_message_;
   wbi::msg::SimulationClock clock_message_;
-  std::unique_ptr<dds::Publisher<wbi::msg::RobotDescription>> description_;
-  std::unique_ptr<dds::Publisher<wbi::msg::SensorSample>> sensors_;
+  std::unique_ptr<SensorSide> sensors_;
   std::unique_ptr<dds::Publisher<wbi::msg::GroundTruth>> ground_truth_;
   std::unique_ptr<dds::Publisher<wbi::msg::SimulationClock>> clock_;
-  std::unique_ptr<dds::Subscriber<wbi::msg::ActuatorCommand>> commands_;
-  std::unique_ptr<dds::Subscriber<wbi::msg::ControlParameters>> parameters_;
+  std::unique_ptr<ActuatorSide> actuators_;
 };
 
 }  // namespace

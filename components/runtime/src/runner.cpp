@@ -37,6 +37,24 @@ msg::LifecycleState to_msg(LifecycleState state) {
   }
   return msg::FINALIZED;
 }
+
+// The report's counters and error into the sample; allocates only when a
+// counter was added (configure). last_error is a bounded string: no allocation.
+void copy_report(const StatusReport& report, msg::ComponentStatus& sample) {
+  const std::size_t n = report.counter_count();
+  auto& counters = sample.counters();
+  if (counters.size() != n) {
+    counters.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      counters[i].name(report.counter_name(i));
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    counters[i].value(report.counter_value(i));
+  }
+  report.last_error_into(sample.last_error());
+}
+
 }  // namespace
 
 struct ComponentRunner::Status {
@@ -97,10 +115,7 @@ void ComponentRunner::require(LifecycleState from, const char* transition) const
 void ComponentRunner::fail(const char* transition, const std::exception& error) {
   const std::string text = "component '" + context_.instance + "' (" + context_.type +
                            "): " + transition + " failed: " + error.what();
-  {
-    std::lock_guard lock(mutex_);
-    last_error_ = error.what();
-  }
+  component_->report().set_error(error.what());
   publish_status();
   throw TransitionError(text);
 }
@@ -190,8 +205,7 @@ void ComponentRunner::shutdown() {
     error = e.what();
   }
   if (!error.empty()) {
-    std::lock_guard lock(mutex_);
-    last_error_ = error;
+    component_->report().set_error(error);
   }
   set_state(LifecycleState::finalized);
   if (!error.empty()) {
@@ -205,10 +219,7 @@ LoopStats ComponentRunner::stats() const {
   return stats_;
 }
 
-std::string ComponentRunner::last_error() const {
-  std::lock_guard lock(mutex_);
-  return last_error_;
-}
+std::string ComponentRunner::last_error() const { return component_->report().last_error(); }
 
 // The periodic cycle. Ticks at start + k·period on the clock; a cycle that ends
 // after its successor's tick is an overrun, and the missed ticks are skipped
@@ -244,14 +255,14 @@ void ComponentRunner::run_loop() {
       overrun = true;
       next_ns += ((end_ns - next_ns) / period_ns + 1) * period_ns;  // skip the missed ticks
     }
+    if (error) {
+      component_->report().set_error(what);
+    }
     std::lock_guard lock(mutex_);
     LoopStats& s = stats_;
     ++s.iterations;
     s.overruns += overrun ? 1 : 0;
-    if (error) {
-      ++s.errors;
-      last_error_ = what;
-    }
+    s.errors += error ? 1 : 0;
     const double cycle_s = 1e-9 * static_cast<double>(end_ns - start_ns);
     s.cycle_mean_s += (cycle_s - s.cycle_mean_s) / static_cast<double>(s.iterations);
     s.cycle_max_s = std::max(s.cycle_max_s, cycle_s);
@@ -302,7 +313,7 @@ void ComponentRunner::run_heartbeat() {
     sample.period_jitter_s(s.period_jitter_s);
     sample.overruns(s.overruns);
     sample.iterations(s.iterations);
-    sample.last_error(last_error());
+    copy_report(component_->report(), sample);
     status.publisher.publish(sample);
     sample.header().seq(sample.header().seq() + 1);
   }

@@ -23,8 +23,10 @@
 // and their values. The whole batch is checked first (unknown or repeated
 // joint, wrong size, non-finite value, value for an IDLE joint): on error
 // nothing is applied and the error is returned and kept in status(). Accepted
-// batches are staged; update() applies everything staged at the start of the
-// next tick, so mode switches of many joints take effect in the same tick.
+// batches are staged (the result counts the values that lie outside the
+// joint's limits and will be clamped); update() applies everything staged at
+// the start of the next tick, so mode switches of many joints take effect in
+// the same tick.
 // submit() may be called from another thread than update() (a mutex guards
 // the staging area); read status() on the update() thread. update() never
 // allocates; submit() does not allocate when it accepts a batch.
@@ -95,6 +97,7 @@ struct JointCommandBatch {
 struct CommandResult {
   bool ok = true;
   std::string error;  // empty when ok
+  int clamped = 0;    // accepted values outside the joint's limits (they will be clamped)
 };
 
 struct JointControlStatus {
@@ -152,6 +155,7 @@ class JointController {
   };
 
   int find(const std::string& name) const;
+  bool outside_limits(ControlMode mode, double value, std::size_t joint) const;
   void start_trajectory(Joint& j, int i, double t, double q, double dq);
   double pid(Joint& j, int i, double q, double dq, double dt);
 

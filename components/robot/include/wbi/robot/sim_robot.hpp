@@ -20,6 +20,15 @@
 //   hold_at_start         true (default): every joint holds its initial position (POSITION
 //                         mode) until commanded; false: joints start IDLE (unpowered)
 //
+// Status (wbi/status, counters and last_error): rejected_commands,
+// rejected_parameters, watchdog_trips, limit_clamps (the actuator side, see
+// src/actuator_side.hpp) and lockstep_timeouts; the last rejection or
+// watchdog trip in words.
+//
+// The sensor side (src/sensor_side.hpp) and the actuator side
+// (src/actuator_side.hpp) are the same parts a real robot's driver component
+// uses (robot_driver.hpp); this component adds the simulation's stepping,
+// ground truth, clock and lockstep around them.
 // The loop runs on its own thread while ACTIVE (the simulation is the clock).
 #pragma once
 

@@ -26,6 +26,7 @@
 
 #include "wbi/runtime/clock.hpp"
 #include "wbi/runtime/parameters.hpp"
+#include "wbi/runtime/status_report.hpp"
 
 namespace wbi::dds {
 class Participant;
@@ -69,8 +70,17 @@ class Component {
   virtual void update(std::int64_t /*time_ns*/, std::int64_t /*period_ns*/) {}
   virtual void write(std::int64_t /*time_ns*/, std::int64_t /*period_ns*/) {}
 
+  // Named counters and the last error, published by the runner in the
+  // component's status (status_report.hpp). The runner also records its own
+  // errors here (a failed transition, a cycle that threw).
+  StatusReport& report() { return report_; }
+  const StatusReport& report() const { return report_; }
+
  protected:
   Component() = default;
+
+ private:
+  StatusReport report_;
 };
 
 }  // namespace wbi::runtime

@@ -1,7 +1,8 @@
 // ComponentRunner: owns one component, drives its lifecycle, runs its periodic
 // cycle on a loop thread at a given rate on a Clock, measures the loop's timing
 // and publishes the component's status on wbi/status (from its own thread,
-// so the cycle never waits on DDS).
+// so the cycle never waits on DDS), with the counters and last error of the
+// component's StatusReport (status_report.hpp).
 #pragma once
 
 #include <atomic>
@@ -60,6 +61,7 @@ class ComponentRunner {
 
   LifecycleState state() const { return state_.load(); }
   LoopStats stats() const;
+  // The component's last error (its own report, or a failed transition or cycle).
   std::string last_error() const;
   const ComponentContext& context() const { return context_; }
   const RunnerOptions& options() const { return options_; }
@@ -81,9 +83,8 @@ class ComponentRunner {
   RunnerOptions options_;
   std::atomic<LifecycleState> state_{LifecycleState::unconfigured};
 
-  mutable std::mutex mutex_;  // guards stats_, last_error_
+  mutable std::mutex mutex_;  // guards stats_
   LoopStats stats_;
-  std::string last_error_;
 
   std::atomic<bool> loop_stop_{false};
   std::thread loop_;

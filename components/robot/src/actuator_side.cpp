@@ -1,0 +1,136 @@
+#include "actuator_side.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include <wbi/dds/topics.hpp>
+
+#include "command_translation.hpp"
+
+namespace wbi::robot {
+
+ActuatorSide::ActuatorSide(dds::Participant& participant, const std::string& robot,
+                           const actuation::BackendDescription& description,
+                           const actuation::JointControllerConfig& config,
+                           runtime::StatusReport& report, CommandObserver observer)
+    : joint_names_(description.joint_names),
+      watchdog_timeout_s_(config.watchdog_timeout),
+      damp_on_trip_(config.watchdog_action == actuation::WatchdogAction::kDamp),
+      controller_(description, config),
+      reference_speed_(description.joint_names.size(), config.reference_speed),
+      was_tripped_(description.joint_names.size(), 0),
+      report_(report),
+      rejected_commands_(report.counter("rejected_commands")),
+      rejected_parameters_(report.counter("rejected_parameters")),
+      watchdog_trips_(report.counter("watchdog_trips")),
+      limit_clamps_(report.counter("limit_clamps")),
+      observer_(std::move(observer)) {
+  // Subscribers last: their callbacks use everything above.
+  commands_ = std::make_unique<dds::Subscriber<wbi::msg::ActuatorCommand>>(
+      participant, dds::topics::commands(robot), dds::qos::kCommand,
+      [this](const wbi::msg::ActuatorCommand& c, const dds::detail::SampleInfo&) { handle(c); });
+  parameters_ = std::make_unique<dds::Subscriber<wbi::msg::ControlParameters>>(
+      participant, dds::topics::control_parameters(robot), dds::qos::kCommand,
+      [this](const wbi::msg::ControlParameters& p, const dds::detail::SampleInfo&) { handle(p); });
+}
+
+ActuatorSide::~ActuatorSide() {
+  commands_.reset();
+  parameters_.reset();
+}
+
+void ActuatorSide::hold(const actuation::SensorReadings& readings, actuation::Time now) {
+  // Like a real robot's boards: joints hold where they are until a controller
+  // commands them (no watchdog: POSITION is not a streaming mode).
+  actuation::JointCommandBatch hold;
+  hold.modes.assign(joint_names_.size(), actuation::ControlMode::kPosition);
+  hold.values.assign(readings.position.data(), readings.position.data() + readings.position.size());
+  std::lock_guard lock(mutex_);
+  const auto result = controller_.submit(hold, now);
+  if (!result.ok) {
+    throw std::runtime_error("cannot hold the initial posture: " + result.error);
+  }
+}
+
+// Runs on a DDS thread: stages the command for the next tick; never throws into DDS.
+void ActuatorSide::handle(const wbi::msg::ActuatorCommand& command) {
+  {
+    std::lock_guard lock(mutex_);
+    const std::string error = to_batch(command, reference_speed_, batch_);
+    const auto result = error.empty() ? controller_.submit(batch_, actuation::Time(now_ns_.load()))
+                                      : actuation::CommandResult{false, error};
+    if (result.ok) {
+      limit_clamps_.add(static_cast<std::uint64_t>(result.clamped));
+    } else {
+      rejected_commands_.add();
+      const std::string text =
+          "command from '" + command.controller().to_string() + "' rejected: " + result.error;
+      report_.set_error(text);
+      std::cerr << text << std::endl;
+    }
+  }
+  if (observer_) {
+    observer_(command);
+  }
+}
+
+// Runs on a DDS thread. All indices are checked first: a bad message changes nothing.
+void ActuatorSide::handle(const wbi::msg::ControlParameters& message) {
+  std::lock_guard lock(mutex_);
+  for (const auto joint : message.joints()) {
+    if (joint >= joint_names_.size()) {
+      rejected_parameters_.add();
+      const std::string text = "control parameters from '" + message.controller().to_string() +
+                               "' rejected: joint index " + std::to_string(joint) +
+                               " out of range (the robot has " +
+                               std::to_string(joint_names_.size()) + " joints)";
+      report_.set_error(text);
+      std::cerr << text << std::endl;
+      return;
+    }
+  }
+  for (std::size_t k = 0; k < message.joints().size(); ++k) {
+    const auto joint = message.joints()[k];
+    const auto value = [&](const std::vector<double>& values, double current) {
+      return k < values.size() && !std::isnan(values[k]) ? values[k] : current;
+    };
+    auto gains = controller_.gains(joint);
+    gains.kp = value(message.kp(), gains.kp);
+    gains.ki = value(message.ki(), gains.ki);
+    gains.kd = value(message.kd(), gains.kd);
+    controller_.set_gains(joint_names_[joint], gains);
+    reference_speed_[joint] = value(message.reference_speed(), reference_speed_[joint]);
+  }
+}
+
+void ActuatorSide::update(actuation::Time now, actuation::Duration period,
+                          const actuation::SensorReadings& in, actuation::JointCommands& out) {
+  {
+    std::lock_guard lock(mutex_);
+    controller_.update(now, period, in, out);
+  }
+  watchdog_trips_.set(controller_.status().watchdog_trips);
+  report_new_trips();
+}
+
+// A joint that tripped in this tick becomes the last error. Formatted into a
+// fixed buffer: a trip on the loop thread does not allocate.
+void ActuatorSide::report_new_trips() {
+  const auto& tripped = controller_.status().watchdog_tripped;
+  for (std::size_t i = 0; i < tripped.size(); ++i) {
+    if (tripped[i] != 0 && was_tripped_[i] == 0) {
+      char text[256];
+      const int length =
+          std::snprintf(text, sizeof text, "watchdog: joint '%s' got no command for %g s: %s",
+                        joint_names_[i].c_str(), watchdog_timeout_s_,
+                        damp_on_trip_ ? "damped to rest" : "holding its position");
+      report_.set_error(std::string_view(
+          text, std::clamp<std::size_t>(static_cast<std::size_t>(length), 0, sizeof text - 1)));
+    }
+    was_tripped_[i] = tripped[i];
+  }
+}
+
+}  // namespace wbi::robot

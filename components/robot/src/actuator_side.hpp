@@ -1,0 +1,87 @@
+// The actuator side of a robot on DDS: subscribes to the robot's commands and
+// control parameters, runs the joint-level controller (wbi::actuation::
+// JointController: modes, PID, limits, watchdog) at the backend rate, and
+// reports on the owner component's status (StatusReport):
+//   rejected_commands    commands refused (unknown joint index, sizes that
+//                        disagree, non-finite values…): nothing of them is applied
+//   rejected_parameters  control parameters refused (unknown joint index): none applied
+//   watchdog_trips       streaming joints that got no command in time (they hold)
+//   limit_clamps         command values outside the joint's limits (clamped)
+// and the last rejection or trip, in words, as the last error, e.g.
+//   command from 'pd' rejected: joint index 41 out of range (the robot has 7 joints)
+// One implementation, used by sim_robot and by the driver component.
+//
+// Threads: commands and parameters arrive on DDS threads; begin_tick() and
+// update() run on the owner's loop. update() never allocates.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <wbi/msg/commands.h>
+#include <wbi/actuation/joint_controller.hpp>
+#include <wbi/dds/subscriber.hpp>
+#include <wbi/runtime/status_report.hpp>
+
+namespace wbi::robot {
+
+class ActuatorSide {
+ public:
+  // Called on the DDS thread after each command was handled (accepted or not),
+  // e.g. for lockstep bookkeeping.
+  using CommandObserver = std::function<void(const wbi::msg::ActuatorCommand&)>;
+
+  ActuatorSide(dds::Participant& participant, const std::string& robot,
+               const actuation::BackendDescription& description,
+               const actuation::JointControllerConfig& config, runtime::StatusReport& report,
+               CommandObserver observer = {});
+  ~ActuatorSide();  // unsubscribes first: no callback runs after this
+  ActuatorSide(const ActuatorSide&) = delete;
+  ActuatorSide& operator=(const ActuatorSide&) = delete;
+
+  // Every joint holds its measured position (POSITION mode) until commanded.
+  void hold(const actuation::SensorReadings& readings, actuation::Time now);
+  // The time of the tick now starting: the arrival time given to commands (watchdog).
+  void begin_tick(actuation::Time now) { now_ns_ = now.count(); }
+  // One control tick: applies the commands staged since the last one, runs the
+  // watchdog and the loops, writes `out`, updates the counters.
+  void update(actuation::Time now, actuation::Duration period, const actuation::SensorReadings& in,
+              actuation::JointCommands& out);
+
+  // What the subscriptions call for each message (any thread; never throw).
+  // Accepted commands do not allocate.
+  void handle(const wbi::msg::ActuatorCommand& command);
+  void handle(const wbi::msg::ControlParameters& message);
+
+  const actuation::JointControlStatus& status() const { return controller_.status(); }
+
+ private:
+  void report_new_trips();
+
+  const std::vector<std::string> joint_names_;
+  const double watchdog_timeout_s_;
+  const bool damp_on_trip_;
+  actuation::JointController controller_;
+  std::vector<double> reference_speed_;    // [n] POSITION-mode speed per joint
+  actuation::JointCommandBatch batch_;     // reused for every command
+  std::vector<std::uint8_t> was_tripped_;  // [n] at the previous tick
+  std::uint64_t clamps_seen_ = 0;
+  std::atomic<std::int64_t> now_ns_{0};
+  std::mutex mutex_;  // guards controller_, batch_, reference_speed_ (DDS threads vs loop)
+
+  runtime::StatusReport& report_;
+  runtime::StatusCounter& rejected_commands_;
+  runtime::StatusCounter& rejected_parameters_;
+  runtime::StatusCounter& watchdog_trips_;
+  runtime::StatusCounter& limit_clamps_;
+  CommandObserver observer_;
+
+  std::unique_ptr<dds::Subscriber<wbi::msg::ActuatorCommand>> commands_;
+  std::unique_ptr<dds::Subscriber<wbi::msg::ControlParameters>> parameters_;
+};
+
+}  // namespace wbi::robot

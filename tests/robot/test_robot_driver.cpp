@@ -1,0 +1,170 @@
+// The driver component (wbi/robot/robot_driver.hpp) over a toy backend: two
+// unit-inertia joints. Commands in POSITION mode move them; a bad command is
+// counted on the status; a sensors-only instance never powers the backend.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+
+#include <wbi/dds/participant.hpp>
+#include <wbi/dds/publisher.hpp>
+#include <wbi/dds/subscriber.hpp>
+#include <wbi/dds/topics.hpp>
+#include <wbi/robot/robot_driver.hpp>
+#include <wbi/runtime/runner.hpp>
+
+namespace {
+
+using namespace std::chrono_literals;
+namespace topics = wbi::dds::topics;
+namespace qos = wbi::dds::qos;
+
+// q̈ = τ per joint, integrated (semi-implicit Euler) when commands are written.
+class ToyBackend final : public wbi::actuation::RobotBackend {
+ protected:
+  wbi::actuation::BackendDescription on_configure() override {
+    wbi::actuation::BackendDescription d;
+    d.robot = "toy";
+    d.joint_names = {"a", "b"};
+    d.position_lower = {-2.0, -2.0};
+    d.position_upper = {2.0, 2.0};
+    d.velocity_limit = {5.0, 5.0};
+    d.effort_limit = {50.0, 50.0};
+    return d;
+  }
+  void on_read(wbi::actuation::Time time, wbi::actuation::Duration,
+               wbi::actuation::SensorReadings& out) override {
+    out.position = q_;
+    out.velocity = dq_;
+    out.joint_stamp = time;
+  }
+  void on_write(wbi::actuation::Time, wbi::actuation::Duration period,
+                const wbi::actuation::JointCommands& in) override {
+    const double dt = 1e-9 * static_cast<double>(period.count());
+    for (int i = 0; i < 2; ++i) {
+      const double tau = in.mode[static_cast<std::size_t>(i)] == wbi::actuation::OutputMode::kTorque
+                             ? in.value[i]
+                             : 0.0;
+      dq_[i] += tau * dt;
+      q_[i] += dq_[i] * dt;
+    }
+  }
+
+ private:
+  Eigen::Vector2d q_ = Eigen::Vector2d::Zero();
+  Eigen::Vector2d dq_ = Eigen::Vector2d::Zero();
+};
+
+std::uint64_t counter(const wbi::msg::ComponentStatus& status, const std::string& name) {
+  for (const auto& c : status.counters()) {
+    if (c.name().to_string() == name) {
+      return c.value();
+    }
+  }
+  return 0;
+}
+
+struct Driver {
+  wbi::dds::Participant participant{"driver_test"};
+  wbi::runtime::SystemClock clock;
+  std::unique_ptr<wbi::runtime::ComponentRunner> runner;
+
+  explicit Driver(const std::string& parameters) {
+    wbi::runtime::Registry registry;
+    wbi::robot::register_driver(registry, "toy_robot", [](const wbi::runtime::Parameters&) {
+      return std::make_unique<ToyBackend>();
+    });
+    wbi::runtime::RunnerOptions options;
+    options.rate_hz = 500.0;
+    options.status_period_s = 0.05;
+    runner = std::make_unique<wbi::runtime::ComponentRunner>(
+        registry.create("toy_robot"),
+        wbi::runtime::ComponentContext{"toy", "toy_robot", &participant, &clock}, options);
+    runner->configure(wbi::runtime::Parameters::from_string(parameters));
+    runner->activate();
+  }
+};
+
+TEST(RobotDriver, CommandsMoveTheJointsAndBadOnesAreCounted) {
+  Driver driver("robot: toy_a\n");
+  wbi::dds::Subscriber<wbi::msg::SensorSample> sensors(driver.participant, topics::sensors("toy_a"),
+                                                       qos::kStream);
+  wbi::dds::Subscriber<wbi::msg::ComponentStatus> status(driver.participant, topics::kStatus,
+                                                         qos::kStatus);
+  wbi::dds::Publisher<wbi::msg::ActuatorCommand> commands(driver.participant,
+                                                          topics::commands("toy_a"), qos::kCommand);
+  ASSERT_TRUE(commands.wait_for_subscribers(1, 10s));
+  wbi::msg::ActuatorCommand command;
+  command.controller("test");
+  command.joints({0, 1});
+  command.modes({wbi::msg::POSITION, wbi::msg::POSITION});
+  command.references({0.5, -0.3});
+  commands.publish(command);
+  wbi::dds::Received<wbi::msg::SensorSample> sample;
+  const auto deadline = std::chrono::steady_clock::now() + 15s;
+  while (std::chrono::steady_clock::now() < deadline &&
+         !(sensors.wait_newer(sample, sample.count, 1s) &&
+           std::abs(sample.sample.encoder_position()[0] - 0.5) < 0.01 &&
+           std::abs(sample.sample.encoder_position()[1] + 0.3) < 0.01)) {
+  }
+  EXPECT_NEAR(sample.sample.encoder_position()[0], 0.5, 0.01);
+  EXPECT_NEAR(sample.sample.encoder_position()[1], -0.3, 0.01);
+  EXPECT_GT(sample.sample.header().seq(), 0u);
+
+  command.joints({7});
+  command.modes({wbi::msg::POSITION});
+  command.references({0.0});
+  commands.publish(command);
+  wbi::dds::Received<wbi::msg::ComponentStatus> got;
+  const auto status_deadline = std::chrono::steady_clock::now() + 10s;
+  while (
+      std::chrono::steady_clock::now() < status_deadline &&
+      !(status.wait_newer(got, got.count, 1s) && counter(got.sample, "rejected_commands") == 1)) {
+  }
+  EXPECT_EQ(counter(got.sample, "rejected_commands"), 1u);
+  EXPECT_EQ(got.sample.last_error(),
+            "command from 'test' rejected: joint index 7 out of range (the robot has 2 joints)");
+
+  // beyond the position limit (2 rad): accepted, clamped, counted
+  command.joints({1});
+  command.references({5.0});
+  commands.publish(command);
+  // gains for a joint the robot does not have: refused, nothing applied
+  wbi::dds::Publisher<wbi::msg::ControlParameters> parameters(
+      driver.participant, topics::control_parameters("toy_a"), qos::kCommand);
+  ASSERT_TRUE(parameters.wait_for_subscribers(1, 10s));
+  wbi::msg::ControlParameters gains;
+  gains.controller("test");
+  gains.joints({0, 9});
+  gains.kp({1.0, 1.0});
+  parameters.publish(gains);
+  const auto more_deadline = std::chrono::steady_clock::now() + 10s;
+  while (std::chrono::steady_clock::now() < more_deadline &&
+         !(status.wait_newer(got, got.count, 1s) && counter(got.sample, "limit_clamps") == 1 &&
+           counter(got.sample, "rejected_parameters") == 1)) {
+  }
+  EXPECT_EQ(counter(got.sample, "limit_clamps"), 1u);
+  EXPECT_EQ(counter(got.sample, "rejected_parameters"), 1u);
+  EXPECT_EQ(got.sample.last_error(),
+            "control parameters from 'test' rejected: joint index 9 out of range (the robot has "
+            "2 joints)");
+  driver.runner->shutdown();
+}
+
+TEST(RobotDriver, UnknownSideIsNamed) {
+  wbi::dds::Participant participant("driver_test_sides");
+  wbi::runtime::SystemClock clock;
+  wbi::runtime::Registry registry;
+  wbi::robot::register_driver(registry, "toy_robot", [](const wbi::runtime::Parameters&) {
+    return std::make_unique<ToyBackend>();
+  });
+  wbi::runtime::ComponentRunner runner(registry.create("toy_robot"),
+                                       {"toy", "toy_robot", &participant, &clock});
+  EXPECT_THROW(runner.configure(wbi::runtime::Parameters::from_string(
+                   "robot: toy_b\nsides: [sensors, motors]\n", "toy.yaml")),
+               wbi::runtime::TransitionError);
+  EXPECT_NE(runner.last_error().find("unknown side 'motors'"), std::string::npos)
+      << runner.last_error();
+}
+
+}  // namespace
