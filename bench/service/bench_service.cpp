@@ -127,6 +127,7 @@ struct Child {
 
 // One kind of call, reused every round: its request and reply buffers.
 struct Call {
+  std::string name;  // for error messages
   ModelRequest request;
   ModelReply reply;
   std::vector<double> rtt_us;
@@ -162,10 +163,14 @@ void service_call(wbi::dds::Client<ModelRequest, ModelReply>& client, Call& call
     call.request.state().dq()[k] = u(rng);
   }
   const auto start = Clock::now();
-  client.call(call.request, call.reply, 1s);
+  try {
+    client.call(call.request, call.reply, 1s);
+  } catch (const wbi::dds::CallError& error) {
+    throw std::runtime_error(call.name + ": " + error.what());
+  }
   const double rtt = us_since(start);
   if (call.reply.error().size() != 0) {
-    throw std::runtime_error(std::string("error reply: ") + call.reply.error().c_str());
+    throw std::runtime_error(call.name + ": error reply: " + call.reply.error().c_str());
   }
   if (record) {
     call.rtt_us.push_back(rtt);
@@ -182,6 +187,9 @@ struct Raw {
   wbi::dds::Received<ModelReply> got;
   std::uint64_t received = 0;
   std::vector<double> rtt_us;
+  // From the DDS thread's take (the pong's received_ns) to this thread running
+  // again: the cost of handing a sample from the listener to a waiting thread.
+  std::vector<double> handoff_us;
 
   Raw(wbi::dds::Participant& participant, const Call& gravity, long calls)
       : ping(participant, kPing, wbi::dds::qos::kRequestReply),
@@ -192,6 +200,7 @@ struct Raw {
     }
     request.client_id("raw");
     rtt_us.reserve(static_cast<std::size_t>(calls));
+    handoff_us.reserve(static_cast<std::size_t>(calls));
   }
 
   void round_trip(bool record) {
@@ -205,8 +214,10 @@ struct Raw {
       }
       received = got.count;
     } while (got.sample.seq() != request.seq());
+    const std::int64_t resumed_ns = wbi::dds::detail::steady_now_ns();
     if (record) {
       rtt_us.push_back(us_since(start));
+      handoff_us.push_back(1e-3 * static_cast<double>(resumed_ns - got.received_ns));
     }
   }
 };
@@ -287,9 +298,12 @@ int main(int argc, char** argv) {
 
     std::mt19937 rng(1);
     std::vector<double> raw_rtt_us;
+    std::vector<double> raw_handoff_us;
     wbi::dds::Participant participant("bench");
     Call a;
     Call b;
+    a.name = "(a) gravity";
+    b.name = "(b) M + h + 4 J";
     prepare(a, model, {wbi::msg::GRAVITY_FORCES}, frames, calls);
     prepare(b, model,
             {wbi::msg::MASS_MATRIX, wbi::msg::BIAS_FORCES, wbi::msg::JACOBIAN, wbi::msg::JACOBIAN,
@@ -311,6 +325,7 @@ int main(int argc, char** argv) {
         raw.round_trip(i >= warmup);
       }
       raw_rtt_us = std::move(raw.rtt_us);
+      raw_handoff_us = std::move(raw.handoff_us);
     }
     {
       // (b) with a client of its own, once (a)'s is gone: every client's reply
@@ -336,6 +351,9 @@ int main(int argc, char** argv) {
     out["compute_us"] = percentile(a.compute_us, 0.50);
     out["raw_p50_us"] = percentile(raw_rtt_us, 0.50);
     out["raw_p99_us"] = percentile(raw_rtt_us, 0.99);
+    out["raw_handoff_p50_us"] = percentile(raw_handoff_us, 0.50);
+    out["transport"] =
+        std::getenv("WBI_DDS_TRANSPORT") != nullptr ? std::getenv("WBI_DDS_TRANSPORT") : "udp";
     out["overhead_us"] =
         percentile(a.rtt_us, 0.50) - percentile(raw_rtt_us, 0.50) - percentile(a.compute_us, 0.50);
     out["b_rtt_p50_us"] = percentile(b.rtt_us, 0.50);
@@ -355,7 +373,8 @@ int main(int argc, char** argv) {
               << " us  p99 " << out["b_rtt_p99_us"].get<double>() << " us  compute "
               << out["b_compute_us"].get<double>() << " us\n"
               << "raw ping-pong          rtt p50 " << out["raw_p50_us"].get<double>() << " us  p99 "
-              << out["raw_p99_us"].get<double>() << " us\n"
+              << out["raw_p99_us"].get<double>() << " us  (listener to waiting thread "
+              << out["raw_handoff_p50_us"].get<double>() << " us p50)\n"
               << "service overhead (a)   " << out["overhead_us"].get<double>()
               << " us  (rtt p50 - raw p50 - compute)\n"
               << "discovery              " << out["discovery_ms"].get<double>() << " ms median, "

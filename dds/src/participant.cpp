@@ -7,21 +7,17 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
-#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
-#include <fastrtps/utils/IPLocator.h>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
 #include "participant_impl.hpp"
 #include "qos_profiles_default.hpp"
+#include "transports.hpp"
 
 namespace wbi::dds {
 
 namespace fdds = eprosima::fastdds::dds;
-using eprosima::fastrtps::rtps::IPLocator;
-using eprosima::fastrtps::rtps::Locator_t;
 
 int domain_id_from_environment() {
   const char* text = std::getenv("WBI_DOMAIN_ID");
@@ -76,21 +72,8 @@ fdds::DomainParticipantQos participant_qos(const ParticipantOptions& options) {
   discovery.leaseDuration_announcementperiod = eprosima::fastrtps::Duration_t(0, 250'000'000);
   discovery.leaseDuration = eprosima::fastrtps::Duration_t(5, 0);
   if (options.discovery == Discovery::localhost) {
-    // Shared memory for data, UDP on 127.0.0.1 for discovery: with a unicast
-    // metatraffic locator and initial peers set, Fast DDS sends no multicast.
-    qos.transport().use_builtin_transports = false;
-    auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
-    udp->interfaceWhiteList.emplace_back("127.0.0.1");
-    udp->maxInitialPeersRange = 64;  // participants per domain on this host
-    qos.transport().user_transports.push_back(
-        std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
-    qos.transport().user_transports.push_back(udp);
-    Locator_t loopback;
-    loopback.kind = LOCATOR_KIND_UDPv4;
-    IPLocator::setIPv4(loopback, 127, 0, 0, 1);
-    qos.wire_protocol().builtin.initialPeersList.push_back(loopback);
-    qos.wire_protocol().builtin.metatrafficUnicastLocatorList.push_back(loopback);
-    qos.wire_protocol().default_unicast_locator_list.push_back(loopback);
+    detail::use_loopback_transports(qos, options.domain_id,
+                                    detail::local_transport_from_environment());
   }
   return qos;
 }
