@@ -1,5 +1,6 @@
 #include "components.hpp"
 
+#include <wbi/controllers/momentum_balance_component.hpp>
 #include <wbi/controllers/pd_gravity_component.hpp>
 #include <wbi/estimator/estimator_component.hpp>
 #include <wbi/model_service/component.hpp>
@@ -12,6 +13,7 @@ void register_components(wbi::runtime::Registry& registry) {
   wbi::estimator::register_components(registry);
   wbi::robot::register_components(registry);
   wbi::controllers::register_components(registry);
+  wbi::controllers::register_momentum_balance(registry);
 }
 
 }  // namespace wbi::host

@@ -1,0 +1,247 @@
+#include "wbi/controllers/momentum_balance.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace wbi::controllers {
+
+namespace {
+
+constexpr int kContacts = 2;
+constexpr int kWrenches = 6 * kContacts;
+constexpr int kRowsPerFoot = 11;
+
+void require(bool ok, const std::string& what) {
+  if (!ok) {
+    throw Error("momentum balance: " + what);
+  }
+}
+
+Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d S;
+  S << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return S;
+}
+
+}  // namespace
+
+MomentumBalance::MomentumBalance(WholeBodyInterface& robot, MomentumBalanceParameters parameters,
+                                 Eigen::VectorXd q_posture)
+    : robot_(robot),
+      p_(std::move(parameters)),
+      n_(robot.dofs()),
+      left_(robot.frame_index(p_.left_sole)),
+      right_(robot.frame_index(p_.right_sole)),
+      q_posture_(std::move(q_posture)),
+      mass_llt_(6 + n_),
+      gram_llt_(kWrenches),
+      qp_(kWrenches, 0, kContacts * kRowsPerFoot) {
+  require(q_posture_.size() == n_, "q_posture has size " + std::to_string(q_posture_.size()) +
+                                       ", the controller has " + std::to_string(n_) + " joints");
+  require(p_.friction > 0.0, "friction must be > 0");
+  require(p_.torsional_friction >= 0.0, "torsional_friction must be >= 0");
+  require(p_.foot_x_min < 0.0 && p_.foot_x_max > 0.0 && p_.foot_y_min < 0.0 && p_.foot_y_max > 0.0,
+          "the foot rectangle must contain the sole origin (x_min < 0 < x_max, y_min < 0 < y_max)");
+  require(p_.min_normal_force >= 0.0, "min_normal_force must be >= 0");
+  require(p_.com_kp >= 0.0 && p_.com_kd >= 0.0 && p_.angular_momentum_kd >= 0.0 &&
+              p_.posture_bandwidth_hz >= 0.0,
+          "gains must be >= 0");
+  require(p_.torque_weight >= 0.0 && p_.wrench_weight > 0.0 && p_.foot_moment_weight >= 0.0,
+          "torque_weight and foot_moment_weight must be >= 0, wrench_weight > 0");
+
+  const int N = 6 + n_;
+  q_.setZero(n_);
+  dq_.setZero(n_);
+  M_.setZero(N, N);
+  h_.setZero(N);
+  Jc_.setZero(kWrenches, N);
+  dj_nu_.setZero(kWrenches);
+  Minv_Jct_.setZero(N, kWrenches);
+  Lambda_.setZero(kWrenches, n_);
+  Lambda_pinv_.setZero(n_, kWrenches);
+  gram_solve_.setZero(kWrenches, n_);
+  gram_.setZero(kWrenches, kWrenches);
+  null_.setZero(n_, n_);
+  tau_0_.setZero(n_);
+  tau_c_.setZero(n_);
+  tau_.setZero(n_);
+  T_.setZero(n_, kWrenches);
+  qp_H_.setZero(kWrenches, kWrenches);
+  qp_g_.setZero(kWrenches);
+  qp_A_eq_.setZero(0, kWrenches);
+  qp_b_eq_.setZero(0);
+  qp_C_.setZero(kContacts * kRowsPerFoot, kWrenches);
+  qp_d_.setZero(kContacts * kRowsPerFoot);
+  for (auto& r : sole_rotation_) {
+    r.setIdentity();
+  }
+  for (auto& x : sole_position_) {
+    x.setZero();
+  }
+
+  // Postural PD from the joints' inertia at the reference: the same bandwidth for all.
+  robot_.mass_matrix(q_posture_, Transform::Identity(), M_);
+  mass_ = M_(0, 0);
+  const double omega = 2.0 * M_PI * p_.posture_bandwidth_hz;
+  posture_kp_ = omega * omega * M_.diagonal().tail(n_);
+  posture_kd_ = 2.0 * omega * M_.diagonal().tail(n_);
+
+  build_constraints();
+}
+
+// Per foot, on the wrench (f, τ) in the sole frame, rows · w ≥ 0 (the first ≥ f_min):
+// unilateral; inscribed friction pyramid; CoP in the rectangle; torsional friction.
+void MomentumBalance::build_constraints() {
+  const double mu = p_.friction / std::sqrt(2.0);
+  const double mt = p_.torsional_friction;
+  auto& F = foot_constraints_;
+  F.setZero();
+  F.row(0) << 0, 0, 1, 0, 0, 0;                // f_z ≥ f_min
+  F.row(1) << -1, 0, mu, 0, 0, 0;              // f_x ≤ μ' f_z
+  F.row(2) << 1, 0, mu, 0, 0, 0;               // −f_x ≤ μ' f_z
+  F.row(3) << 0, -1, mu, 0, 0, 0;              // f_y ≤ μ' f_z
+  F.row(4) << 0, 1, mu, 0, 0, 0;               // −f_y ≤ μ' f_z
+  F.row(5) << 0, 0, -p_.foot_x_min, 0, -1, 0;  // CoP_x = −τ_y / f_z ≥ x_min
+  F.row(6) << 0, 0, p_.foot_x_max, 0, 1, 0;    // CoP_x ≤ x_max
+  F.row(7) << 0, 0, -p_.foot_y_min, 1, 0, 0;   // CoP_y = τ_x / f_z ≥ y_min
+  F.row(8) << 0, 0, p_.foot_y_max, -1, 0, 0;   // CoP_y ≤ y_max
+  F.row(9) << 0, 0, mt, 0, 0, -1;              // τ_z ≤ μ_t f_z
+  F.row(10) << 0, 0, mt, 0, 0, 1;              // −τ_z ≤ μ_t f_z
+  qp_d_.setZero();
+  for (int foot = 0; foot < kContacts; ++foot) {
+    qp_d_[foot * kRowsPerFoot] = p_.min_normal_force;
+  }
+}
+
+void MomentumBalance::start() { robot_.set_control_mode(ControlMode::torque); }
+
+void MomentumBalance::set_com_reference(const Eigen::Vector3d& position,
+                                        const Eigen::Vector3d& velocity,
+                                        const Eigen::Vector3d& acceleration) {
+  com_desired_ = position;
+  com_velocity_desired_ = velocity;
+  com_acceleration_desired_ = acceleration;
+  com_reference_set_ = true;
+}
+
+Stamp MomentumBalance::read_state(ReadMode mode) {
+  // Every quantity of one and the same estimate (a newer one may arrive between reads).
+  Stamp position = robot_.read_estimates(EstimateKind::joint_position, q_, mode);
+  Stamp velocity = robot_.read_estimates(EstimateKind::joint_velocity, dq_);
+  Stamp base = robot_.read_base_pose(world_H_base_);
+  Stamp twist = robot_.read_estimates(EstimateKind::base_velocity, base_velocity_);
+  while (position.seq != velocity.seq || velocity.seq != base.seq || base.seq != twist.seq) {
+    position = robot_.read_estimates(EstimateKind::joint_position, q_);
+    velocity = robot_.read_estimates(EstimateKind::joint_velocity, dq_);
+    base = robot_.read_base_pose(world_H_base_);
+    twist = robot_.read_estimates(EstimateKind::base_velocity, base_velocity_);
+  }
+  last_seq_ = position.seq;
+  return position;
+}
+
+// τ(f) = τ_c − T f from  M ν̇ + h = Bτ + Jcᵀ f,  Jc ν̇ + J̇ν = 0  (both feet fixed):
+//   Λ τ = Jc M⁻¹ (h − Jcᵀ f) − J̇ν,   Λ = Jc M⁻¹ B,
+//   τ = Λ† (Jc M⁻¹ (h − Jcᵀ f) − J̇ν) + N_Λ τ₀,   τ₀ = h_j − J_jᵀ f + u₀,
+// u₀ the postural PD, N_Λ = I − Λ†Λ the null space of the contact constraints.
+void MomentumBalance::compute_torque_map() {
+  mass_llt_.compute(M_);
+  Minv_Jct_ = Jc_.transpose();
+  mass_llt_.solveInPlace(Minv_Jct_);
+  Lambda_ = Minv_Jct_.bottomRows(n_).transpose();
+  Jc_Minv_Jct_.noalias() = Jc_ * Minv_Jct_;
+  constraint_bias_.noalias() = Minv_Jct_.transpose() * h_;
+  constraint_bias_ -= dj_nu_;
+
+  // Λ† = Λᵀ (Λ Λᵀ)⁻¹, slightly damped against a near-singular leg.
+  gram_.noalias() = Lambda_ * Lambda_.transpose();
+  gram_.diagonal().array() += 1e-9;
+  gram_llt_.compute(gram_);
+  gram_solve_ = Lambda_;
+  gram_llt_.solveInPlace(gram_solve_);
+  Lambda_pinv_ = gram_solve_.transpose();
+  null_.noalias() = -Lambda_pinv_ * Lambda_;
+  null_.diagonal().array() += 1.0;
+
+  tau_0_ = h_.tail(n_) - posture_kp_.cwiseProduct(q_ - q_posture_) - posture_kd_.cwiseProduct(dq_);
+  tau_c_.noalias() = Lambda_pinv_ * constraint_bias_;
+  tau_c_.noalias() += null_ * tau_0_;
+  T_.noalias() = Lambda_pinv_ * Jc_Minv_Jct_;
+  T_.noalias() += null_ * Jc_.rightCols(n_).transpose();
+}
+
+// min ½‖A f − (Ḣ* − m g)‖² + ½ w_τ ‖τ_c − T f‖² + ½ w_f ‖f‖²  s.t. the feet constraints.
+void MomentumBalance::solve_wrenches() {
+  for (int foot = 0; foot < kContacts; ++foot) {
+    const Eigen::Vector3d arm = sole_position_[foot] - com_;
+    A_.block<3, 3>(0, 6 * foot).setIdentity();
+    A_.block<3, 3>(0, 6 * foot + 3).setZero();
+    A_.block<3, 3>(3, 6 * foot) = skew(arm);
+    A_.block<3, 3>(3, 6 * foot + 3).setIdentity();
+    // World-axes wrench → sole frame: blockdiag(Rᵀ, Rᵀ).
+    const Eigen::Matrix3d Rt = sole_rotation_[foot].transpose();
+    qp_C_.block<kRowsPerFoot, 3>(kRowsPerFoot * foot, 6 * foot).noalias() =
+        foot_constraints_.leftCols<3>() * Rt;
+    qp_C_.block<kRowsPerFoot, 3>(kRowsPerFoot * foot, 6 * foot + 3).noalias() =
+        foot_constraints_.rightCols<3>() * Rt;
+  }
+  Eigen::Matrix<double, 6, 1> target = momentum_rate_desired_;
+  target.head<3>() -= mass_ * p_.gravity;
+  qp_H_.noalias() = A_.transpose() * A_;
+  qp_H_.noalias() += p_.torque_weight * T_.transpose() * T_;
+  qp_H_.diagonal().array() += p_.wrench_weight;
+  for (int foot = 0; foot < kContacts; ++foot) {
+    qp_H_.diagonal().segment<3>(6 * foot + 3).array() += p_.foot_moment_weight;
+  }
+  qp_g_.noalias() = -A_.transpose() * target;
+  qp_g_.noalias() -= p_.torque_weight * T_.transpose() * tau_c_;
+  if (qp_.solve(qp_H_, qp_g_, qp_A_eq_, qp_b_eq_, qp_C_, qp_d_) == qp::Status::optimal) {
+    wrench_ = qp_.solution();
+  } else {
+    ++qp_failures_;  // keep the last feasible wrenches
+  }
+}
+
+Eigen::Vector3d MomentumBalance::com_of_state() {
+  Eigen::Vector3d c;
+  robot_.com(q_, world_H_base_, c);
+  return c;
+}
+
+void MomentumBalance::update(ReadMode mode) {
+  read_state(mode);
+  control();
+}
+
+void MomentumBalance::control() {
+  robot_.mass_matrix(q_, world_H_base_, M_);
+  robot_.bias_forces(q_, world_H_base_, dq_, base_velocity_, p_.gravity, h_);
+  const int soles[kContacts] = {left_, right_};
+  for (int foot = 0; foot < kContacts; ++foot) {
+    robot_.jacobian(q_, world_H_base_, soles[foot], Jc_.middleRows(6 * foot, 6));
+    robot_.dj_nu(q_, world_H_base_, dq_, base_velocity_, soles[foot], dj_nu_.segment(6 * foot, 6));
+    robot_.frame_pose(q_, world_H_base_, soles[foot], world_H_sole_);
+    sole_position_[foot] = world_H_sole_.topRightCorner<3, 1>();
+    sole_rotation_[foot] = world_H_sole_.topLeftCorner<3, 3>();
+  }
+  robot_.com(q_, world_H_base_, com_);
+  robot_.centroidal_momentum(q_, world_H_base_, dq_, base_velocity_, momentum_);
+  com_velocity_ = momentum_.head<3>() / mass_;
+  if (!com_reference_set_) {
+    set_com_reference(com_, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+  }
+
+  // Desired momentum rate: CoM PD with feed-forward, angular momentum damping.
+  momentum_rate_desired_.head<3>() =
+      mass_ * (com_acceleration_desired_ - p_.com_kp * (com_ - com_desired_) -
+               p_.com_kd * (com_velocity_ - com_velocity_desired_));
+  momentum_rate_desired_.tail<3>() = -p_.angular_momentum_kd * momentum_.tail<3>();
+
+  compute_torque_map();
+  solve_wrenches();
+  tau_ = tau_c_;
+  tau_.noalias() -= T_ * wrench_;
+  robot_.set_control_reference(tau_);
+}
+
+}  // namespace wbi::controllers
