@@ -25,8 +25,9 @@ TEST(DemoLaunch, FourProcessesBringTheArmToItsTarget) {
   for (const char* process : {"robot", "estimator", "model_service", "controller"}) {
     EXPECT_NE(out.find(std::string("[launch] ") + process + ": started"), std::string::npos) << out;
   }
-  EXPECT_NE(out.find("[controller] t =   1.00 s"), std::string::npos) << "no progress lines\n"
-                                                                      << out;
+  // Progress lines come once a second of controller time; their exact stamp
+  // depends on when the first state arrived, so only their presence is checked.
+  EXPECT_NE(out.find("[controller] t =   1."), std::string::npos) << "no progress lines\n" << out;
   const std::string marker = "\nfinal max joint error: ";
   const auto at = out.rfind(marker);
   ASSERT_NE(at, std::string::npos) << out;

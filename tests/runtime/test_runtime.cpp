@@ -5,7 +5,9 @@
 
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <functional>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -47,6 +49,18 @@ struct Probe {
   std::atomic<std::int64_t> cycle_cost_ns{0};  // advanced on the stepped clock by each update
   double gain = 0.0;
   std::vector<double> weights;
+  // Event-driven mode: each post() lets exactly one cycle run.
+  bool event_driven = false;
+  std::mutex event_mutex;
+  std::condition_variable event_posted;
+  int events = 0;
+  void post() {
+    {
+      std::lock_guard lock(event_mutex);
+      ++events;
+    }
+    event_posted.notify_one();
+  }
 };
 
 class ProbeComponent final : public wbi::runtime::Component {
@@ -62,6 +76,16 @@ class ProbeComponent final : public wbi::runtime::Component {
   void on_deactivate() override { hook("deactivate"); }
   void on_cleanup() override { hook("cleanup"); }
   void on_shutdown() override { hook("shutdown"); }
+  bool event_driven() const override { return probe_.event_driven; }
+  bool wait_for_event(std::int64_t timeout_ns) override {
+    std::unique_lock lock(probe_.event_mutex);
+    if (!probe_.event_posted.wait_for(lock, std::chrono::nanoseconds(timeout_ns),
+                                      [&] { return probe_.events > 0; })) {
+      return false;
+    }
+    --probe_.events;
+    return true;
+  }
   void update(std::int64_t, std::int64_t) override {
     ++probe_.cycles;
     if (clock_ != nullptr && probe_.cycle_cost_ns != 0) {
@@ -272,6 +296,35 @@ TEST_F(Loop, SlowCyclesCountAsOverrunsAndSkipTicks) {
   // Ticks every 30 ms (3 periods: 2 skipped), cycle 25 ms.
   EXPECT_NEAR(stats.period_mean_s, 0.030, 1e-9);
   EXPECT_NEAR(stats.cycle_mean_s, 0.025, 1e-9);
+}
+
+TEST_F(Loop, EventDrivenCyclesRunOncePerEventWithTheirDeadlineFromTheEvent) {
+  probe.event_driven = true;
+  auto r = runner(stepped, 100.0);  // deadline: 10 ms after each event
+  r->configure(Parameters::from_string("gain: 1"));
+  r->activate();
+  const auto done = [&](std::uint64_t n) {
+    return eventually([&] { return r->stats().iterations == n; });
+  };
+  // No event, no cycle, although the clock moves on.
+  stepped.advance_ns(50'000'000);
+  std::this_thread::sleep_for(20ms);
+  EXPECT_EQ(r->stats().iterations, 0u);
+  probe.cycle_cost_ns = 4'000'000;  // within the deadline
+  for (std::uint64_t k = 1; k <= 3; ++k) {
+    probe.post();
+    ASSERT_TRUE(done(k)) << "event " << k;
+  }
+  probe.cycle_cost_ns = 12'000'000;  // past the deadline
+  for (std::uint64_t k = 4; k <= 5; ++k) {
+    probe.post();
+    ASSERT_TRUE(done(k)) << "event " << k;
+  }
+  r->deactivate();
+  const auto stats = r->stats();
+  EXPECT_EQ(stats.iterations, 5u);
+  EXPECT_EQ(stats.overruns, 2u);
+  EXPECT_EQ(probe.cycles, 5);
 }
 
 TEST_F(Loop, RunsAtItsRateOnTheSystemClock) {

@@ -221,10 +221,21 @@ LoopStats ComponentRunner::stats() const {
 
 std::string ComponentRunner::last_error() const { return component_->report().last_error(); }
 
+bool ComponentRunner::wait_for_event(std::int64_t period_ns) {
+  try {
+    return component_->wait_for_event(10 * period_ns);
+  } catch (const std::exception& e) {
+    component_->report().set_error(e.what());
+    return false;
+  }
+}
+
 // The periodic cycle. Ticks at start + k·period on the clock; a cycle that ends
 // after its successor's tick is an overrun, and the missed ticks are skipped
-// (never run back to back to catch up). Statistics use Welford's running
-// mean/variance: no allocation, no lock held while the component runs.
+// (never run back to back to catch up). An event-driven component's cycle
+// starts at its event instead, and overruns when it takes longer than a period.
+// Statistics use Welford's running mean/variance: no allocation, no lock held
+// while the component runs.
 void ComponentRunner::run_loop() {
   Clock& clock = *context_.clock;
   const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / options_.rate_hz));
@@ -233,9 +244,10 @@ void ComponentRunner::run_loop() {
   double mean = 0.0;
   double m2 = 0.0;
   std::uint64_t periods = 0;
+  const bool event_driven = component_->event_driven();
   while (!loop_stop_.load(std::memory_order_relaxed)) {
-    if (!clock.sleep_until(next_ns)) {
-      continue;  // woken early: stop requested, or spurious
+    if (event_driven ? !wait_for_event(period_ns) : !clock.sleep_until(next_ns)) {
+      continue;  // no event yet, or woken early: stop requested, or spurious
     }
     const std::int64_t start_ns = clock.now_ns();
     bool error = false;
@@ -251,7 +263,9 @@ void ComponentRunner::run_loop() {
     const std::int64_t end_ns = clock.now_ns();
     next_ns += period_ns;
     bool overrun = false;
-    if (end_ns > next_ns) {
+    if (event_driven) {
+      overrun = end_ns - start_ns > period_ns;
+    } else if (end_ns > next_ns) {
       overrun = true;
       next_ns += ((end_ns - next_ns) / period_ns + 1) * period_ns;  // skip the missed ticks
     }

@@ -85,6 +85,7 @@ class PdGravityComponent final : public runtime::Component {
       gains = {omega * omega * m, 2.0 * omega * m};
     }
     controller_.emplace(*robot_, gains, to_vector(target));
+    newest_q_.setZero(n);
   }
 
   void on_activate() override {
@@ -92,14 +93,26 @@ class PdGravityComponent final : public runtime::Component {
     start_ns_ = -1;
   }
 
+  // wait_for_state: each cycle starts when a new estimate arrives (the runner's
+  // event), so the command follows its sensor sample by one pipeline pass.
+  bool event_driven() const override { return wait_for_state_; }
+  bool wait_for_event(std::int64_t /*timeout_ns*/) override {
+    try {
+      robot_->read_estimates(EstimateKind::joint_position, newest_q_, ReadMode::blocking);
+      return true;
+    } catch (const TimeoutError&) {
+      ++stale_;  // no new estimate within state_timeout_s
+    } catch (const StaleDataError&) {
+      ++stale_;
+    }
+    return false;
+  }
+
   void update(std::int64_t time_ns, std::int64_t /*period_ns*/) override {
     try {
-      controller_->update(wait_for_state_ ? ReadMode::blocking : ReadMode::latest);
+      controller_->update(ReadMode::latest);
     } catch (const StaleDataError&) {
       ++stale_;  // no fresh state this cycle: no command; the robot's watchdog guards
-      return;
-    } catch (const TimeoutError&) {
-      ++stale_;  // wait_for_state: no new estimate within state_timeout_s
       return;
     }
     if (start_ns_ < 0) {
@@ -131,6 +144,7 @@ class PdGravityComponent final : public runtime::Component {
   std::optional<PdGravity> controller_;
   double progress_period_s_ = 1.0;
   bool wait_for_state_ = false;
+  Eigen::VectorXd newest_q_;  // wait_for_event's read (the cycle reads the same sample again)
   std::int64_t start_ns_ = -1;
   std::int64_t next_progress_ns_ = 0;
   std::uint64_t stale_ = 0;

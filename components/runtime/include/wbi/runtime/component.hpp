@@ -70,6 +70,14 @@ class Component {
   virtual void update(std::int64_t /*time_ns*/, std::int64_t /*period_ns*/) {}
   virtual void write(std::int64_t /*time_ns*/, std::int64_t /*period_ns*/) {}
 
+  // Event-driven components (e.g. a controller that answers each new state
+  // estimate at once) return true: the runner then starts a cycle whenever
+  // wait_for_event() returns true instead of on the clock's ticks, and a cycle
+  // misses its deadline when it ends more than one period after its event.
+  virtual bool event_driven() const { return false; }
+  // Blocks until the next event, at most timeout_ns; true when the event came.
+  virtual bool wait_for_event(std::int64_t /*timeout_ns*/) { return true; }
+
   // Named counters and the last error, published by the runner in the
   // component's status (status_report.hpp). The runner also records its own
   // errors here (a failed transition, a cycle that threw).

@@ -75,6 +75,8 @@ class ComponentRunner {
   void fail(const char* transition, const std::exception& error);
   void set_state(LifecycleState state);
   void run_loop();
+  // An event-driven component's wait, bounded so that a stop request is seen.
+  bool wait_for_event(std::int64_t period_ns);
   void stop_loop();
   void run_heartbeat();
 

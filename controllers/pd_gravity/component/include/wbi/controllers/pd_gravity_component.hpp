@@ -16,11 +16,12 @@
 //   kp, kd           explicit gains, one per joint (both or neither)
 //   controller       name on the commands (default: the instance name)
 //   max_age_s        oldest state accepted (default 0.05 s)
-//   wait_for_state   false (default): each cycle uses the newest estimate; true: each
-//                    cycle waits for an estimate newer than the last one (at most
+//   wait_for_state   false (default): cycles on the clock at rate_hz, each using the
+//                    newest estimate; true: event-driven, a cycle starts when an
+//                    estimate newer than the last one arrives (waiting at most
 //                    state_timeout_s, default 0.005 s) and answers it at once, so the
-//                    command follows its sensor sample without waiting for the next
-//                    cycle (sensor-to-command latency of one pipeline pass)
+//                    command follows its sensor sample by one pipeline pass; a cycle
+//                    then overruns when it takes longer than 1/rate_hz
 //   init_timeout_s   wait for the robot's components (default 30 s)
 //   progress_period_s  a progress line every so often (default 1 s; 0: none)
 // At shutdown it prints "final max joint error: X rad".
