@@ -42,15 +42,19 @@ function(wbi_sanitize_also)
   add_dependencies(wbi_sanitize_targets ${ARGN})
 endfunction()
 
-# Each test gets its own DDS domain id in WBI_DOMAIN_ID (1, 2, ... up to 230), so
-# that tests running in parallel never discover each other.
-set_property(GLOBAL PROPERTY WBI_NEXT_TEST_DOMAIN 1)
+# Each test gets its own DDS domain id in WBI_DOMAIN_ID (WBI_TEST_DOMAIN_FIRST,
+# +1, ... up to 232), so that tests running in parallel never discover each
+# other. Two build trees whose tests run at the same time on one machine need
+# different WBI_TEST_DOMAIN_FIRST values (discovery is loopback-wide).
+set(WBI_TEST_DOMAIN_FIRST 1 CACHE STRING "DDS domain id of the first test (the others follow)")
+set_property(GLOBAL PROPERTY WBI_NEXT_TEST_DOMAIN ${WBI_TEST_DOMAIN_FIRST})
 
 # wbi_next_test_domain(<out-var>): takes the next free test domain id.
 function(wbi_next_test_domain out)
   get_property(domain GLOBAL PROPERTY WBI_NEXT_TEST_DOMAIN)
-  if(domain GREATER 230)
-    message(FATAL_ERROR "more than 230 tests: DDS domain ids for tests are used up")
+  if(domain GREATER 232)
+    message(FATAL_ERROR "DDS domain ids for tests are used up (the last is 232): "
+      "lower WBI_TEST_DOMAIN_FIRST (${WBI_TEST_DOMAIN_FIRST})")
   endif()
   math(EXPR next "${domain} + 1")
   set_property(GLOBAL PROPERTY WBI_NEXT_TEST_DOMAIN ${next})
