@@ -8,6 +8,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <random>
 #include <set>
 #include <sstream>
@@ -17,6 +18,7 @@
 
 #include <nlohmann/json.hpp>
 #include <wbi/model/algorithms.hpp>
+#include <wbi/model/backend.hpp>
 
 #include "../options.hpp"
 #include "verbs.hpp"
@@ -39,6 +41,8 @@ const char* const kModelHelp =
     "  eval   evaluate M, h, G, CoM, centroidal momentum and frame quantities at a JSON state\n"
     "  bench  median ns per call of the main algorithms at random states\n"
     "\n"
+    "eval and bench take --backend wbi|dart: the dynamics library that computes (default wbi).\n"
+    "\n"
     "Run `wbi model SUBVERB --help` for the options of each.\n";
 
 // "a,b,c" → {"a","b","c"}
@@ -58,14 +62,36 @@ std::vector<std::string> split_list(const std::string& text) {
   return out;
 }
 
-wm::Model load(const Options& opts) {
+wm::LoadOptions load_options(const Options& opts) {
   wm::LoadOptions options;
   options.fixed_base = opts.has("fixed-base");
   if (const auto joints = opts.get_optional("joints")) {
     options.joints = split_list(*joints);
   }
+  return options;
+}
+
+wm::Model load(const Options& opts) {
   try {
-    return wm::load_urdf_file(opts.get("URDF"), options);
+    return wm::load_urdf_file(opts.get("URDF"), load_options(opts));
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
+}
+
+const char* const kBackendHelp =
+    "dynamics library that computes: wbi (the project's own) or dart (DART 6, when built)";
+
+// The model behind the backend named by --backend.
+std::unique_ptr<wm::ModelBackend> load_backend(const Options& opts) {
+  const std::string name = opts.get("backend");
+  try {
+    wm::check_model_backend_name(name);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--backend: ") + e.what());
+  }
+  try {
+    return wm::make_model_backend(name, opts.get("URDF"), load_options(opts));
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(e.what());
   }
@@ -279,7 +305,7 @@ int run_eval(Args args) {
       "axes],\n"
       "gravity [3] (default [0,0,-9.81]), frames [names], joints [every joint, in the caller's "
       "order].\n"
-      "Output keys: joints, mass_matrix, bias_forces, gravity_forces, total_mass, com,\n"
+      "Output keys: backend, joints, mass_matrix, bias_forces, gravity_forces, total_mass, com,\n"
       "centroidal_momentum, frames {name: {transform 4x4, jacobian 6x(n+6), dJnu [6]}}.\n"
       "Sizes are n+6 for a free-floating model, n with a fixed base; matrices are arrays of rows.");
   opts.positional("URDF", "the robot description (.urdf)")
@@ -287,12 +313,14 @@ int run_eval(Args args) {
       .flag("fixed-base", "fix the root link to the world")
       .option("joints", "LIST",
               "reduced model: keep only these joints (comma-separated, in this order); lock the "
-              "rest at 0");
+              "rest at 0")
+      .option("backend", "NAME", kBackendHelp, "wbi");
   if (!opts.parse(args)) {
     return kExitOk;
   }
   const std::string state_file = opts.get("state");
-  const wm::Model m = load(opts);
+  const auto backend = load_backend(opts);
+  const wm::Model& m = backend->model();
   const json state = read_state(state_file);
   static const std::set<std::string> kKeys{
       "q",       "dq",     "base_position", "base_quaternion", "base_velocity",
@@ -397,25 +425,24 @@ int run_eval(Args args) {
     }
     return r;
   };
-  wm::Data data(m);
   json out;
   try {
-    const Eigen::MatrixXd M = permute_cols(wm::mass_matrix(m, data, q));
+    const Eigen::MatrixXd M = permute_cols(backend->mass_matrix(q));
     Eigen::MatrixXd Mp(nv, nv);
     for (Eigen::Index r = 0; r < nv; ++r) {
       Mp.row(r) = M.row(perm[static_cast<std::size_t>(r)]);
     }
     out["joints"] = names;
     out["mass_matrix"] = rows(Mp);
-    out["bias_forces"] = vec(permute_vec(wm::bias_forces(m, data, q, nu, gravity)));
-    out["gravity_forces"] = vec(permute_vec(wm::gravity_forces(m, data, q, gravity)));
+    out["bias_forces"] = vec(permute_vec(backend->bias_forces(q, nu, gravity)));
+    out["gravity_forces"] = vec(permute_vec(backend->gravity_forces(q, gravity)));
     out["total_mass"] = m.total_mass;
-    out["com"] = m.total_mass > 0.0 ? vec(wm::center_of_mass(m, data, q)) : json(nullptr);
+    out["com"] = m.total_mass > 0.0 ? vec(backend->center_of_mass(q)) : json(nullptr);
     out["centroidal_momentum"] =
-        m.total_mass > 0.0 ? vec(wm::centroidal_momentum(m, data, q, nu)) : json(nullptr);
+        m.total_mass > 0.0 ? vec(backend->centroidal_momentum(q, nu)) : json(nullptr);
+    out["backend"] = std::string(backend->name());
     out["frames"] = json::object();
     if (state.contains("frames")) {
-      wm::forward_velocity_kinematics(m, data, q, nu);
       for (const auto& f : state["frames"]) {
         if (!f.is_string()) {
           throw std::runtime_error("state: 'frames' must be an array of frame names");
@@ -426,9 +453,9 @@ int run_eval(Args args) {
         }
         const int id = m.frame_id(name);
         json fr;
-        fr["transform"] = rows(wm::frame_pose(m, data, id));
-        fr["jacobian"] = rows(permute_cols(wm::frame_jacobian(m, data, id)));
-        fr["dJnu"] = vec(wm::frame_bias_acceleration(m, data, id));
+        fr["transform"] = rows(backend->frame_pose(q, id));
+        fr["jacobian"] = rows(permute_cols(backend->frame_jacobian(q, id)));
+        fr["dJnu"] = vec(backend->frame_bias_acceleration(q, nu, id));
         out["frames"][name] = fr;
       }
     }
@@ -441,7 +468,9 @@ int run_eval(Args args) {
 
 // ---------------------------------------------------------------- bench
 
-// Median over random states of the mean ns per call in batches of `batch` calls.
+// Median over batches of the mean ns per call in a batch of `batch` calls; call b of
+// batch s is at state (s + b) mod states, so that consecutive calls never repeat a
+// state (a backend that caches on unchanged inputs, like DART, is timed computing).
 template <typename Call>
 double median_ns(int states, int batch, Call call) {
   using Clock = std::chrono::steady_clock;
@@ -449,7 +478,7 @@ double median_ns(int states, int batch, Call call) {
   for (int s = 0; s < states; ++s) {
     const auto t0 = Clock::now();
     for (int b = 0; b < batch; ++b) {
-      call(s);
+      call((s + b) % states);
     }
     const auto t1 = Clock::now();
     samples.push_back(std::chrono::duration<double, std::nano>(t1 - t0).count() / batch);
@@ -461,16 +490,19 @@ double median_ns(int states, int batch, Call call) {
 }
 
 int run_bench(Args args) {
-  Options opts("wbi model bench URDF [--fixed-base] [--json]",
-               "Time the main algorithms of the model library on a URDF: median ns per call over\n"
-               "random states (each state timed over a batch of calls). Also see bench/model\n"
-               "(Google Benchmark suite wbi_bench_model).");
+  Options opts(
+      "wbi model bench URDF [--backend wbi|dart] [--fixed-base] [--json]",
+      "Time the main operations of a model backend on a URDF: median ns per call over\n"
+      "batches of calls cycling through random states. forward_kinematics_ns is the pose\n"
+      "of the Jacobian frame from q (wbi: all bodies; dart: the frame's ancestors, lazily).\n"
+      "Also see bench/model (Google Benchmark suite wbi_bench_model).");
   opts.positional("URDF", "the robot description (.urdf)")
       .flag("fixed-base", "fix the root link to the world")
       .option("joints", "LIST",
               "reduced model: keep only these joints (comma-separated, in this order)")
       .option("states", "N", "number of random states", "101")
-      .option("batch", "N", "calls per state", "200")
+      .option("batch", "N", "calls per batch", "200")
+      .option("backend", "NAME", kBackendHelp, "wbi")
       .flag("json", "print JSON instead of text");
   if (!opts.parse(args)) {
     return kExitOk;
@@ -480,20 +512,23 @@ int run_bench(Args args) {
   if (states < 1 || batch < 1) {
     throw UsageError("--states and --batch must be at least 1");
   }
-  const wm::Model m = load(opts);
-  wm::Data data(m);
+  const auto backend = load_backend(opts);
+  wm::ModelBackend& be = *backend;
+  const wm::Model& m = backend->model();
   std::mt19937 rng(12345);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  std::vector<Eigen::VectorXd> q, nu, tau;
+  std::vector<Eigen::VectorXd> q, nu, tau, dnu;
   for (long s = 0; s < states; ++s) {
     q.push_back(wm::random_configuration(m, rng));
-    Eigen::VectorXd v(m.nv), t(m.nv);
+    Eigen::VectorXd v(m.nv), t(m.nv), a(m.nv);
     for (int k = 0; k < m.nv; ++k) {
       v[k] = unit(rng);
       t[k] = unit(rng);
+      a[k] = unit(rng);
     }
     nu.push_back(v);
     tau.push_back(t);
+    dnu.push_back(a);
   }
   // the frame for the Jacobian: the first frame on a deepest body (a hand or a foot)
   int frame = 0;
@@ -517,34 +552,36 @@ int run_bench(Args args) {
   json out;
   out["model"] = m.name;
   out["file"] = m.source;
+  out["backend"] = std::string(be.name());
   out["nv"] = m.nv;
   out["mass_matrix_ns"] =
-      median_ns(S, B, [&](int s) { sink = sink + wm::mass_matrix(m, data, q[at(s)])(0, 0); });
-  out["bias_forces_ns"] = median_ns(
-      S, B, [&](int s) { sink = sink + wm::bias_forces(m, data, q[at(s)], nu[at(s)], g)[0]; });
+      median_ns(S, B, [&](int s) { sink = sink + be.mass_matrix(q[at(s)])(0, 0); });
+  out["bias_forces_ns"] =
+      median_ns(S, B, [&](int s) { sink = sink + be.bias_forces(q[at(s)], nu[at(s)], g)[0]; });
   out["gravity_forces_ns"] =
-      median_ns(S, B, [&](int s) { sink = sink + wm::gravity_forces(m, data, q[at(s)], g)[0]; });
+      median_ns(S, B, [&](int s) { sink = sink + be.gravity_forces(q[at(s)], g)[0]; });
+  out["inverse_dynamics_ns"] = median_ns(S, B, [&](int s) {
+    sink = sink + be.inverse_dynamics(q[at(s)], nu[at(s)], dnu[at(s)], g)[0];
+  });
   out["forward_dynamics_ns"] = median_ns(S, B, [&](int s) {
-    sink = sink + wm::forward_dynamics(m, data, q[at(s)], nu[at(s)], tau[at(s)], g)[0];
+    sink = sink + be.forward_dynamics(q[at(s)], nu[at(s)], tau[at(s)], g)[0];
   });
-  out["jacobian_ns"] = median_ns(
-      S, B, [&](int s) { sink = sink + wm::frame_jacobian(m, data, q[at(s)], frame)(0, 0); });
-  out["forward_kinematics_ns"] = median_ns(S, B, [&](int s) {
-    wm::forward_kinematics(m, data, q[at(s)]);
-    sink = sink + data.p_WB.back()[0];
-  });
-  out["centroidal_momentum_matrix_ns"] = median_ns(
-      S, B, [&](int s) { sink = sink + wm::centroidal_momentum_matrix(m, data, q[at(s)])(0, 0); });
+  out["jacobian_ns"] =
+      median_ns(S, B, [&](int s) { sink = sink + be.frame_jacobian(q[at(s)], frame)(0, 0); });
+  out["forward_kinematics_ns"] =
+      median_ns(S, B, [&](int s) { sink = sink + be.frame_pose(q[at(s)], frame)(0, 3); });
+  out["centroidal_momentum_matrix_ns"] =
+      median_ns(S, B, [&](int s) { sink = sink + be.centroidal_momentum_matrix(q[at(s)])(0, 0); });
   out["jacobian_frame"] = m.frame_name[static_cast<std::size_t>(frame)];
   if (opts.has("json")) {
     std::cout << out.dump(2) << "\n";
     return kExitOk;
   }
-  std::cout << "model " << m.name << " (" << m.source << "), nv = " << m.nv
-            << ", median ns per call over " << states << " random states:\n";
-  for (const char* key :
-       {"mass_matrix_ns", "bias_forces_ns", "gravity_forces_ns", "forward_dynamics_ns",
-        "jacobian_ns", "forward_kinematics_ns", "centroidal_momentum_matrix_ns"}) {
+  std::cout << "model " << m.name << " (" << m.source << "), nv = " << m.nv << ", backend "
+            << be.name() << ", median ns per call over " << states << " random states:\n";
+  for (const char* key : {"mass_matrix_ns", "bias_forces_ns", "gravity_forces_ns",
+                          "inverse_dynamics_ns", "forward_dynamics_ns", "jacobian_ns",
+                          "forward_kinematics_ns", "centroidal_momentum_matrix_ns"}) {
     std::cout << "  " << std::left << std::setw(32) << key << std::right << std::setw(10)
               << std::fixed << std::setprecision(0) << out[key].get<double>() << "\n";
   }

@@ -9,6 +9,8 @@ int run_bag(Args args);
 int run_estimate(Args args);
 int run_launch(Args args);
 int run_model(Args args);
+int run_play(Args args);
+int run_record(Args args);
 int run_topic(Args args);
 
 }  // namespace wbi::cli

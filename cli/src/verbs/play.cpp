@@ -1,0 +1,214 @@
+// `wbi play`: replays an MCAP recording onto DDS. The work is in
+// wbi::recording::Player (components/recording); this file parses the command
+// line, shows progress and takes pause/resume/step from the keyboard and from
+// the control topic.
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <wbi/dds/subscriber.hpp>
+#include <wbi/recording/player.hpp>
+
+#include "../options.hpp"
+#include "../terminal.hpp"
+#include "verbs.hpp"
+
+namespace wbi::cli {
+
+namespace {
+
+std::atomic<bool> interrupted{false};
+extern "C" void on_play_signal(int /*signal*/) { interrupted = true; }
+
+constexpr const char* kControlTopic = "wbi/play/control";
+
+// Takes every --remap FROM:=TO out of args (the option may repeat).
+std::map<std::string, std::string> take_remaps(std::vector<std::string>& args) {
+  std::map<std::string, std::string> remaps;
+  std::vector<std::string> rest;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    std::string value;
+    if (args[i] == "--remap") {
+      if (i + 1 >= args.size()) {
+        throw UsageError("option --remap needs a value FROM:=TO");
+      }
+      value = args[++i];
+    } else if (args[i].rfind("--remap=", 0) == 0) {
+      value = args[i].substr(8);
+    } else {
+      rest.push_back(args[i]);
+      continue;
+    }
+    const auto separator = value.find(":=");
+    if (separator == std::string::npos || separator == 0 || separator + 2 == value.size()) {
+      throw UsageError("--remap expects FROM:=TO, got '" + value + "'");
+    }
+    remaps[value.substr(0, separator)] = value.substr(separator + 2);
+  }
+  args = std::move(rest);
+  return remaps;
+}
+
+void apply_command(recording::Player& player, const std::string& command) {
+  if (command == "pause") {
+    player.pause();
+  } else if (command == "resume") {
+    player.resume();
+  } else if (command == "toggle") {
+    player.toggle_pause();
+  } else if (command == "step") {
+    player.step();
+  } else if (command == "quit") {
+    player.quit();
+  } else {
+    std::cerr << "wbi play: unknown command '" << command << "' on " << kControlTopic
+              << " (pause, resume, toggle, step, quit)" << std::endl;
+  }
+}
+
+std::string progress_text(const recording::PlayerProgress& progress) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(2) << (progress.paused ? "paused  " : "playing ")
+      << progress.position_s << " / " << progress.duration_s << " s  messages "
+      << progress.published;
+  if (progress.refused > 0) {
+    out << "  refused " << progress.refused;
+  }
+  if (progress.clock_ticks > 0) {
+    out << "  clock ticks " << progress.clock_ticks;
+  }
+  if (progress.loops > 0) {
+    out << "  loops " << progress.loops;
+  }
+  return out.str();
+}
+
+}  // namespace
+
+int run_play(Args raw_args) {
+  Options options("wbi play FILE [options]",
+                  "Replays an MCAP recording onto DDS: each topic with its recorded type (the\n"
+                  "schema name) and QoS (the channel metadata), messages in log-time order at\n"
+                  "their recorded spacing divided by --rate.\n"
+                  "Keys on a terminal: space pause/resume, s step (while paused), q quit.\n"
+                  "Control topic wbi/play/control (type wbi::msg::EstimatorParameter, the field\n"
+                  "name = pause | resume | toggle | step | quit) does the same from a program.\n"
+                  "Prints a progress line once a second. Exit: 0 at the end, 130 on Ctrl-C.");
+  options.positional("FILE", "the MCAP recording");
+  options.option("rate", "R", "speed factor: 2 plays twice as fast", "1");
+  options.flag("loop", "start over at the end, until Ctrl-C or q");
+  options.option("start-offset", "SECONDS", "skip the first seconds of the recording", "0");
+  options.option("topics", "REGEX", "play only topics whose names fully match this");
+  options.option("remap", "FROM:=TO", "publish topic FROM as TO (may repeat)");
+  options.flag("clock", "publish the recording's time as SimulationClock on wbi/clock");
+  options.option("clock-rate", "HZ", "SimulationClock samples per recorded second", "100");
+  options.option("wait-subscribers", "SECONDS",
+                 "first wait up to this long for a subscriber on every topic (0: start at once)",
+                 "0");
+  options.flag("paused", "start paused (space or 'resume' on the control topic to start)");
+  options.option("domain", "ID", "DDS domain id (default: WBI_DOMAIN_ID, else 0)");
+  std::vector<std::string> args(raw_args.begin(), raw_args.end());
+  const bool wants_help = std::find(args.begin(), args.end(), "--help") != args.end() ||
+                          std::find(args.begin(), args.end(), "-h") != args.end();
+  recording::PlayerOptions player_options;
+  if (!wants_help) {
+    player_options.remap = take_remaps(args);
+  }
+  if (!options.parse(args)) {
+    return kExitOk;
+  }
+  player_options.file = options.get("FILE");
+  player_options.rate = options.get_double("rate");
+  player_options.loop = options.has("loop");
+  player_options.start_offset_s = options.get_double("start-offset");
+  player_options.topics_pattern = options.get_optional("topics").value_or("");
+  player_options.clock = options.has("clock");
+  player_options.clock_rate_hz = options.get_double("clock-rate");
+  const double wait_s = options.get_double("wait-subscribers");
+  if (wait_s < 0) {
+    throw UsageError("--wait-subscribers must be >= 0");
+  }
+  player_options.wait_for_subscribers =
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::duration<double>(wait_s));
+  player_options.log = [](const std::string& line) { std::cerr << line << std::endl; };
+  if (!std::filesystem::exists(player_options.file)) {
+    throw std::runtime_error(player_options.file.string() + ": no such file");
+  }
+
+  dds::ParticipantOptions participant_options;
+  participant_options.name = "wbi play";
+  if (options.has("domain")) {
+    participant_options.domain_id = static_cast<int>(options.get_int("domain"));
+  }
+  dds::Participant participant(participant_options);
+  recording::Player player(participant, player_options);
+  if (options.has("paused")) {
+    player.pause();
+  }
+  for (const auto& [topic, type] : player.topics()) {
+    std::cerr << "playing " << topic << " [" << type << "]" << std::endl;
+  }
+  dds::Subscriber<msg::EstimatorParameter> control(
+      participant, kControlTopic, dds::qos::kCommand,
+      [&player](const msg::EstimatorParameter& command, const dds::detail::SampleInfo&) {
+        apply_command(player, command.name().to_string());
+      });
+
+  std::signal(SIGINT, on_play_signal);
+  std::signal(SIGTERM, on_play_signal);
+  std::atomic<bool> finished{false};
+  std::exception_ptr failure;
+  std::thread playing([&] {
+    try {
+      player.run();
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    finished = true;
+  });
+  Keyboard keyboard;
+  ProgressLine line;
+  auto last_report = std::chrono::steady_clock::now();
+  while (!finished) {
+    if (interrupted) {
+      player.quit();
+    }
+    if (const auto key = keyboard.poll(std::chrono::milliseconds(20))) {
+      if (*key == ' ') {
+        player.toggle_pause();
+      } else if (*key == 's') {
+        player.step();
+      } else if (*key == 'q') {
+        player.quit();
+      }
+    }
+    if (std::chrono::steady_clock::now() - last_report >= std::chrono::seconds(1)) {
+      line.show(progress_text(player.progress()));
+      last_report = std::chrono::steady_clock::now();
+    }
+  }
+  playing.join();
+  line.finish();
+  if (failure) {
+    std::rethrow_exception(failure);
+  }
+  const auto done = player.progress();
+  std::cout << "played " << done.published << " messages";
+  if (done.refused > 0) {
+    std::cout << ", " << done.refused << " refused by DDS";
+  }
+  std::cout << std::endl;
+  return interrupted ? kExitInterrupted : kExitOk;
+}
+
+}  // namespace wbi::cli

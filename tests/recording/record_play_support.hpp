@@ -1,0 +1,85 @@
+// Helpers of the record/play tests: running `wbi`, the CDR bytes of the
+// talker's pattern samples, and a synthetic recording with exact timing.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <fastdds/rtps/common/SerializedPayload.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <wbi/msg/sensorsPubSubTypes.h>
+#include <wbi/mcap/writer.hpp>
+#include <wbi/msg/idl_text.hpp>
+
+#include "child_process.hpp"
+#include "sample_pattern.hpp"
+#include "test_support.hpp"
+
+namespace wbi::test {
+
+inline std::filesystem::path wbi_program() { return binary_dir() / "bin" / "wbi"; }
+inline std::filesystem::path talker_program() { return binary_dir() / "tests" / "wbi_test_talker"; }
+
+struct CliRun {
+  int code;
+  std::string output;  // stdout and stderr interleaved
+};
+
+inline CliRun run_wbi(const std::vector<std::string>& args,
+                      std::chrono::milliseconds timeout = std::chrono::seconds(60)) {
+  ChildProcess process(wbi_program(), args);
+  const auto code = process.wait(timeout);
+  return {code.value_or(-1), process.output()};
+}
+
+// The serialized bytes (encapsulation included) of the talker's sample `seq`.
+inline std::vector<std::uint8_t> pattern_cdr(const std::string& robot, std::uint64_t seq) {
+  msg::SensorSample sample;
+  fill_pattern(sample, robot, seq);
+  msg::SensorSamplePubSubType type;
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(type.getSerializedSizeProvider(&sample)());
+  if (!type.serialize(&sample, &payload)) {
+    ADD_FAILURE() << "cannot serialize sample " << seq;
+  }
+  return {payload.data, payload.data + payload.length};
+}
+
+// A unique scratch file name for this test process.
+inline std::filesystem::path scratch_file(const std::string& name) {
+  return std::filesystem::temp_directory_path() /
+         ("wbi_record_play_" + std::to_string(getpid()) + "_" + name);
+}
+
+// A recording of pattern sensor samples on wbi/<robot>/sensors for each robot,
+// `count` per robot, `period` apart (robots interleaved), QoS of wbi.stream.
+inline void write_pattern_recording(const std::filesystem::path& file,
+                                    const std::vector<std::string>& robots, std::uint64_t count,
+                                    std::chrono::nanoseconds period) {
+  mcap::Writer writer(file);
+  const std::string type = "wbi::msg::SensorSample";
+  const auto schema = writer.add_schema(type, msg::idl_text_for(type));
+  std::vector<std::uint16_t> channels;
+  for (const auto& robot : robots) {
+    channels.push_back(writer.add_channel(schema, "wbi/" + robot + "/sensors", "cdr",
+                                          {{"reliability", "reliable"},
+                                           {"durability", "transient_local"},
+                                           {"history_depth", "1"},
+                                           {"qos_profile", "wbi.stream"}}));
+  }
+  const std::uint64_t start = 1'700'000'000'000'000'000ULL;
+  for (std::uint64_t seq = 0; seq < count; ++seq) {
+    for (std::size_t r = 0; r < robots.size(); ++r) {
+      const auto log_time = start + seq * static_cast<std::uint64_t>(period.count()) + r;
+      writer.write(channels[r], static_cast<std::uint32_t>(seq), log_time, seq * 1'000'000,
+                   pattern_cdr(robots[r], seq));
+    }
+  }
+  writer.close();
+}
+
+}  // namespace wbi::test
