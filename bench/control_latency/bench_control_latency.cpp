@@ -35,6 +35,10 @@
 #include "latency_observer.hpp"
 #include "launch_process.hpp"
 
+#include "../common/percentile.hpp"
+
+using wbi::bench::percentile;
+
 namespace {
 
 using namespace std::chrono_literals;
@@ -84,15 +88,6 @@ Options parse(int argc, char** argv) {
     throw std::invalid_argument("--duration and --ticks must be > 0");
   }
   return options;
-}
-
-double percentile(std::vector<double> values, double p) {
-  if (values.empty()) {
-    return 0.0;
-  }
-  std::sort(values.begin(), values.end());
-  const auto index = static_cast<std::size_t>(p * static_cast<double>(values.size() - 1) + 0.5);
-  return values[std::min(index, values.size() - 1)];
 }
 
 struct TickResult {

@@ -37,6 +37,10 @@
 #include <wbi/recording/player.hpp>
 #include <wbi/recording/recorder.hpp>
 
+#include "../common/percentile.hpp"
+
+using wbi::bench::percentile;
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -127,12 +131,6 @@ nlohmann::json record_run(std::size_t topics, double duration_s, std::chrono::na
       {"recorded_per_s", static_cast<double>(progress.messages) / elapsed},
       {"file_mib", static_cast<double>(progress.file_bytes) / (1024.0 * 1024.0)},
   };
-}
-
-double percentile(std::vector<double> values, double p) {
-  std::sort(values.begin(), values.end());
-  const auto index = static_cast<std::size_t>(p * static_cast<double>(values.size() - 1));
-  return values[index];
 }
 
 nlohmann::json play_run(std::size_t count) {

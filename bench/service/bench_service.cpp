@@ -38,6 +38,10 @@
 #include <wbi/model_service/component.hpp>
 #include <wbi/runtime/runner.hpp>
 
+#include "../common/percentile.hpp"
+
+using wbi::bench::percentile;
+
 extern char** environ;
 
 namespace {
@@ -55,15 +59,6 @@ double us_since(Clock::time_point start) {
   return 1e-3 *
          static_cast<double>(
              std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start).count());
-}
-
-double percentile(std::vector<double> values, double p) {
-  if (values.empty()) {
-    return 0.0;
-  }
-  std::sort(values.begin(), values.end());
-  const auto index = static_cast<std::size_t>(p * static_cast<double>(values.size() - 1) + 0.5);
-  return values[std::min(index, values.size() - 1)];
 }
 
 std::string default_model() {
