@@ -1,16 +1,19 @@
 // Momentum-based balancing of the project humanoid, closed loop in one process
 // over real DDS, in lockstep: the simulated robot (sim_robot), the estimator
-// (base from the ground truth, as in deploy/balance.yaml) and the controller
-// through the DDS whole-body interface. The CoM follows the demo's lateral
-// sinusoid for 20 s; the ground truth shows whether the feet slipped, lifted or
-// tilted. The same controller runs with every joint controlled and with the
-// arms and neck held in position; a push on the pelvis is rejected.
+// (base from the IMU and both feet, `base: legged`, as in deploy/balance.yaml)
+// and the controller through the DDS whole-body interface. The CoM follows the
+// demo's lateral sinusoid for 20 s; the ground truth shows whether the feet
+// slipped, lifted or tilted, how far the true CoM is from the reference and how
+// far the estimated base is from the true one. The same controller runs with
+// every joint controlled and with the arms and neck held in position, and once
+// on the ground-truth base for comparison; a push on the pelvis is rejected.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <mutex>
 
 #include <wbi/controllers/com_sinusoid.hpp>
 #include <wbi/controllers/momentum_balance.hpp>
@@ -19,6 +22,7 @@
 #include <wbi/dds_interface.hpp>
 #include <wbi/estimator/estimator_component.hpp>
 #include <wbi/model/algorithms.hpp>
+#include <wbi/model/com.hpp>
 #include <wbi/robot/sim_robot.hpp>
 #include <wbi/runtime/runner.hpp>
 
@@ -54,11 +58,30 @@ struct BalanceRun {
   double max_foot_tilt = 0.0;     // sole normal's rotation after settling [rad]
   double min_normal_force = 1e9;  // smallest ground normal force on a foot after settling [N]
   std::uint64_t qp_failures = 0;
+  // The true CoM (from the ground truth) against the reference, and the estimator's base
+  // against the ground truth, after settling, on the ticks where both carry the same stamp.
+  double true_com_rms = 0.0;       // [m]
+  double base_position_max = 0.0;  // [m]
+  double base_velocity_rms = 0.0;  // linear [m/s]
+  int compared = 0;
   // Heap allocations of one control() beyond those of the command publish alone (the
   // proxy's, not the controller's), in a quiet moment: the lockstep sim waits for a command.
   long control_allocations = 0;
   int ticks = 0;
 };
+
+// Where the estimator takes the base state from: its own estimate from the IMU and both
+// feet (as in deploy/balance.yaml), or the simulator's ground truth (for comparison).
+enum class Base { legged, ground_truth };
+
+std::string estimator_parameters(const std::string& robot, Base base) {
+  const std::string common = "robot: " + robot + "\nmethod: backward-difference\ncutoff: 50\n";
+  if (base == Base::ground_truth) {
+    return common + "base: topic\n";
+  }
+  return common + "base: legged\nurdf: " + wbi::test::project_model("humanoid.urdf").string() +
+         "\nfoot_force_torque: [l_foot_ft, r_foot_ft]\n";
+}
 
 // The deploy file's simulation, with the URDF path made absolute and an optional push.
 std::string sim_config(const std::string& extra) {
@@ -99,10 +122,97 @@ void expect_clear_errors(wbi::WholeBodyInterface& robot, const Eigen::VectorXd& 
                  "the foot rectangle must contain the sole origin");
 }
 
+// The ground truth and the estimator's base, tick by tick (indexed by the source stamp,
+// 1 ms per tick): both topics are recorded as they arrive, so that every tick is compared
+// with its own truth whatever the order of arrival. Storage is allocated up front.
+class TickRecorder {
+ public:
+  struct Tick {
+    bool has_truth = false;
+    bool has_estimate = false;
+    Eigen::Vector3d true_com, true_position, true_velocity;
+    Eigen::Vector3d estimated_position, estimated_velocity;
+  };
+
+  TickRecorder(const std::string& urdf, int ticks)
+      : model_(wbi::model::load_urdf_file(urdf)),
+        data_(model_),
+        q_(model_.nq),
+        ticks_(static_cast<std::size_t>(ticks) + 1000) {}
+
+  void on_truth(const wbi::msg::GroundTruth& s) {
+    std::lock_guard lock(mutex_);
+    Tick* tick = at(s.header().stamp_ns());
+    if (tick == nullptr || s.q().size() != static_cast<std::size_t>(model_.n_joints)) {
+      return;
+    }
+    const auto& p = s.base_pose();
+    q_.head<3>() << p.position().x(), p.position().y(), p.position().z();
+    q_.segment<4>(3) << p.orientation().w(), p.orientation().x(), p.orientation().y(),
+        p.orientation().z();
+    q_.tail(model_.n_joints) = Eigen::Map<const Eigen::VectorXd>(s.q().data(), model_.n_joints);
+    tick->true_com = wbi::model::center_of_mass(model_, data_, q_);
+    tick->true_position = q_.head<3>();
+    tick->true_velocity = Eigen::Map<const Eigen::Vector3d>(s.base_velocity().data());
+    tick->has_truth = true;
+  }
+
+  void on_estimate(const wbi::msg::StateEstimate& s) {
+    std::lock_guard lock(mutex_);
+    Tick* tick = at(s.header().stamp_ns());
+    if (tick == nullptr) {
+      return;
+    }
+    const auto& p = s.base_pose().position();
+    tick->estimated_position << p.x(), p.y(), p.z();
+    tick->estimated_velocity = Eigen::Map<const Eigen::Vector3d>(s.base_velocity().data());
+    tick->has_estimate = true;
+  }
+
+  // The true CoM against the reference, the base against the truth, from `from_s` on
+  // (t = 0 at start_ns).
+  void summarise(std::int64_t start_ns, const wbi::controllers::ComSinusoid& reference,
+                 double from_s, BalanceRun& run) {
+    std::lock_guard lock(mutex_);
+    double com_squared = 0.0;
+    double velocity_squared = 0.0;
+    for (std::size_t k = 0; k < ticks_.size(); ++k) {
+      const Tick& tick = ticks_[k];
+      const double t = 1e-9 * (static_cast<double>(k) * 1e6 - static_cast<double>(start_ns));
+      if (!tick.has_truth || !tick.has_estimate || t < from_s) {
+        continue;
+      }
+      Eigen::Vector3d x, v, a;
+      reference.at(t, x, v, a);
+      com_squared += (tick.true_com - x).squaredNorm();
+      run.base_position_max =
+          std::max(run.base_position_max, (tick.estimated_position - tick.true_position).norm());
+      velocity_squared += (tick.estimated_velocity - tick.true_velocity).squaredNorm();
+      ++run.compared;
+    }
+    if (run.compared > 0) {
+      run.true_com_rms = std::sqrt(com_squared / run.compared);
+      run.base_velocity_rms = std::sqrt(velocity_squared / run.compared);
+    }
+  }
+
+ private:
+  Tick* at(std::int64_t stamp_ns) {
+    const auto k = static_cast<std::size_t>(std::max<std::int64_t>(0, stamp_ns / 1'000'000));
+    return k < ticks_.size() ? &ticks_[k] : nullptr;
+  }
+
+  wbi::model::Model model_;
+  wbi::model::Data data_;
+  Eigen::VectorXd q_;
+  std::vector<Tick> ticks_;
+  std::mutex mutex_;
+};
+
 // `seconds` of balancing in lockstep; the CoM follows `reference` (its origin: the initial CoM).
 BalanceRun run_balance(const std::string& robot, const std::vector<std::string>& joints,
                        double seconds, wbi::controllers::ComSinusoid reference = {},
-                       const std::string& sim_extra = "") {
+                       const std::string& sim_extra = "", Base base = Base::legged) {
   wbi::dds::Participant participant("balance_test");
   wbi::runtime::SystemClock clock;
   wbi::runtime::Registry registry;
@@ -118,11 +228,21 @@ BalanceRun run_balance(const std::string& robot, const std::vector<std::string>&
       wbi::runtime::Parameters::from_string("robot: " + robot + "\nconfig: " + config +
                                             "\nlockstep: true\nlockstep_controllers: [balance]\n"));
   std::filesystem::remove(config);  // read by configure()
-  estimator.configure(wbi::runtime::Parameters::from_string(
-      "robot: " + robot + "\nbase: topic\nmethod: backward-difference\ncutoff: 50\n"));
+  estimator.configure(wbi::runtime::Parameters::from_string(estimator_parameters(robot, base)));
   estimator.activate();
   wbi::dds::Subscriber<wbi::msg::GroundTruth> truth(
       participant, wbi::dds::topics::ground_truth(robot), wbi::dds::qos::kStream);
+  TickRecorder recorder(urdf, static_cast<int>(seconds * 1000.0));
+  wbi::dds::Subscriber<wbi::msg::GroundTruth> truth_recorder(
+      participant, wbi::dds::topics::ground_truth(robot), wbi::dds::qos::kStream,
+      [&](const wbi::msg::GroundTruth& s, const wbi::dds::detail::SampleInfo&) {
+        recorder.on_truth(s);
+      });
+  wbi::dds::Subscriber<wbi::msg::StateEstimate> estimate_recorder(
+      participant, wbi::dds::topics::state(robot), wbi::dds::qos::kStream,
+      [&](const wbi::msg::StateEstimate& s, const wbi::dds::detail::SampleInfo&) {
+        recorder.on_estimate(s);
+      });
 
   wbi::DdsInterfaceOptions options;
   options.robot = robot;
@@ -229,6 +349,7 @@ BalanceRun run_balance(const std::string& robot, const std::vector<std::string>&
   run.ticks = ticks;
   sim.shutdown();
   estimator.shutdown();
+  recorder.summarise(start_ns, reference, reference.settle_s, run);  // no more samples
   return run;
 }
 
@@ -251,9 +372,16 @@ void expect_balanced(const BalanceRun& run, const char* what) {
   EXPECT_GT(run.min_normal_force, 0.0) << "N: a foot lifted";
   EXPECT_EQ(run.qp_failures, 0u);
   EXPECT_EQ(run.control_allocations, 0) << "heap allocations in a control tick";
-  std::printf("%s: com rms %.4f m, max %.4f m, slip %.2e m, tilt %.2e rad, min f_z %.1f N\n", what,
-              run.com_rms, run.com_max_error, run.max_foot_slip, run.max_foot_tilt,
-              run.min_normal_force);
+  // The estimate the controller balances on: the true CoM tracks as well as its estimate.
+  EXPECT_GT(run.compared, run.ticks * 9 / 10) << "ticks compared with the ground truth";
+  EXPECT_LT(run.true_com_rms, 0.01) << "m";
+  EXPECT_LT(run.base_position_max, 0.005) << "m";
+  EXPECT_LT(run.base_velocity_rms, 0.01) << "m/s";
+  std::printf(
+      "%s: com rms %.4f m (true CoM %.4f m), max %.4f m, slip %.2e m, tilt %.2e rad, min f_z "
+      "%.1f N; base vs ground truth: position max %.2e m, velocity rms %.2e m/s (%d ticks)\n",
+      what, run.com_rms, run.true_com_rms, run.com_max_error, run.max_foot_slip, run.max_foot_tilt,
+      run.min_normal_force, run.base_position_max, run.base_velocity_rms, run.compared);
 }
 
 TEST(BalanceInProcess, AllJointsTrackTheLateralSinusoid) {
@@ -262,6 +390,13 @@ TEST(BalanceInProcess, AllJointsTrackTheLateralSinusoid) {
 
 TEST(BalanceInProcess, LegsAndTorsoOnlyWithArmsAndNeckHeld) {
   expect_balanced(run_balance("balance_reduced", kLegsAndTorso, 21.0), "legs and torso");
+}
+
+// The reference run: the base state from the simulator's ground truth instead of the
+// estimate (what the deploy files used before the legged estimator).
+TEST(BalanceInProcess, AllJointsWithTheGroundTruthBase) {
+  expect_balanced(run_balance("balance_truth", all_joints(), 21.0, {}, "", Base::ground_truth),
+                  "all joints, ground-truth base");
 }
 
 }  // namespace

@@ -71,6 +71,40 @@ class EstimatorFixture {
   }
 
   wbi::dds::Publisher<wbi::msg::EstimatorParameter>& parameters() { return parameters_; }
+  wbi::dds::Participant& participant() { return participant_; }
+
+  // Publishes one sample without waiting for its estimate.
+  void send(std::uint64_t k, const Eigen::VectorXd& q) {
+    wbi::msg::SensorSample sample;
+    sample.header().robot(robot_);
+    sample.header().seq(k);
+    sample.header().stamp_ns(static_cast<std::int64_t>(k) * 1'000'000);
+    sample.encoder_position().assign(q.data(), q.data() + q.size());
+    sensors_.publish(sample);
+  }
+
+  // The next estimate within `timeout`, if any.
+  std::optional<wbi::msg::StateEstimate> next_estimate(std::chrono::milliseconds timeout) {
+    if (state_.wait_newer(received_, received_.count, timeout)) {
+      return received_.sample;
+    }
+    return std::nullopt;
+  }
+
+  // The estimator's last error as wbi/status carries it, once it contains `text`
+  // (bounded wait; the last one seen otherwise).
+  std::string status_error(const std::string& text) {
+    wbi::dds::Received<wbi::msg::ComponentStatus> got;
+    std::string error;
+    const auto deadline = std::chrono::steady_clock::now() + 10s;
+    while (error.find(text) == std::string::npos && std::chrono::steady_clock::now() < deadline) {
+      runner_->publish_status();
+      if (status_.wait_newer(got, got.count, 200ms)) {
+        error = got.sample.last_error();
+      }
+    }
+    return error;
+  }
 
   // The estimator's status counter `name` as wbi/status carries it, once it is
   // at least `at_least` (bounded wait; the last value seen otherwise, nullopt
@@ -207,6 +241,52 @@ TEST(EstimatorComponent, FixedLinkBaseKeepsTheStanceFootStill) {
   EXPECT_TRUE(sole_in_world(after, "r_sole").isApprox(right_before, 1e-9));
 }
 
+// base: topic publishes no estimate before the first base sample (an identity base
+// would throw a balancing controller off): the sensor sample waits, and is estimated
+// with the base of the first base sample.
+TEST(EstimatorComponent, TopicBaseWaitsForTheFirstBaseSample) {
+  EstimatorFixture fixture("truth", {"a"}, "robot: truth\nbase: topic\n");
+  wbi::dds::Publisher<wbi::msg::GroundTruth> truth(fixture.participant(),
+                                                   topics::ground_truth("truth"), qos::kStream);
+  ASSERT_TRUE(truth.wait_for_subscribers(1, 10s));
+  fixture.send(0, Eigen::VectorXd::Constant(1, 0.1));
+  // Absence can only be observed for a while: half a second without an estimate.
+  EXPECT_FALSE(fixture.next_estimate(500ms).has_value()) << "an estimate without a base sample";
+
+  wbi::msg::GroundTruth base;
+  base.header().robot("truth");
+  base.base_pose().position().x(1.0);
+  base.base_pose().position().y(2.0);
+  base.base_pose().position().z(3.0);
+  base.base_pose().orientation().w(1.0);
+  base.base_velocity()[1] = 0.5;
+  std::optional<wbi::msg::StateEstimate> state;
+  for (int attempt = 0; attempt < 50 && !state; ++attempt) {  // best effort: send again
+    truth.publish(base);
+    state = fixture.next_estimate(100ms);
+  }
+  ASSERT_TRUE(state.has_value()) << "the waiting sample was never estimated";
+  EXPECT_EQ(state->header().seq(), 0u);  // the sample sent before the base sample
+  EXPECT_DOUBLE_EQ(state->base_pose().position().x(), 1.0);
+  EXPECT_DOUBLE_EQ(state->base_pose().position().z(), 3.0);
+  EXPECT_DOUBLE_EQ(state->base_velocity()[1], 0.5);
+  // From now on every sample is estimated at once.
+  const auto next = fixture.step(1, Eigen::VectorXd::Constant(1, 0.2));
+  EXPECT_DOUBLE_EQ(next.base_pose().position().y(), 2.0);
+}
+
+// base: legged on a robot whose description has no IMU: named on the status topic,
+// and no estimate with a made-up base.
+TEST(EstimatorComponent, LeggedBaseWithoutAnImuIsReported) {
+  const auto urdf = wbi::test::project_model("humanoid.urdf").string();
+  const auto model = wbi::model::load_urdf_file(urdf);
+  std::vector<std::string> joints(model.joint_name.begin(), model.joint_name.end());
+  EstimatorFixture fixture("blind", joints, "robot: blind\nbase: legged\nurdf: " + urdf + "\n");
+  fixture.send(0, Eigen::VectorXd::Zero(model.n_joints));
+  EXPECT_NE(fixture.status_error("has no IMU").find("robot 'blind' has no IMU"), std::string::npos);
+  EXPECT_FALSE(fixture.next_estimate(100ms).has_value());
+}
+
 TEST(EstimatorComponent, BadParametersAreNamed) {
   wbi::dds::Participant participant("bad");
   wbi::runtime::SystemClock clock;
@@ -226,6 +306,9 @@ TEST(EstimatorComponent, BadParametersAreNamed) {
   EXPECT_NE(configure("robot: r\nmethod: magic\n").find("magic"), std::string::npos);
   EXPECT_NE(configure("robot: r\nbase: fixed_link\n").find("urdf"), std::string::npos);
   EXPECT_NE(configure("robot: r\nbase: floating\n").find("base must be"), std::string::npos);
+  EXPECT_NE(configure("robot: r\nbase: legged\n").find("urdf"), std::string::npos);
+  EXPECT_NE(configure("robot: r\nbase: legged\nurdf: x.urdf\nfeet: [l_sole]\n").find("feet"),
+            std::string::npos);
   EXPECT_NE(configure("robot: r\nvelocity_windw: 3\n").find("velocity_windw"), std::string::npos);
 }
 

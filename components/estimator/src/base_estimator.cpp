@@ -6,19 +6,13 @@
 #include <Eigen/LU>
 #include <wbi/model/algorithms.hpp>
 
+#include "floating_base_model.hpp"
+
 namespace wbi::estimator {
 
 namespace {
 
-wbi::model::Model load(const std::string& urdf, const std::vector<std::string>& joints) {
-  wbi::model::LoadOptions options;
-  options.joints = joints;  // the model's order is the robot's
-  auto model = wbi::model::load_urdf_file(urdf, options);
-  if (!model.floating_base) {
-    throw std::invalid_argument(urdf + ": a fixed-base robot has no base state to estimate");
-  }
-  return model;
-}
+using detail::set_base;
 
 Eigen::Matrix4d inverse(const Eigen::Matrix4d& H) {
   Eigen::Matrix4d out = Eigen::Matrix4d::Identity();
@@ -27,19 +21,13 @@ Eigen::Matrix4d inverse(const Eigen::Matrix4d& H) {
   return out;
 }
 
-void set_base(Eigen::VectorXd& q_model, const Eigen::Matrix4d& world_H_base) {
-  const Eigen::Quaterniond orientation(Eigen::Matrix3d(world_H_base.topLeftCorner<3, 3>()));
-  q_model.head<3>() = world_H_base.topRightCorner<3, 1>();
-  q_model.segment<4>(3) << orientation.w(), orientation.x(), orientation.y(), orientation.z();
-}
-
 }  // namespace
 
 FixedLinkBaseEstimator::FixedLinkBaseEstimator(const std::string& urdf,
                                                const std::vector<std::string>& joints,
                                                const std::string& link,
                                                const Eigen::Matrix4d& initial_world_H_base)
-    : model_(load(urdf, joints)),
+    : model_(detail::load_floating_base_model(urdf, joints)),
       data_(model_),
       q_model_(Eigen::VectorXd::Zero(model_.nq)),
       nu_(Eigen::VectorXd::Zero(model_.nv)) {

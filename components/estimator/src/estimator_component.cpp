@@ -1,7 +1,10 @@
 #include "wbi/estimator/estimator_component.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
+#include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <mutex>
@@ -15,12 +18,13 @@
 #include <wbi/estimation/low_pass_filter.hpp>
 
 #include "wbi/estimator/base_estimator.hpp"
+#include "wbi/estimator/legged_base_estimator.hpp"
 
 namespace wbi::estimator {
 
 namespace {
 
-enum class BaseSource { fixed, fixed_link, topic };
+enum class BaseSource { fixed, fixed_link, legged, topic };
 
 std::string kebab(std::string name) {
   for (auto& c : name) {
@@ -50,6 +54,15 @@ void write_pose(wbi::msg::Pose& pose, const Eigen::Matrix4d& H) {
   pose.orientation().z(q.z());
 }
 
+// A path parameter; a relative one is relative to the file that gives it (the deploy file).
+std::string file_parameter(const runtime::Parameters& parameters, const std::string& key) {
+  std::filesystem::path path = parameters.require<std::string>(key);
+  if (path.is_relative() && !parameters.file().empty() && parameters.file() != "<string>") {
+    path = std::filesystem::path(parameters.file()).parent_path() / path;
+  }
+  return path.string();
+}
+
 class EstimatorComponent final : public runtime::Component {
  public:
   void on_configure(const runtime::Parameters& parameters,
@@ -71,14 +84,18 @@ class EstimatorComponent final : public runtime::Component {
       base_source_ = BaseSource::fixed;
     } else if (base == "fixed_link") {
       base_source_ = BaseSource::fixed_link;
-      urdf_ = parameters.require<std::string>("urdf");
+      urdf_ = file_parameter(parameters, "urdf");
       fixed_link_ = parameters.require<std::string>("fixed_link");
+    } else if (base == "legged") {
+      base_source_ = BaseSource::legged;
+      urdf_ = file_parameter(parameters, "urdf");
+      configure_legged(parameters);
     } else if (base == "topic") {
       base_source_ = BaseSource::topic;
     } else {
       throw runtime::ParameterError(parameters.where("base") +
-                                    ": base must be fixed, fixed_link or topic, got '" + base +
-                                    "'");
+                                    ": base must be fixed, fixed_link, legged or topic, got '" +
+                                    base + "'");
     }
     base_pose_ =
         pose_from(parameters.get<std::vector<double>>("base_position", {0.0, 0.0, 0.0}),
@@ -103,8 +120,12 @@ class EstimatorComponent final : public runtime::Component {
     state_publisher_ = std::make_unique<dds::Publisher<wbi::msg::StateEstimate>>(
         participant, dds::topics::state(robot_), dds::qos::kStream);
     if (base_source_ == BaseSource::topic) {
+      // No estimate before the first base sample: a sample waiting for it is estimated then.
       ground_truth_ = std::make_unique<dds::Subscriber<wbi::msg::GroundTruth>>(
-          participant, base_topic, dds::qos::kStream);
+          participant, base_topic, dds::qos::kStream,
+          [this](const wbi::msg::GroundTruth&, const dds::detail::SampleInfo&) {
+            on_base_sample();
+          });
     }
     parameter_subscriber_ = std::make_unique<dds::Subscriber<wbi::msg::EstimatorParameter>>(
         participant, dds::topics::estimator_parameters(robot_), dds::qos::kCommand,
@@ -133,13 +154,95 @@ class EstimatorComponent final : public runtime::Component {
     std::lock_guard lock(mutex_);
     estimator_.reset();
     base_estimator_.reset();
+    legged_estimator_.reset();
+    have_base_sample_ = false;
+    failed_ = false;
   }
 
   void on_shutdown() override { on_cleanup(); }
 
  private:
+  void configure_legged(const runtime::Parameters& parameters) {
+    legged_options_ = LeggedBaseOptions{};
+    const auto feet = parameters.get<std::vector<std::string>>("feet", {"l_sole", "r_sole"});
+    const auto sensors = parameters.get<std::vector<std::string>>("foot_force_torque", {});
+    if (feet.size() != 2 || !(sensors.empty() || sensors.size() == 2)) {
+      throw runtime::ParameterError(
+          parameters.where(feet.size() != 2 ? "feet" : "foot_force_torque") +
+          ": base: legged needs two feet (left, right), and none or "
+          "two foot F/T sensor names");
+    }
+    legged_options_.feet = {feet[0], feet[1]};
+    foot_sensors_ = sensors;
+    imu_sensor_ = parameters.get<std::string>("imu", "");
+    legged_options_.load_force = parameters.get<double>("load_force", legged_options_.load_force);
+    legged_options_.unload_force =
+        parameters.get<double>("unload_force", legged_options_.unload_force);
+    legged_options_.flat_ground = parameters.get<bool>("flat_ground", legged_options_.flat_ground);
+    legged_options_.velocity_time_constant =
+        parameters.get<double>("velocity_time_constant", legged_options_.velocity_time_constant);
+    legged_options_.has_initial_position = parameters.has("base_position");
+  }
+
+  // The legged estimator, with the IMU and foot F/T sensors looked up in the description.
+  void prepare_legged(const wbi::msg::RobotDescription& description,
+                      const std::vector<std::string>& joints) {
+    int imus = 0;
+    int force_torques = 0;
+    imu_index_ = -1;
+    foot_sensor_index_ = {-1, -1};
+    for (const auto& sensor : description.sensors()) {
+      const std::string name = sensor.name().to_string();
+      if (sensor.kind() == wbi::msg::SensorKind::IMU) {
+        if (imu_index_ < 0 && (imu_sensor_.empty() || name == imu_sensor_)) {
+          imu_index_ = imus;
+          legged_options_.imu_frame = sensor.frame().to_string();
+        }
+        ++imus;
+      } else if (sensor.kind() == wbi::msg::SensorKind::FORCE_TORQUE) {
+        for (std::size_t foot = 0; foot < foot_sensors_.size(); ++foot) {
+          if (name == foot_sensors_[foot]) {
+            foot_sensor_index_[foot] = force_torques;
+            legged_options_.force_frames[foot] = sensor.frame().to_string();
+          }
+        }
+        ++force_torques;
+      }
+    }
+    if (imu_index_ < 0) {
+      throw std::invalid_argument("base: legged: robot '" + robot_ + "' has no IMU" +
+                                  (imu_sensor_.empty() ? "" : " named '" + imu_sensor_ + "'"));
+    }
+    for (std::size_t foot = 0; foot < foot_sensors_.size(); ++foot) {
+      if (foot_sensor_index_[foot] < 0) {
+        throw std::invalid_argument("base: legged: robot '" + robot_ + "' has no F/T sensor '" +
+                                    foot_sensors_[foot] + "'");
+      }
+    }
+    legged_options_.initial_position = base_pose_.topRightCorner<3, 1>();
+    legged_options_.initial_yaw = std::atan2(base_pose_(1, 0), base_pose_(0, 0));
+    legged_estimator_ = std::make_unique<LeggedBaseEstimator>(urdf_, joints, legged_options_);
+  }
+
   // Sizes everything from the robot description, once, at the first sample.
+  // A description the base estimator cannot use is reported once; nothing is published.
   bool prepare(std::size_t joints) {
+    if (failed_) {
+      return false;
+    }
+    try {
+      return prepare_sized(joints);
+    } catch (const std::exception& e) {
+      failed_ = true;
+      estimator_.reset();
+      const std::string text = "estimator of robot '" + robot_ + "': " + e.what();
+      report().set_error(text);
+      std::cerr << text << std::endl;
+      return false;
+    }
+  }
+
+  bool prepare_sized(std::size_t joints) {
     const auto description = description_->latest();
     if (!description || description->sample.joint_names().size() != joints) {
       return false;  // description not yet here, or not this robot's: wait
@@ -155,13 +258,15 @@ class EstimatorComponent final : public runtime::Component {
     state.dq().assign(joints, 0.0);
     state.ddq().assign(joints, 0.0);
     state.tau().assign(joints, 0.0);
+    std::vector<std::string> names;
+    for (const auto& name : description->sample.joint_names()) {
+      names.push_back(name.to_string());
+    }
     if (base_source_ == BaseSource::fixed_link) {
-      std::vector<std::string> names;
-      for (const auto& name : description->sample.joint_names()) {
-        names.push_back(name.to_string());
-      }
       base_estimator_ =
           std::make_unique<FixedLinkBaseEstimator>(urdf_, names, fixed_link_, base_pose_);
+    } else if (base_source_ == BaseSource::legged) {
+      prepare_legged(description->sample, names);
     }
     return true;
   }
@@ -174,8 +279,20 @@ class EstimatorComponent final : public runtime::Component {
     process_pending();
   }
 
+  void on_base_sample() {
+    std::lock_guard lock(mutex_);
+    have_base_sample_ = true;
+    process_pending();
+  }
+
+  // Every input of an estimate is there: active, the description, the base sample (topic).
+  bool ready(std::size_t joints) {
+    return active_ && (base_source_ != BaseSource::topic || have_base_sample_) &&
+           (estimator_ || prepare(joints));
+  }
+
   void process_pending() {  // caller holds mutex_
-    if (active_ && pending_ && (estimator_ || prepare(pending_->encoder_position().size()))) {
+    if (pending_ && ready(pending_->encoder_position().size())) {
       estimate(*pending_);
       pending_.reset();
     }
@@ -183,8 +300,8 @@ class EstimatorComponent final : public runtime::Component {
 
   void on_sample(const wbi::msg::SensorSample& sample) {
     std::lock_guard lock(mutex_);
-    if (!active_ || (!estimator_ && !prepare(sample.encoder_position().size()))) {
-      pending_ = sample;  // start-up only: not active yet, or no description yet
+    if (!ready(sample.encoder_position().size())) {
+      pending_ = sample;  // start-up only: not active, no description or no base sample yet
       return;
     }
     estimate(sample);
@@ -194,6 +311,11 @@ class EstimatorComponent final : public runtime::Component {
     const auto& positions = sample.encoder_position();
     if (positions.size() != static_cast<std::size_t>(q_.size())) {
       ++ignored_;  // a sample of the wrong size is not this robot's: never applied
+      wrong_size_->set(ignored_);
+      return;
+    }
+    if (base_source_ == BaseSource::legged && !has_legged_inputs(sample)) {
+      ++ignored_;  // no IMU or foot F/T reading where the description has them
       wrong_size_->set(ignored_);
       return;
     }
@@ -221,7 +343,9 @@ class EstimatorComponent final : public runtime::Component {
       state.ddq()[k] = ddq[j];
       state.tau()[k] = tau_[j];
     }
+    current_sample_ = &sample;
     fill_base(dq, ddq);
+    current_sample_ = nullptr;
     const auto& counters = estimator_->stamp_counters();
     state.warnings(static_cast<std::uint32_t>(counters.anomalies()) + ignored_);
     dropped_->set(counters.dropped);
@@ -232,20 +356,57 @@ class EstimatorComponent final : public runtime::Component {
     state_publisher_->publish(state);
   }
 
+  void write_base(const BaseState& base) {
+    write_pose(state_.base_pose(), base.world_H_base);
+    std::copy(base.velocity.data(), base.velocity.data() + 6, state_.base_velocity().begin());
+    std::copy(base.acceleration.data(), base.acceleration.data() + 6,
+              state_.base_acceleration().begin());
+  }
+
+  bool has_legged_inputs(const wbi::msg::SensorSample& sample) const {
+    const auto needed_ft = std::max(foot_sensor_index_[0], foot_sensor_index_[1]) + 1;
+    return static_cast<int>(sample.imus().size()) > imu_index_ &&
+           static_cast<int>(sample.force_torque().size()) >= needed_ft;
+  }
+
+  ImuInput sample_imu() const {
+    const auto& imu = current_sample_->imus()[static_cast<std::size_t>(imu_index_)];
+    const auto& o = imu.orientation();
+    const auto& w = imu.angular_velocity();
+    const auto& a = imu.linear_acceleration();
+    ImuInput input;
+    input.orientation = Eigen::Quaterniond(o.w(), o.x(), o.y(), o.z());
+    input.gyro << w.x(), w.y(), w.z();
+    input.accelerometer << a.x(), a.y(), a.z();
+    return input;
+  }
+
+  Eigen::Matrix<double, 3, 2> foot_forces() const {
+    Eigen::Matrix<double, 3, 2> forces = Eigen::Matrix<double, 3, 2>::Zero();
+    for (Eigen::Index foot = 0; foot < 2; ++foot) {
+      const int index = foot_sensor_index_[static_cast<std::size_t>(foot)];
+      if (index >= 0) {
+        const auto& f =
+            current_sample_->force_torque()[static_cast<std::size_t>(index)].wrench().force();
+        forces.col(foot) << f.x(), f.y(), f.z();
+      }
+    }
+    return forces;
+  }
+
   void fill_base(const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq) {
     auto& state = state_;
     switch (base_source_) {
       case BaseSource::fixed:
         write_pose(state.base_pose(), base_pose_);
         break;
-      case BaseSource::fixed_link: {
-        const BaseState& base = base_estimator_->update(q_, dq, ddq);
-        write_pose(state.base_pose(), base.world_H_base);
-        std::copy(base.velocity.data(), base.velocity.data() + 6, state.base_velocity().begin());
-        std::copy(base.acceleration.data(), base.acceleration.data() + 6,
-                  state.base_acceleration().begin());
+      case BaseSource::fixed_link:
+        write_base(base_estimator_->update(q_, dq, ddq));
         break;
-      }
+      case BaseSource::legged:
+        write_base(legged_estimator_->update(current_sample_->header().stamp_ns(), q_, dq, ddq,
+                                             sample_imu(), foot_forces()));
+        break;
       case BaseSource::topic:
         if (ground_truth_->latest_into(ground_truth_rx_)) {
           state.base_pose(ground_truth_rx_.sample.base_pose());
@@ -306,6 +467,15 @@ class EstimatorComponent final : public runtime::Component {
   std::unique_ptr<estimation::DerivativeEstimator> estimator_;
   std::optional<estimation::LowPassFilter> torque_filter_;
   std::unique_ptr<FixedLinkBaseEstimator> base_estimator_;
+  std::unique_ptr<LeggedBaseEstimator> legged_estimator_;
+  LeggedBaseOptions legged_options_;
+  std::string imu_sensor_;                        // base: legged; empty: the first IMU
+  std::vector<std::string> foot_sensors_;         // base: legged; the feet's F/T sensors, or none
+  int imu_index_ = -1;                            // among the sample's IMU readings
+  std::array<int, 2> foot_sensor_index_{-1, -1};  // among the sample's F/T readings
+  const wbi::msg::SensorSample* current_sample_ = nullptr;  // while publishing its estimate
+  bool have_base_sample_ = false;                           // base: topic
+  bool failed_ = false;                            // the description did not fit the base estimator
   std::optional<wbi::msg::SensorSample> pending_;  // a sample that came before the description
   Eigen::VectorXd q_;
   Eigen::VectorXd tau_;
