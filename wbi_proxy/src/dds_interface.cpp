@@ -152,7 +152,8 @@ class DdsInterface final : public WholeBodyInterface {
     if (remote_ != nullptr) {
       remote_->bind(controlled_, locked_positions());
     } else {
-      model_ = std::make_unique<LocalModel>(options_.urdf, controlled_, locked_positions());
+      model_ = std::make_unique<LocalModel>(options_.urdf, controlled_, locked_positions(),
+                                            options_.local_model_backend);
     }
     prepare_messages();
     initialized_ = true;

@@ -1,8 +1,7 @@
 #include "local_model.hpp"
 
 #include <Eigen/Geometry>
-#include <wbi/model/algorithms.hpp>
-#include <wbi/model/urdf.hpp>
+#include <wbi/model/backend.hpp>
 
 #include "base_pose.hpp"
 #include "size_check.hpp"
@@ -11,13 +10,14 @@ namespace wbi::proxy {
 
 namespace {
 
-wbi::model::Model load(const std::string& urdf, const IdList& joints,
-                       const std::map<std::string, double>& locked_positions) {
+std::unique_ptr<wbi::model::ModelBackend> load(
+    const std::string& urdf, const IdList& joints,
+    const std::map<std::string, double>& locked_positions, const std::string& backend) {
   wbi::model::LoadOptions options;
   options.joints = joints;
   options.locked_positions = locked_positions;
   try {
-    return wbi::model::load_urdf_file(urdf, options);
+    return wbi::model::make_model_backend(backend, urdf, options);
   } catch (const std::exception& e) {
     throw Error(std::string("cannot build the model: ") + e.what());
   }
@@ -26,9 +26,10 @@ wbi::model::Model load(const std::string& urdf, const IdList& joints,
 }  // namespace
 
 LocalModel::LocalModel(const std::string& urdf, const IdList& joints,
-                       const std::map<std::string, double>& locked_positions)
-    : model_(load(urdf, joints, locked_positions)),
-      data_(model_),
+                       const std::map<std::string, double>& locked_positions,
+                       const std::string& backend)
+    : backend_(load(urdf, joints, locked_positions, backend)),
+      model_(backend_->model()),
       q_(Eigen::VectorXd::Zero(model_.nq)),
       nu_(Eigen::VectorXd::Zero(model_.nv)),
       dnu_(Eigen::VectorXd::Zero(model_.nv)),
@@ -88,16 +89,14 @@ void LocalModel::frame_pose(const ConstVectorRef& q, const Transform& world_H_ba
                             Transform& out) {
   check_index("frame", frame, model_.n_frames());
   set_position(q, world_H_base);
-  wbi::model::forward_kinematics(model_, data_, q_);
-  out = wbi::model::frame_pose(model_, data_, frame);
+  out = backend_->frame_pose(q_, frame);
 }
 
 void LocalModel::jacobian(const ConstVectorRef& q, const Transform& world_H_base, int frame,
                           MatrixRef J) {
   check_index("frame", frame, model_.n_frames());
   set_position(q, world_H_base);
-  wbi::model::forward_kinematics(model_, data_, q_);
-  expand_columns(wbi::model::frame_jacobian(model_, data_, frame), J, "Jacobian");
+  expand_columns(backend_->frame_jacobian(q_, frame), J, "Jacobian");
 }
 
 void LocalModel::dj_nu(const ConstVectorRef& q, const Transform& world_H_base,
@@ -107,14 +106,13 @@ void LocalModel::dj_nu(const ConstVectorRef& q, const Transform& world_H_base,
   check_size("dJnu", out.size(), 6);
   set_position(q, world_H_base);
   set_velocity(dq, base_velocity);
-  wbi::model::forward_velocity_kinematics(model_, data_, q_, nu_);
-  out = wbi::model::frame_bias_acceleration(model_, data_, frame);
+  out = backend_->frame_bias_acceleration(q_, nu_, frame);
 }
 
 void LocalModel::mass_matrix(const ConstVectorRef& q, const Transform& world_H_base, MatrixRef M) {
   set_position(q, world_H_base);
   check_size("mass matrix rows", M.rows(), 6 + dofs());
-  const Eigen::MatrixXd& model_M = wbi::model::mass_matrix(model_, data_, q_);
+  const Eigen::MatrixXd& model_M = backend_->mass_matrix(q_);
   M.topRows(offset_).setZero();
   expand_columns(model_M, M.bottomRows(model_M.rows()), "mass matrix");
 }
@@ -124,13 +122,13 @@ void LocalModel::bias_forces(const ConstVectorRef& q, const Transform& world_H_b
                              const Eigen::Vector3d& gravity, VectorRef h) {
   set_position(q, world_H_base);
   set_velocity(dq, base_velocity);
-  expand_vector(wbi::model::bias_forces(model_, data_, q_, nu_, gravity), h, "bias forces");
+  expand_vector(backend_->bias_forces(q_, nu_, gravity), h, "bias forces");
 }
 
 void LocalModel::gravity_forces(const ConstVectorRef& q, const Transform& world_H_base,
                                 const Eigen::Vector3d& gravity, VectorRef g) {
   set_position(q, world_H_base);
-  expand_vector(wbi::model::gravity_forces(model_, data_, q_, gravity), g, "gravity forces");
+  expand_vector(backend_->gravity_forces(q_, gravity), g, "gravity forces");
 }
 
 void LocalModel::inverse_dynamics(const ConstVectorRef& q, const Transform& world_H_base,
@@ -146,8 +144,7 @@ void LocalModel::inverse_dynamics(const ConstVectorRef& q, const Transform& worl
     dnu_.head<6>() = base_acceleration;
   }
   dnu_.tail(dofs()) = ddq;
-  expand_vector(wbi::model::inverse_dynamics(model_, data_, q_, nu_, dnu_, gravity), tau,
-                "generalized forces");
+  expand_vector(backend_->inverse_dynamics(q_, nu_, dnu_, gravity), tau, "generalized forces");
 }
 
 void LocalModel::centroidal_momentum(const ConstVectorRef& q, const Transform& world_H_base,
@@ -156,24 +153,23 @@ void LocalModel::centroidal_momentum(const ConstVectorRef& q, const Transform& w
   check_size("centroidal momentum", out.size(), 6);
   set_position(q, world_H_base);
   set_velocity(dq, base_velocity);
-  out = wbi::model::centroidal_momentum(model_, data_, q_, nu_);
+  out = backend_->centroidal_momentum(q_, nu_);
 }
 
 void LocalModel::centroidal_momentum_matrix(const ConstVectorRef& q, const Transform& world_H_base,
                                             MatrixRef A) {
   set_position(q, world_H_base);
-  expand_columns(wbi::model::centroidal_momentum_matrix(model_, data_, q_), A,
-                 "centroidal momentum matrix");
+  expand_columns(backend_->centroidal_momentum_matrix(q_), A, "centroidal momentum matrix");
 }
 
 void LocalModel::com(const ConstVectorRef& q, const Transform& world_H_base, Eigen::Vector3d& out) {
   set_position(q, world_H_base);
-  out = wbi::model::center_of_mass(model_, data_, q_);
+  out = backend_->center_of_mass(q_);
 }
 
 void LocalModel::com_jacobian(const ConstVectorRef& q, const Transform& world_H_base, MatrixRef J) {
   set_position(q, world_H_base);
-  expand_columns(wbi::model::com_jacobian(model_, data_, q_), J, "CoM Jacobian");
+  expand_columns(backend_->com_jacobian(q_), J, "CoM Jacobian");
 }
 
 }  // namespace wbi::proxy

@@ -1,4 +1,5 @@
-// The Model element evaluated in-process by wbi::model, over a reduced model
+// The Model element evaluated in-process by a model backend (wbi::model, or DART
+// when chosen: wbi/model/backend.hpp), over a reduced model
 // whose joints are exactly the controller's (the others locked), so no index
 // mapping is needed per call. Outputs always have 6 + dofs() generalized
 // coordinates; for a fixed-base robot the base rows and columns are zero.
@@ -7,7 +8,9 @@
 #include <map>
 #include <string>
 
-#include <wbi/model/data.hpp>
+#include <memory>
+
+#include <wbi/model/backend.hpp>
 #include <wbi/model/model.hpp>
 
 #include "model_backend.hpp"
@@ -16,9 +19,11 @@ namespace wbi::proxy {
 
 class LocalModel final : public ModelBackend {
  public:
-  // Throws Error naming the file or joint when the URDF does not load.
+  // Throws Error naming the file, joint or backend when the model does not load.
+  // backend: "wbi" or "dart" (wbi::model::model_backend_names()).
   LocalModel(const std::string& urdf, const IdList& joints,
-             const std::map<std::string, double>& locked_positions);
+             const std::map<std::string, double>& locked_positions,
+             const std::string& backend = "wbi");
 
   int dofs() const { return model_.n_joints; }
   const IdList& frames() const override { return model_.frame_name; }
@@ -57,12 +62,12 @@ class LocalModel final : public ModelBackend {
   void expand_columns(const Eigen::MatrixXd& from, MatrixRef to, const char* what) const;
   void expand_vector(const Eigen::VectorXd& from, VectorRef to, const char* what) const;
 
-  wbi::model::Model model_;
-  wbi::model::Data data_;
-  Eigen::VectorXd q_;    // [nq] model configuration
-  Eigen::VectorXd nu_;   // [nv] model velocity
-  Eigen::VectorXd dnu_;  // [nv] model acceleration
-  int offset_;           // 6 − base_nv: rows of the interface's vectors the model has not
+  std::unique_ptr<wbi::model::ModelBackend> backend_;
+  const wbi::model::Model& model_;  // backend_->model()
+  Eigen::VectorXd q_;               // [nq] model configuration
+  Eigen::VectorXd nu_;              // [nv] model velocity
+  Eigen::VectorXd dnu_;             // [nv] model acceleration
+  int offset_;  // 6 − base_nv: rows of the interface's vectors the model has not
 };
 
 }  // namespace wbi::proxy

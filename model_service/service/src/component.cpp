@@ -3,7 +3,7 @@
 #include <filesystem>
 
 #include <wbi/dds/topics.hpp>
-#include <wbi/model/urdf.hpp>
+#include <wbi/model/backend.hpp>
 
 namespace wbi::model_service {
 
@@ -33,15 +33,21 @@ void ModelServiceComponent::on_configure(const runtime::Parameters& parameters,
   options.fixed_base = parameters.get<bool>("fixed_base", false);
   const bool worker_thread = parameters.get<bool>("worker_thread", false);
   const std::string robot = parameters.get<std::string>("robot", "");
+  const std::string backend = parameters.get<std::string>("backend", "wbi");
   parameters.reject_unknown();  // before the (slow) loading and any DDS entity
+  try {
+    model::check_model_backend_name(backend);
+  } catch (const std::invalid_argument& error) {
+    throw runtime::ParameterError(parameters.where("backend") + ": " + error.what());
+  }
 
   try {
-    model_ = std::make_unique<model::Model>(model::load_urdf_file(urdf, options));
+    model_ = model::make_model_backend(backend, urdf, options);
   } catch (const std::exception& error) {
     throw runtime::ParameterError(parameters.where("urdf") +
                                   ": cannot load the model: " + error.what());
   }
-  robot_ = robot.empty() ? model_->name : robot;
+  robot_ = robot.empty() ? model_->model().name : robot;
   evaluator_ = std::make_unique<Evaluator>(*model_, robot_);
 
   description_ = std::make_unique<dds::Publisher<msg::RobotDescription>>(

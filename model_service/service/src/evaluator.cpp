@@ -4,8 +4,6 @@
 #include <cmath>
 #include <exception>
 
-#include <wbi/model/algorithms.hpp>
-
 namespace wbi::model_service {
 
 namespace {
@@ -68,13 +66,21 @@ std::string size_error(const char* field, std::size_t got, int expected, const s
 }  // namespace
 
 Evaluator::Evaluator(const model::Model& model, std::string robot)
-    : model_(model),
-      data_(model),
+    : Evaluator(model::make_wbi_backend(model), nullptr, std::move(robot)) {}
+
+Evaluator::Evaluator(model::ModelBackend& backend, std::string robot)
+    : Evaluator(nullptr, &backend, std::move(robot)) {}
+
+Evaluator::Evaluator(std::unique_ptr<model::ModelBackend> owned, model::ModelBackend* backend,
+                     std::string robot)
+    : owned_(std::move(owned)),
+      backend_(owned_ ? *owned_ : *backend),
+      model_(backend_.model()),
       robot_(std::move(robot)),
-      q_(Eigen::VectorXd::Zero(model.nq)),
-      nu_(Eigen::VectorXd::Zero(model.nv)),
-      dnu_(Eigen::VectorXd::Zero(model.nv)),
-      tau_(Eigen::VectorXd::Zero(model.nv)),
+      q_(Eigen::VectorXd::Zero(model_.nq)),
+      nu_(Eigen::VectorXd::Zero(model_.nv)),
+      dnu_(Eigen::VectorXd::Zero(model_.nv)),
+      tau_(Eigen::VectorXd::Zero(model_.nv)),
       gravity_(Eigen::Vector3d::Zero()) {
   wrenches_.reserve(16);
   frame_ids_.reserve(64);
@@ -187,65 +193,44 @@ bool Evaluator::load(const msg::ModelRequest& request, std::string& error) {
 
 void Evaluator::compute(const msg::OperationRequest& operation, int frame,
                         msg::OperationResult& result) {
-  using namespace wbi::model;
   result.operation(operation.operation());
   result.frame(operation.frame());
   switch (operation.operation()) {
     case msg::MASS_MATRIX:
-      put(mass_matrix(model_, data_, q_), result);
-      kinematics_done_ = true;  // every algorithm leaves the positions of this q
+      put(backend_.mass_matrix(q_), result);
       break;
     case msg::BIAS_FORCES:
-      put(bias_forces(model_, data_, q_, nu_, gravity_), result);
-      kinematics_done_ = true;
+      put(backend_.bias_forces(q_, nu_, gravity_), result);
       break;
     case msg::GRAVITY_FORCES:
-      put(gravity_forces(model_, data_, q_, gravity_), result);
-      kinematics_done_ = true;
+      put(backend_.gravity_forces(q_, gravity_), result);
       break;
     case msg::FRAME_POSE:
-      if (!kinematics_done_) {
-        forward_kinematics(model_, data_, q_);
-        kinematics_done_ = true;
-      }
-      put(frame_pose(model_, data_, frame), result);
+      put(backend_.frame_pose(q_, frame), result);
       break;
     case msg::JACOBIAN:
-      if (!kinematics_done_) {
-        forward_kinematics(model_, data_, q_);
-        kinematics_done_ = true;
-      }
-      put(frame_jacobian(model_, data_, frame), result);
+      put(backend_.frame_jacobian(q_, frame), result);
       break;
     case msg::DJNU:
-      // Needs the velocity stage (v, a with ν̇ = 0), which dynamics algorithms overwrite.
-      forward_velocity_kinematics(model_, data_, q_, nu_);
-      kinematics_done_ = true;
-      put(frame_bias_acceleration(model_, data_, frame), result);
+      put(backend_.frame_bias_acceleration(q_, nu_, frame), result);
       break;
     case msg::COM:
-      put(center_of_mass(model_, data_, q_), result);
-      kinematics_done_ = true;
+      put(backend_.center_of_mass(q_), result);
       break;
     case msg::COM_JACOBIAN:
-      put(com_jacobian(model_, data_, q_), result);
-      kinematics_done_ = true;
+      put(backend_.com_jacobian(q_), result);
       break;
     case msg::CENTROIDAL_MOMENTUM:
-      put(centroidal_momentum(model_, data_, q_, nu_), result);
-      kinematics_done_ = true;
+      put(backend_.centroidal_momentum(q_, nu_), result);
       break;
     case msg::CENTROIDAL_MOMENTUM_MATRIX:
-      put(centroidal_momentum_matrix(model_, data_, q_), result);
-      kinematics_done_ = true;
+      put(backend_.centroidal_momentum_matrix(q_), result);
       break;
     case msg::INVERSE_DYNAMICS:
-      put(inverse_dynamics(model_, data_, q_, nu_, dnu_, gravity_, wrenches_), result);
-      kinematics_done_ = true;
+      put(backend_.inverse_dynamics(q_, nu_, dnu_, gravity_, wrenches_), result);
       break;
     case msg::FORWARD_DYNAMICS:
-      put(forward_dynamics(model_, data_, q_, nu_, tau_, gravity_), result);
-      kinematics_done_ = true;
+      put(backend_.forward_dynamics(q_, nu_, tau_, gravity_), result);
       break;
   }
 }
@@ -274,7 +259,6 @@ void Evaluator::evaluate(const msg::ModelRequest& request, msg::ModelReply& repl
   std::string error;
   bool ok = load(request, error);
   if (ok) {
-    kinematics_done_ = false;
     auto& results = reply.results();
     const auto& operations = request.operations();
     resize_results(reply, operations.size());

@@ -24,6 +24,9 @@ struct DdsInterfaceOptions {
   // Local model: the robot's URDF (required). Remote model: optional, only for
   // frame_list() (else the model service's URDF path, when readable here).
   std::string urdf;
+  // Local model: the dynamics library that computes, "wbi" or "dart" (when built;
+  // wbi/model/backend.hpp). The controller does not change.
+  std::string local_model_backend = "wbi";
 
   // Positions of the robot's joints outside the controlled list, for the model.
   // A joint not listed here is locked where init() measures it.

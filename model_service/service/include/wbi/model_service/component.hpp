@@ -12,6 +12,8 @@
 //   joints         list of strings, default all movable joints: a reduced
 //                  model (the other joints locked at 0)
 //   fixed_base     bool, default false
+//   backend        string, default "wbi": the dynamics library that computes,
+//                  "wbi" or "dart" (when built; wbi/model/backend.hpp)
 //   worker_thread  bool, default false: compute on the service's worker thread
 //                  instead of the DDS thread that received the request
 //
@@ -57,7 +59,7 @@ class ModelServiceComponent final : public runtime::Component {
   std::string robot_;
   dds::Participant* participant_ = nullptr;
   bool worker_thread_ = false;
-  std::unique_ptr<model::Model> model_;
+  std::unique_ptr<model::ModelBackend> model_;
   std::unique_ptr<Evaluator> evaluator_;
   std::unique_ptr<dds::Publisher<msg::RobotDescription>> description_;
   std::unique_ptr<dds::Server<msg::ModelRequest, msg::ModelReply>> server_;

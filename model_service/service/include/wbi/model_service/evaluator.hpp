@@ -1,5 +1,6 @@
-// Evaluator: answers one ModelRequest (idl/model.idl) with the model library,
-// without DDS. Used by the model-service component and by tests/benchmarks.
+// Evaluator: answers one ModelRequest (idl/model.idl) with a model backend
+// (wbi/model/backend.hpp: the model library "wbi" or "dart"), without DDS. Used
+// by the model-service component and by tests/benchmarks.
 //
 // Request checks, each failing with an error reply that names the culprit
 // (never an exception, never silence): the robot name, the sizes of q, dq,
@@ -12,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -21,6 +23,7 @@
 
 #include <wbi/msg/description.h>
 #include <wbi/msg/model.h>
+#include <wbi/model/backend.hpp>
 #include <wbi/model/data.hpp>
 #include <wbi/model/model.hpp>
 
@@ -28,8 +31,10 @@ namespace wbi::model_service {
 
 class Evaluator {
  public:
-  // model must outlive the evaluator. robot: the name requests must carry.
+  // The "wbi" backend on a copy of model. robot: the name requests must carry.
   Evaluator(const model::Model& model, std::string robot);
+  // Any backend; it must outlive the evaluator.
+  Evaluator(model::ModelBackend& backend, std::string robot);
   Evaluator(const Evaluator&) = delete;
   Evaluator& operator=(const Evaluator&) = delete;
 
@@ -45,6 +50,9 @@ class Evaluator {
   msg::RobotDescription description(const std::string& urdf_path) const;
 
  private:
+  // owned (the Model constructor) or backend (the other) answers.
+  Evaluator(std::unique_ptr<model::ModelBackend> owned, model::ModelBackend* backend,
+            std::string robot);
   // Empty when the request is well-formed, else why not. Sets q_, nu_, …
   bool load(const msg::ModelRequest& request, std::string& error);
   void compute(const msg::OperationRequest& operation, int frame, msg::OperationResult& result);
@@ -54,8 +62,9 @@ class Evaluator {
   // type objects of its IDL file).
   void resize_results(msg::ModelReply& reply, std::size_t count);
 
-  const model::Model& model_;
-  model::Data data_;
+  std::unique_ptr<model::ModelBackend> owned_;  // set by the Model constructor
+  model::ModelBackend& backend_;
+  const model::Model& model_;  // backend_.model()
   std::string robot_;
   Eigen::VectorXd q_;    // [nq]
   Eigen::VectorXd nu_;   // [nv]
@@ -66,7 +75,6 @@ class Evaluator {
   std::vector<int> frame_ids_;                        // per operation, capacity 64
   std::vector<msg::OperationResult> spare_;           // parked results, capacity 64
   std::unordered_map<std::string_view, int> frames_;  // views into model_.frame_name
-  bool kinematics_done_ = false;  // forward_kinematics(q_) current for this request
 };
 
 }  // namespace wbi::model_service
