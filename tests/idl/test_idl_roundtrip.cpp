@@ -216,6 +216,10 @@ TEST(IdlRoundTrip, StatusAndClock) {
   s.overruns(2);
   s.iterations(10000);
   s.last_error("none");
+  wbi::msg::Counter rejected;
+  rejected.name("rejected_commands");
+  rejected.value(3);
+  s.counters({rejected});
   EXPECT_EQ(round_trip(s), s);
 
   wbi::msg::SimulationClock c;
@@ -224,6 +228,13 @@ TEST(IdlRoundTrip, StatusAndClock) {
   c.step_ns(1'000'000);
   c.lockstep(true);
   EXPECT_EQ(round_trip(c), c);
+}
+
+TEST(IdlRoundTrip, PlaybackCommand) {
+  wbi::msg::PlaybackCommand p;
+  p.header(header("arm"));
+  p.action(wbi::msg::STEP);
+  EXPECT_EQ(round_trip(p), p);
 }
 
 }  // namespace

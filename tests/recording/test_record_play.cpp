@@ -308,15 +308,15 @@ TEST_F(RecordPlay, PauseAndStepThroughTheControlTopic) {
   wbi::test::write_pattern_recording(recording, {"step_me"}, 10, 5ms);
   wbi::dds::Participant participant("controller");
   Listener listener(participant, "step_me", "wbi/step_me/sensors");
-  wbi::dds::Publisher<wbi::msg::EstimatorParameter> control(participant, "wbi/play/control",
-                                                            wbi::dds::qos::kCommand);
+  wbi::dds::Publisher<wbi::msg::PlaybackCommand> control(participant, "wbi/play/control",
+                                                         wbi::dds::qos::kCommand);
   ChildProcess player(wbi::test::wbi_program(), {"play", recording.string(), "--paused"});
   ASSERT_TRUE(control.wait_for_subscribers(1, 20s)) << player.output();
-  wbi::msg::EstimatorParameter command;
+  wbi::msg::PlaybackCommand command;
   // A command sent while the player's reader has not yet matched us is lost:
   // resend until it shows (a step sent twice steps twice, hence "at least").
-  auto send_until = [&](const std::string& name, std::size_t at_least) {
-    command.name(name);
+  auto send_until = [&](wbi::msg::PlaybackAction action, std::size_t at_least) {
+    command.action(action);
     for (int attempt = 0; attempt < 20; ++attempt) {
       control.publish(command);
       if (listener.wait_for(at_least, 500ms)) {
@@ -325,11 +325,11 @@ TEST_F(RecordPlay, PauseAndStepThroughTheControlTopic) {
     }
     return false;
   };
-  ASSERT_TRUE(send_until("step", 1)) << player.output();
+  ASSERT_TRUE(send_until(wbi::msg::STEP, 1)) << player.output();
   const std::size_t after_step = listener.received();
   EXPECT_LT(after_step, 10u) << "paused: a step publishes one message";
   EXPECT_FALSE(listener.wait_for(after_step + 1, 300ms)) << "still paused after the step";
-  ASSERT_TRUE(send_until("resume", 10)) << player.output();
+  ASSERT_TRUE(send_until(wbi::msg::RESUME, 10)) << player.output();
   EXPECT_EQ(player.wait(20s), std::optional<int>(0)) << player.output();
   EXPECT_EQ(listener.seqs(), iota_seqs(10));
 }

@@ -59,21 +59,26 @@ std::map<std::string, std::string> take_remaps(std::vector<std::string>& args) {
   return remaps;
 }
 
-void apply_command(recording::Player& player, const std::string& command) {
-  if (command == "pause") {
-    player.pause();
-  } else if (command == "resume") {
-    player.resume();
-  } else if (command == "toggle") {
-    player.toggle_pause();
-  } else if (command == "step") {
-    player.step();
-  } else if (command == "quit") {
-    player.quit();
-  } else {
-    std::cerr << "wbi play: unknown command '" << command << "' on " << kControlTopic
-              << " (pause, resume, toggle, step, quit)" << std::endl;
+void apply_command(recording::Player& player, msg::PlaybackAction action) {
+  switch (action) {
+    case msg::PAUSE:
+      player.pause();
+      return;
+    case msg::RESUME:
+      player.resume();
+      return;
+    case msg::TOGGLE_PAUSE:
+      player.toggle_pause();
+      return;
+    case msg::STEP:
+      player.step();
+      return;
+    case msg::QUIT:
+      player.quit();
+      return;
   }
+  std::cerr << "wbi play: unknown playback action " << static_cast<int>(action) << " on "
+            << kControlTopic << std::endl;
 }
 
 std::string progress_text(const recording::PlayerProgress& progress) {
@@ -96,14 +101,15 @@ std::string progress_text(const recording::PlayerProgress& progress) {
 }  // namespace
 
 int run_play(Args raw_args) {
-  Options options("wbi play FILE [options]",
-                  "Replays an MCAP recording onto DDS: each topic with its recorded type (the\n"
-                  "schema name) and QoS (the channel metadata), messages in log-time order at\n"
-                  "their recorded spacing divided by --rate.\n"
-                  "Keys on a terminal: space pause/resume, s step (while paused), q quit.\n"
-                  "Control topic wbi/play/control (type wbi::msg::EstimatorParameter, the field\n"
-                  "name = pause | resume | toggle | step | quit) does the same from a program.\n"
-                  "Prints a progress line once a second. Exit: 0 at the end, 130 on Ctrl-C.");
+  Options options(
+      "wbi play FILE [options]",
+      "Replays an MCAP recording onto DDS: each topic with its recorded type (the\n"
+      "schema name) and QoS (the channel metadata), messages in log-time order at\n"
+      "their recorded spacing divided by --rate.\n"
+      "Keys on a terminal: space pause/resume, s step (while paused), q quit.\n"
+      "Control topic wbi/play/control (type wbi::msg::PlaybackCommand, idl/playback.idl:\n"
+      "PAUSE, RESUME, TOGGLE_PAUSE, STEP, QUIT) does the same from a program.\n"
+      "Prints a progress line once a second. Exit: 0 at the end, 130 on Ctrl-C.");
   options.positional("FILE", "the MCAP recording");
   options.option("rate", "R", "speed factor: 2 plays twice as fast", "1");
   options.flag("loop", "start over at the end, until Ctrl-C or q");
@@ -158,10 +164,10 @@ int run_play(Args raw_args) {
   for (const auto& [topic, type] : player.topics()) {
     std::cerr << "playing " << topic << " [" << type << "]" << std::endl;
   }
-  dds::Subscriber<msg::EstimatorParameter> control(
+  dds::Subscriber<msg::PlaybackCommand> control(
       participant, kControlTopic, dds::qos::kCommand,
-      [&player](const msg::EstimatorParameter& command, const dds::detail::SampleInfo&) {
-        apply_command(player, command.name().to_string());
+      [&player](const msg::PlaybackCommand& command, const dds::detail::SampleInfo&) {
+        apply_command(player, command.action());
       });
 
   std::signal(SIGINT, on_play_signal);

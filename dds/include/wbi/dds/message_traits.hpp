@@ -7,6 +7,7 @@
 #include <wbi/msg/commandsPubSubTypes.h>
 #include <wbi/msg/descriptionPubSubTypes.h>
 #include <wbi/msg/modelPubSubTypes.h>
+#include <wbi/msg/playbackPubSubTypes.h>
 #include <wbi/msg/sensorsPubSubTypes.h>
 #include <wbi/msg/statePubSubTypes.h>
 #include <wbi/msg/statusPubSubTypes.h>
@@ -34,6 +35,7 @@ WBI_DDS_MESSAGE(ModelRequest)
 WBI_DDS_MESSAGE(ModelReply)
 WBI_DDS_MESSAGE(ComponentStatus)
 WBI_DDS_MESSAGE(SimulationClock)
+WBI_DDS_MESSAGE(PlaybackCommand)
 
 #undef WBI_DDS_MESSAGE
 
