@@ -53,6 +53,7 @@ class MomentumBalanceComponent final : public runtime::Component {
       urdf = std::filesystem::path(parameters.file()).parent_path() / urdf;
     }
     options.urdf = urdf.string();
+    options.local_model_backend = parameters.get<std::string>("model_backend", "wbi");
     options.controller = parameters.get<std::string>("controller", context.instance);
     options.max_age_s = parameters.get<double>("max_age_s", 0.05);
     options.participant.domain_id = context.participant->domain_id();

@@ -38,6 +38,7 @@ class PdGravityComponent final : public runtime::Component {
       urdf = std::filesystem::path(parameters.file()).parent_path() / urdf;
     }
     options.urdf = urdf.string();
+    options.local_model_backend = parameters.get<std::string>("model_backend", "wbi");
     options.model_timeout = std::chrono::milliseconds(
         static_cast<std::int64_t>(parameters.get<double>("model_timeout_s", 0.2) * 1000));
     options.controller = parameters.get<std::string>("controller", context.instance);

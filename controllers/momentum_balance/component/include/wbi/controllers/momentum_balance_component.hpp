@@ -6,6 +6,8 @@
 // Parameters:
 //   robot              required; the robot's name
 //   urdf               required; the robot's URDF (local model), relative to the host file
+//   model_backend      the dynamics library of the local model: wbi (default) or dart
+//                      (when built with DART; model_service/README.md)
 //   joints             required; the controlled joints (torque mode). The robot's other
 //                      joints are left as they are (sim_robot holds them in position
 //                      mode) and the model treats them as locked.

@@ -9,6 +9,9 @@
 //   urdf             the robot's URDF, relative to the host file; required for a local
 //                    model, optional for a remote one (frame names only)
 //   model_timeout_s  deadline of one remote model call (default 0.2 s)
+//   model_backend    the dynamics library of a local model: wbi (default) or dart (when
+//                    built with DART; model_service/README.md); a remote model's is the
+//                    model service's `backend` parameter
 //   joints           required; the controlled joints, by name
 //   target           q_d, one per controlled joint [rad]
 //   bandwidth_hz     gains from the mass-matrix diagonal at q_d: kp = ω² M_jj, kd = 2ω M_jj
