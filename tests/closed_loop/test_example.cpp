@@ -1,0 +1,34 @@
+// The README's 25-line PD + gravity controller (controllers/examples) against
+// the demo's robot and estimator, each in its own process: it brings the arm
+// to its target.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <string>
+
+#include "child_process.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using wbi::test::ChildProcess;
+
+TEST(Example, TwentyFiveLinePdGravityReachesItsTarget) {
+  const auto bin = wbi::test::binary_dir() / "bin";
+  const auto demo = (wbi::test::source_dir() / "deploy" / "demo.yaml").string();
+  ChildProcess robot(bin / "wbi_host", {demo, "--process", "robot"});
+  ChildProcess estimator(bin / "wbi_host", {demo, "--process", "estimator"});
+  ChildProcess controller(bin / "wbi_example_pd_gravity",
+                          {(wbi::test::source_dir() / "models" / "arm7.urdf").string(), "4000"});
+  const auto code = controller.wait(60s);
+  const std::string out = controller.output();
+  ASSERT_TRUE(code.has_value()) << out;
+  EXPECT_EQ(*code, 0) << out;
+  const std::string marker = "final max joint error: ";
+  const auto at = out.rfind(marker);
+  ASSERT_NE(at, std::string::npos) << out;
+  EXPECT_LT(std::stod(out.substr(at + marker.size())), 0.02) << out;
+}
+
+}  // namespace
