@@ -22,9 +22,7 @@
 
 #include <wbi/controllers/pd_gravity.hpp>
 #include <wbi/dds_interface.hpp>
-#include <wbi/estimator/estimator_component.hpp>
-#include <wbi/robot/sim_robot.hpp>
-#include <wbi/runtime/runner.hpp>
+#include <wbi/sim_rig/in_process_robot.hpp>
 
 namespace {
 
@@ -67,22 +65,12 @@ struct LoopResult {
 
 LoopResult run_loop(const Configuration& configuration, const std::string& robot,
                     double bandwidth_hz, int ticks) {
-  wbi::dds::Participant participant("estimation_loop");
-  wbi::runtime::SystemClock clock;
-  wbi::runtime::Registry registry;
-  wbi::robot::register_components(registry);
-  wbi::estimator::register_components(registry);
-  wbi::runtime::ComponentRunner sim(registry.create("sim_robot"),
-                                    {"sim", "sim_robot", &participant, &clock});
-  wbi::runtime::ComponentRunner estimator(registry.create("estimator"),
-                                          {"estimator", "estimator", &participant, &clock});
   const std::string source = WBI_PROJECT_SOURCE_DIR;
-  sim.configure(wbi::runtime::Parameters::from_string(
+  wbi::sim_rig::InProcessRobot rig(
+      "estimation_loop",
       "robot: " + robot + "\nconfig: " + source +
-      "/deploy/arm/sim.yaml\nlockstep: true\nlockstep_controllers: [pd]\n"));
-  estimator.configure(wbi::runtime::Parameters::from_string("robot: " + robot + "\n" +
-                                                            configuration.estimator_parameters));
-  estimator.activate();
+          "/deploy/arm/sim.yaml\nlockstep: true\nlockstep_controllers: [pd]\n",
+      "robot: " + robot + "\n" + configuration.estimator_parameters);
 
   wbi::DdsInterfaceOptions options;
   options.robot = robot;
@@ -91,7 +79,7 @@ LoopResult run_loop(const Configuration& configuration, const std::string& robot
   options.max_age_s = 5.0;  // lockstep: time is the simulation's
   auto arm = wbi::make_dds_interface(options);
   arm->add_joints(kArm);
-  sim.activate();
+  rig.start_simulation();
   arm->init(20s);
 
   const int n = arm->dofs();
@@ -128,8 +116,8 @@ LoopResult run_loop(const Configuration& configuration, const std::string& robot
       result.ripple_hz = 0.5 * crossings / (1e-3 * late);
     }
   }
-  sim.shutdown();
-  estimator.shutdown();
+  rig.sim().shutdown();
+  rig.estimator().shutdown();
   return result;
 }
 

@@ -13,9 +13,8 @@
 #include <wbi/controllers/com_sinusoid.hpp>
 #include <wbi/controllers/momentum_balance.hpp>
 #include <wbi/dds_interface.hpp>
-#include <wbi/estimator/estimator_component.hpp>
-#include <wbi/robot/sim_robot.hpp>
 #include <wbi/runtime/runner.hpp>
+#include <wbi/sim_rig/in_process_robot.hpp>
 
 namespace {
 
@@ -24,21 +23,11 @@ using namespace std::chrono_literals;
 void BM_MomentumBalanceTick(benchmark::State& state) {
   const std::string source = WBI_SOURCE_DIR;
   const std::string robot = "bench_balance";
-  wbi::dds::Participant participant("bench_balance");
-  wbi::runtime::SystemClock clock;
-  wbi::runtime::Registry registry;
-  wbi::robot::register_components(registry);
-  wbi::estimator::register_components(registry);
-  wbi::runtime::ComponentRunner sim(registry.create("sim_robot"),
-                                    {"sim", "sim_robot", &participant, &clock});
-  wbi::runtime::ComponentRunner estimator(registry.create("estimator"),
-                                          {"estimator", "estimator", &participant, &clock});
-  sim.configure(wbi::runtime::Parameters::from_string(
+  wbi::sim_rig::InProcessRobot rig(
+      "bench_balance",
       "robot: " + robot + "\nconfig: " + source +
-      "/deploy/humanoid/sim.yaml\nlockstep: true\nlockstep_controllers: [balance]\n"));
-  estimator.configure(wbi::runtime::Parameters::from_string(
-      "robot: " + robot + "\nbase: topic\nmethod: backward-difference\ncutoff: 50\n"));
-  estimator.activate();
+          "/deploy/humanoid/sim.yaml\nlockstep: true\nlockstep_controllers: [balance]\n",
+      "robot: " + robot + "\nbase: topic\nmethod: backward-difference\ncutoff: 50\n");
   wbi::DdsInterfaceOptions options;
   options.robot = robot;
   options.controller = "balance";
@@ -52,7 +41,7 @@ void BM_MomentumBalanceTick(benchmark::State& state) {
        "l_shoulder_pitch", "l_shoulder_roll",  "l_shoulder_yaw",  "l_elbow",        "l_wrist_yaw",
        "l_wrist_pitch",    "r_shoulder_pitch", "r_shoulder_roll", "r_shoulder_yaw", "r_elbow",
        "r_wrist_yaw",      "r_wrist_pitch",    "neck_pitch",      "neck_roll",      "neck_yaw"});
-  sim.activate();
+  rig.start_simulation();
   humanoid->init(20s);
   Eigen::VectorXd q_posture(humanoid->dofs());
   humanoid->read_estimates(wbi::EstimateKind::joint_position, q_posture);
@@ -79,8 +68,8 @@ void BM_MomentumBalanceTick(benchmark::State& state) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
   }
   state.counters["qp_failures"] = static_cast<double>(balance.qp_failures());
-  sim.shutdown();
-  estimator.shutdown();
+  rig.sim().shutdown();
+  rig.estimator().shutdown();
 }
 // 3000 ticks: 3 s of robot time, half a sinusoid period.
 BENCHMARK(BM_MomentumBalanceTick)->UseManualTime()->Iterations(3000)->Unit(benchmark::kMicrosecond);

@@ -20,11 +20,10 @@
 #include <wbi/dds/subscriber.hpp>
 #include <wbi/dds/topics.hpp>
 #include <wbi/dds_interface.hpp>
-#include <wbi/estimator/estimator_component.hpp>
 #include <wbi/model/algorithms.hpp>
 #include <wbi/model/com.hpp>
-#include <wbi/robot/sim_robot.hpp>
 #include <wbi/runtime/runner.hpp>
+#include <wbi/sim_rig/in_process_robot.hpp>
 
 #include "allocation_counter.hpp"
 #include "test_support.hpp"
@@ -213,23 +212,14 @@ class TickRecorder {
 BalanceRun run_balance(const std::string& robot, const std::vector<std::string>& joints,
                        double seconds, wbi::controllers::ComSinusoid reference = {},
                        const std::string& sim_extra = "", Base base = Base::legged) {
-  wbi::dds::Participant participant("balance_test");
-  wbi::runtime::SystemClock clock;
-  wbi::runtime::Registry registry;
-  wbi::robot::register_components(registry);
-  wbi::estimator::register_components(registry);
-  wbi::runtime::ComponentRunner sim(registry.create("sim_robot"),
-                                    {"sim", "sim_robot", &participant, &clock});
-  wbi::runtime::ComponentRunner estimator(registry.create("estimator"),
-                                          {"estimator", "estimator", &participant, &clock});
   const auto urdf = wbi::test::project_model("humanoid.urdf").string();
   const std::string config = sim_config(sim_extra);
-  sim.configure(
-      wbi::runtime::Parameters::from_string("robot: " + robot + "\nconfig: " + config +
-                                            "\nlockstep: true\nlockstep_controllers: [balance]\n"));
-  std::filesystem::remove(config);  // read by configure()
-  estimator.configure(wbi::runtime::Parameters::from_string(estimator_parameters(robot, base)));
-  estimator.activate();
+  wbi::sim_rig::InProcessRobot rig("balance_test",
+                                   "robot: " + robot + "\nconfig: " + config +
+                                       "\nlockstep: true\nlockstep_controllers: [balance]\n",
+                                   estimator_parameters(robot, base));
+  std::filesystem::remove(config);  // read when the rig configured the sim
+  wbi::dds::Participant& participant = rig.participant();
   wbi::dds::Subscriber<wbi::msg::GroundTruth> truth(
       participant, wbi::dds::topics::ground_truth(robot), wbi::dds::qos::kStream);
   TickRecorder recorder(urdf, static_cast<int>(seconds * 1000.0));
@@ -251,7 +241,7 @@ BalanceRun run_balance(const std::string& robot, const std::vector<std::string>&
   options.max_age_s = 5.0;  // lockstep: time is the simulation's
   auto humanoid = wbi::make_dds_interface(options);
   humanoid->add_joints(joints);
-  sim.activate();
+  rig.start_simulation();
   humanoid->init(20s);
 
   Eigen::VectorXd q_posture(humanoid->dofs());
@@ -347,8 +337,8 @@ BalanceRun run_balance(const std::string& robot, const std::vector<std::string>&
       fewest_allocations([&] { humanoid->set_control_reference(balance.torques()); });
   run.qp_failures = balance.qp_failures();
   run.ticks = ticks;
-  sim.shutdown();
-  estimator.shutdown();
+  rig.sim().shutdown();
+  rig.estimator().shutdown();
   recorder.summarise(start_ns, reference, reference.settle_s, run);  // no more samples
   return run;
 }

@@ -10,9 +10,7 @@
 #include <wbi/dds/subscriber.hpp>
 #include <wbi/dds/topics.hpp>
 #include <wbi/dds_interface.hpp>
-#include <wbi/estimator/estimator_component.hpp>
-#include <wbi/robot/sim_robot.hpp>
-#include <wbi/runtime/runner.hpp>
+#include <wbi/sim_rig/in_process_robot.hpp>
 
 #include "test_support.hpp"
 
@@ -30,24 +28,13 @@ struct ArmRun {
 
 // One lockstep run of `ticks` control ticks on robot `robot`.
 ArmRun run_arm(const std::string& robot, int ticks) {
-  wbi::dds::Participant participant("closed_loop");
-  wbi::runtime::SystemClock clock;
-  wbi::runtime::Registry registry;
-  wbi::robot::register_components(registry);
-  wbi::estimator::register_components(registry);
-  wbi::runtime::ComponentRunner sim(registry.create("sim_robot"),
-                                    {"sim", "sim_robot", &participant, &clock});
-  wbi::runtime::ComponentRunner estimator(registry.create("estimator"),
-                                          {"estimator", "estimator", &participant, &clock});
   const auto config = (wbi::test::source_dir() / "deploy" / "arm" / "sim.yaml").string();
-  sim.configure(
-      wbi::runtime::Parameters::from_string("robot: " + robot + "\nconfig: " + config +
-                                            "\nlockstep: true\nlockstep_controllers: [pd]\n"));
   // Backward difference with a 100 Hz low-pass: the kalman method's extrapolation
   // drives this stiff loop unstable (see components/estimation/README.md).
-  estimator.configure(wbi::runtime::Parameters::from_string(
-      "robot: " + robot + "\nmethod: backward-difference\ncutoff: 100\n"));
-  estimator.activate();
+  wbi::sim_rig::InProcessRobot rig(
+      "closed_loop",
+      "robot: " + robot + "\nconfig: " + config + "\nlockstep: true\nlockstep_controllers: [pd]\n",
+      "robot: " + robot + "\nmethod: backward-difference\ncutoff: 100\n");
 
   wbi::DdsInterfaceOptions options;
   options.robot = robot;
@@ -56,7 +43,7 @@ ArmRun run_arm(const std::string& robot, int ticks) {
   options.max_age_s = 5.0;  // lockstep: time is the simulation's
   auto arm = wbi::make_dds_interface(options);
   arm->add_joints(kArm);
-  sim.activate();
+  rig.start_simulation();
   arm->init(20s);
 
   const int n = arm->dofs();
@@ -79,8 +66,8 @@ ArmRun run_arm(const std::string& robot, int ticks) {
     run.torques.insert(run.torques.end(), pd.torques().begin(), pd.torques().end());
   }
   run.final_error = pd.max_error();
-  sim.shutdown();
-  estimator.shutdown();
+  rig.sim().shutdown();
+  rig.estimator().shutdown();
   return run;
 }
 
