@@ -49,8 +49,8 @@ Locator_t udp_locator(const std::string& text, const char* what) {
 
 }  // namespace
 
-void use_network_transports(eprosima::fastdds::dds::DomainParticipantQos& qos,
-                            NetworkDiscovery discovery, const NetworkOptions& network) {
+void use_network_transports(eprosima::fastdds::dds::DomainParticipantQos& qos, Discovery discovery,
+                            const NetworkOptions& network) {
   auto& transports = qos.transport();
   transports.use_builtin_transports = false;
   auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
@@ -59,6 +59,12 @@ void use_network_transports(eprosima::fastdds::dds::DomainParticipantQos& qos,
     (void)udp_locator(address, "network interfaces");  // validates
     udp->interfaceWhiteList.push_back(address);
   }
+  // Fast DDS sends to a peer on this host through 127.0.0.1 whenever its own
+  // allow-list (or lack of one, as with `fastdds discovery`) permits loopback;
+  // a participant that did not listen there would never hear them.
+  if (!udp->interfaceWhiteList.empty()) {
+    udp->interfaceWhiteList.emplace_back("127.0.0.1");
+  }
   transports.user_transports.push_back(udp);
 
   auto& builtin = qos.wire_protocol().builtin;
@@ -66,9 +72,10 @@ void use_network_transports(eprosima::fastdds::dds::DomainParticipantQos& qos,
     builtin.initialPeersList.push_back(udp_locator(peer, "network peers"));
   }
   switch (discovery) {
-    case NetworkDiscovery::multicast:
+    case Discovery::localhost:  // not ours: transports.hpp
+    case Discovery::multicast:
       break;  // SPDP multicast (239.255.0.1), plus any initial peers
-    case NetworkDiscovery::peers: {
+    case Discovery::peers: {
       if (network.peers.empty()) {
         throw std::invalid_argument("network discovery 'peers' needs at least one peer address");
       }
@@ -81,7 +88,7 @@ void use_network_transports(eprosima::fastdds::dds::DomainParticipantQos& qos,
       builtin.metatrafficUnicastLocatorList.push_back(any);
       break;
     }
-    case NetworkDiscovery::server: {
+    case Discovery::server: {
       if (network.discovery_server.empty()) {
         throw std::invalid_argument("network discovery 'server' needs the server's address:port");
       }

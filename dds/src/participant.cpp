@@ -11,8 +11,10 @@
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
+#include "discovery.hpp"
 #include "participant_impl.hpp"
 #include "qos_profiles_default.hpp"
+#include "security.hpp"
 #include "transports.hpp"
 
 namespace wbi::dds {
@@ -74,7 +76,10 @@ fdds::DomainParticipantQos participant_qos(const ParticipantOptions& options) {
   if (options.discovery == Discovery::localhost) {
     detail::use_loopback_transports(qos, options.domain_id,
                                     detail::local_transport_from_environment());
+  } else {
+    detail::use_network_transports(qos, options.discovery, options.network);
   }
+  detail::use_security(qos, options.security);
   return qos;
 }
 
@@ -256,7 +261,7 @@ std::optional<TopicInfo> ParticipantImpl::wait_for_topic(const std::string& topi
 }  // namespace detail
 
 Participant::Participant(const ParticipantOptions& options)
-    : impl_(std::make_unique<detail::ParticipantImpl>(options)) {}
+    : impl_(std::make_unique<detail::ParticipantImpl>(options)), options_(options) {}
 
 Participant::Participant(const std::string& name)
     : Participant([&] {

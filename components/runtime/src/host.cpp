@@ -6,6 +6,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <wbi/dds/participant.hpp>
+#include <wbi/deploy/placement.hpp>
 
 namespace wbi::runtime {
 
@@ -74,8 +75,10 @@ YAML::Node process_of_deploy(const std::string& file, const YAML::Node& deploy,
         }
         YAML::Node host;
         host["components"] = entry["components"];
-        if (deploy["domain_id"]) {
-          host["domain_id"] = deploy["domain_id"];
+        for (const char* key : {"domain_id", wbi::deploy::kNetworkKey, wbi::deploy::kSecurityKey}) {
+          if (deploy[key]) {
+            host[key] = deploy[key];
+          }
         }
         return host;
       }
@@ -110,7 +113,10 @@ void Host::load(const std::string& source, bool is_text, const std::string& file
     root = process_of_deploy(file, root, process);
   }
   const std::string context = "host file";
-  check_keys(file, root, {"domain_id", "clock", "status_period_s", "components"}, context);
+  check_keys(file, root,
+             {"domain_id", "clock", "status_period_s", "components", wbi::deploy::kNetworkKey,
+              wbi::deploy::kSecurityKey},
+             context);
 
   dds::ParticipantOptions options;
   options.domain_id =
@@ -176,6 +182,12 @@ void Host::load(const std::string& source, bool is_text, const std::string& file
   }
 
   options.name = "wbi_host";
+  try {
+    // Across hosts and DDS Security (deploy/README.md); the identity is the process's name.
+    wbi::deploy::read_placement(root, file, process, options);
+  } catch (const std::runtime_error& error) {
+    throw ParameterError(error.what());
+  }
   participant_ = std::make_unique<dds::Participant>(options);
   if (clock == "system") {
     clock_ = std::make_unique<SystemClock>();

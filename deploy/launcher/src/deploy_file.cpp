@@ -5,6 +5,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <wbi/deploy/placement.hpp>
+
 namespace wbi::launch {
 
 namespace {
@@ -185,7 +187,9 @@ DeployFile load_deploy_file(const std::filesystem::path& path) {
     throw std::runtime_error(path.string() +
                              ": a deploy file is a mapping with a 'processes' list");
   }
-  in.only_keys(root, "", {"domain_id", "qos_file", "environment", "summary", "processes"});
+  in.only_keys(root, "",
+               {"domain_id", "qos_file", "environment", "summary", "processes",
+                wbi::deploy::kNetworkKey, wbi::deploy::kSecurityKey});
   DeployFile deploy;
   deploy.path = path;
   if (root["domain_id"]) {
@@ -228,6 +232,11 @@ DeployFile load_deploy_file(const std::filesystem::path& path) {
     }
     deploy.summary = spec;
   }
+  dds::ParticipantOptions placement;
+  wbi::deploy::read_placement(root, path.string(), "launcher", placement);
+  deploy.discovery = placement.discovery;
+  deploy.network = placement.network;
+  deploy.security = placement.security;
   return deploy;
 }
 

@@ -158,6 +158,9 @@ class Launcher {
         participant_options.domain_id = *deploy_.domain_id;
       }
       participant_options.qos_file = deploy_.qos_file.string();
+      participant_options.discovery = deploy_.discovery;
+      participant_options.network = deploy_.network;
+      participant_options.security = deploy_.security;
       participant_.emplace(participant_options);
     }
     const auto deadline = Clock::now() + seconds(process.spec->wait_timeout_s);

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "wbi/dds/network_options.hpp"
+
 namespace wbi::dds {
 
 namespace detail {
@@ -22,7 +24,12 @@ enum class Discovery {
   // leaves the machine. The default, and what every test uses.
   localhost,
   // Standard SPDP multicast on all interfaces, for robots spread over hosts.
+  // This and the modes below use UDP only (no shared memory across hosts).
   multicast,
+  // Unicast discovery to NetworkOptions::peers only, for networks without multicast.
+  peers,
+  // A Fast DDS discovery server at NetworkOptions::discovery_server.
+  server,
 };
 
 // The names of the QoS profiles in deploy/qos_profiles.xml.
@@ -44,6 +51,10 @@ struct ParticipantOptions {
   Discovery discovery = Discovery::localhost;
   // QoS profile file; empty: WBI_QOS_FILE when set, else the profiles compiled in.
   std::string qos_file;
+  // Peers, interface allow-list and discovery server for the non-localhost modes.
+  NetworkOptions network;
+  // DDS Security; off by default.
+  SecurityOptions security;
 };
 
 // A topic seen on the domain through discovery (remote endpoints only).
@@ -67,6 +78,9 @@ class Participant {
 
   int domain_id() const;
   const std::string& name() const;
+  // The options it was made with: components that need a participant of their
+  // own (the DDS proxy) copy them, so they reach the same peers with the same identity.
+  const ParticipantOptions& options() const { return options_; }
 
   // Topics that remote participants publish or subscribe, sorted by name.
   std::vector<TopicInfo> discovered_topics() const;
@@ -78,6 +92,7 @@ class Participant {
 
  private:
   std::unique_ptr<detail::ParticipantImpl> impl_;
+  ParticipantOptions options_;
 };
 
 }  // namespace wbi::dds

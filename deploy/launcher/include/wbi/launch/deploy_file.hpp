@@ -4,6 +4,7 @@
 //   domain_id: 7                      # optional: else WBI_DOMAIN_ID, else 0
 //   qos_file: my_qos.xml              # optional, relative to the deploy file
 //   environment: {KEY: value}         # for every process
+//   network: {...}                    # across hosts; security: {...}  (wbi/deploy/placement.hpp)
 //   summary: {process: controller, match: "final max joint error"}
 //   processes:
 //     - name: robot
@@ -20,6 +21,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <wbi/dds/participant.hpp>
 
 namespace wbi::launch {
 
@@ -55,6 +58,11 @@ struct DeployFile {
   std::map<std::string, std::string> environment;
   std::vector<ProcessSpec> processes;
   std::optional<SummarySpec> summary;
+  // The launcher's own participant (it waits for topics): the deploy's
+  // network and security blocks, with the identity "launcher".
+  dds::Discovery discovery = dds::Discovery::localhost;
+  dds::NetworkOptions network;
+  dds::SecurityOptions security;
 };
 
 // Reads and checks a deploy file. Throws std::runtime_error "FILE:LINE: …"

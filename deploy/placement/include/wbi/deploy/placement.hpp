@@ -1,0 +1,37 @@
+// Host placement in a deploy file (or a wbi_host file): how its processes find
+// each other across hosts, and the DDS Security identity each one uses.
+//
+//   network:                              # optional; without it: this host only
+//     discovery: multicast                # localhost | multicast | peers | server
+//     peers: [10.77.0.1, 10.77.0.2]       # initial peers ("a.b.c.d[:port]"); needed by peers
+//     interfaces: [10.77.0.1, 10.77.0.2]  # allow-list; each host uses the ones it has
+//     server: 10.77.0.1:11811             # a `fastdds discovery -i 0` server; needed by server
+//   security:                             # optional; without it: no DDS Security
+//     directory: secure_demo              # relative to the file; from scripts/wbi-security-setup
+//     identity: controller                # default: the process's name
+//
+// WBI_DDS_DISCOVERY, WBI_DDS_PEERS, WBI_DDS_INTERFACES (comma-separated
+// lists), WBI_DDS_DISCOVERY_SERVER and WBI_DDS_SECURITY_DIRECTORY, when set,
+// replace the file's values: the same deploy file on another network or with
+// other keys (a security directory from the environment turns security on).
+#pragma once
+
+#include <string>
+
+#include <yaml-cpp/yaml.h>
+
+#include <wbi/dds/participant.hpp>
+
+namespace wbi::deploy {
+
+// Reads root["network"] and root["security"] into `options` (discovery,
+// network, security). `identity` names the participant's identity when the
+// security block does not. Throws std::runtime_error "FILE:LINE: field: what".
+void read_placement(const YAML::Node& root, const std::string& file, const std::string& identity,
+                    dds::ParticipantOptions& options);
+
+// The keys read_placement handles, for the callers' unknown-key checks.
+inline constexpr const char* kNetworkKey = "network";
+inline constexpr const char* kSecurityKey = "security";
+
+}  // namespace wbi::deploy
