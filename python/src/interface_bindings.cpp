@@ -51,33 +51,6 @@ DdsInterfaceOptions::ModelSource model_source_from(const std::string& name) {
   throw py::value_error("model is '" + name + "'; expected local or remote");
 }
 
-int sensor_width(SensorKind kind) {
-  switch (kind) {
-    case SensorKind::imu:
-      return 10;
-    case SensorKind::force_torque:
-      return 6;
-    case SensorKind::accelerometer:
-    case SensorKind::gyroscope:
-      return 3;
-    default:
-      return 1;
-  }
-}
-
-int estimate_width(EstimateKind kind) {
-  switch (kind) {
-    case EstimateKind::base_pose:
-      return 7;
-    case EstimateKind::base_velocity:
-    case EstimateKind::base_acceleration:
-    case EstimateKind::force_torque:
-      return 6;
-    default:
-      return 1;
-  }
-}
-
 // Runs a call that may wait (blocking reads, DDS) with the GIL released, so
 // that other Python threads run meanwhile.
 template <typename Call>

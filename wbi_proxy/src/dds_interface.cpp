@@ -535,20 +535,6 @@ class DdsInterface final : public WholeBodyInterface {
     }
   }
 
-  static int sensor_width(SensorKind kind) {
-    switch (kind) {
-      case SensorKind::imu:
-        return 10;
-      case SensorKind::force_torque:
-        return 6;
-      case SensorKind::accelerometer:
-      case SensorKind::gyroscope:
-        return 3;
-      default:
-        return 1;
-    }
-  }
-
   // Joint values in robot order → the controlled joints [first, first + count).
   void gather(const std::vector<double>& robot_values, int first, int count, VectorRef out,
               const char* what) const {
@@ -607,19 +593,6 @@ class DdsInterface final : public WholeBodyInterface {
         }
     }
     return sensors_.stamp();
-  }
-
-  static int estimate_width(EstimateKind kind) {
-    switch (kind) {
-      case EstimateKind::base_pose:
-        return 7;
-      case EstimateKind::base_velocity:
-      case EstimateKind::base_acceleration:
-      case EstimateKind::force_torque:
-        return 6;
-      default:
-        return 1;
-    }
   }
 
   int estimate_count(EstimateKind kind) const {

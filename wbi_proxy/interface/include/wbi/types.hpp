@@ -47,6 +47,21 @@ enum class SensorKind {
   gyroscope,      // 3 per IMU [rad/s], IMU axes
 };
 
+// Values per sensor of a kind (the counts above).
+constexpr int sensor_width(SensorKind kind) {
+  switch (kind) {
+    case SensorKind::imu:
+      return 10;
+    case SensorKind::force_torque:
+      return 6;
+    case SensorKind::accelerometer:
+    case SensorKind::gyroscope:
+      return 3;
+    default:
+      return 1;
+  }
+}
+
 // What the State element estimates:
 enum class EstimateKind {
   joint_position,      // 1 per controlled joint
@@ -58,6 +73,20 @@ enum class EstimateKind {
   base_acceleration,   // 6: time derivative of base_velocity
   force_torque,        // 6 per F/T sensor, filtered
 };
+
+// Values per estimate of a kind (the counts above).
+constexpr int estimate_width(EstimateKind kind) {
+  switch (kind) {
+    case EstimateKind::base_pose:
+      return 7;
+    case EstimateKind::base_velocity:
+    case EstimateKind::base_acceleration:
+    case EstimateKind::force_torque:
+      return 6;
+    default:
+      return 1;
+  }
+}
 
 enum class ReadMode {
   latest,    // the newest sample received (fails when older than the age limit)
