@@ -322,13 +322,14 @@ BalanceRun run_balance(const std::string& robot, const std::vector<std::string>&
     }
   }
   run.com_rms = samples > 0 ? std::sqrt(squared / samples) : 0.0;
-  // The fewest allocations of a few calls: DDS threads may allocate meanwhile.
+  // The fewest allocations of a few calls, on this thread (the DDS threads
+  // allocate meanwhile; a synchronous publish allocates on this one).
   const auto fewest_allocations = [](auto call) {
     long fewest = std::numeric_limits<long>::max();
     for (int i = 0; i < 5; ++i) {
-      const long before = wbi::test::allocation_count();
+      const long before = wbi::test::thread_allocation_count();
       call();
-      fewest = std::min(fewest, wbi::test::allocation_count() - before);
+      fewest = std::min(fewest, wbi::test::thread_allocation_count() - before);
     }
     return fewest;
   };

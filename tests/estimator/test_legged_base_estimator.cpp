@@ -48,13 +48,10 @@ struct Errors {
 Errors stand_and_sway(double seconds, double roll, const LeggedBaseOptions& options,
                       double settle = 0.3) {
   const SimConfig config = humanoid_config();
-  SimBackend sim(config);
-  sim.configure();
-  sim.activate();
+  StiffSim held(config);
+  SimBackend& sim = held.sim;
+  JointController& ctl = held.ctl;
   const auto& d = sim.description();
-  JointControllerConfig cc;
-  cc.gains = stiff_gains(d);
-  JointController ctl(d, cc);
   const int n = d.n_joints();
   const Eigen::VectorXd q0 = sim.ground_truth().q.tail(n);
 

@@ -44,6 +44,32 @@ inline std::vector<PidGains> stiff_gains(const actuation::BackendDescription& d,
   return g;
 }
 
+// An active simulation whose joint controller has stiff_gains, and the joint
+// positions it started from (to hold them in position-direct mode).
+struct StiffSim {
+  explicit StiffSim(const SimConfig& config)
+      : sim(config), ctl(activated(sim), stiff(sim.description())), q_j0(initial_joints(sim)) {}
+
+  SimBackend sim;
+  JointController ctl;
+  Eigen::VectorXd q_j0;
+
+ private:
+  static const actuation::BackendDescription& activated(SimBackend& s) {
+    s.configure();
+    s.activate();
+    return s.description();
+  }
+  static JointControllerConfig stiff(const actuation::BackendDescription& d) {
+    JointControllerConfig cc;
+    cc.gains = stiff_gains(d);
+    return cc;
+  }
+  static Eigen::VectorXd initial_joints(const SimBackend& s) {
+    return s.ground_truth().q.tail(s.description().n_joints());
+  }
+};
+
 // One control tick at the backend's current time.
 inline void tick(SimBackend& sim, JointController& ctl) {
   const auto t = sim.stamp();

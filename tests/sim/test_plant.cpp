@@ -61,14 +61,11 @@ struct StandResult {
 };
 
 StandResult stand(SimConfig c, double seconds) {
-  SimBackend sim(c);
-  sim.configure();
-  sim.activate();
+  StiffSim held(c);
+  SimBackend& sim = held.sim;
+  JointController& ctl = held.ctl;
   const auto& d = sim.description();
-  JointControllerConfig cc;
-  cc.gains = stiff_gains(d);
-  JointController ctl(d, cc);
-  const Eigen::VectorXd q_j0 = sim.ground_truth().q.tail(d.n_joints());
+  const Eigen::VectorXd& q_j0 = held.q_j0;
   const Eigen::Vector3d p0 = sim.ground_truth().base_position;
   Eigen::Vector3d p_settled = p0;
   StandResult r;
@@ -167,14 +164,11 @@ TEST(SimPlant, HumanoidSurvivesAPush) {
   SimConfig c = humanoid_config();
   c.pushes.push_back(
       {"root_link", 1.0, 0.1, Eigen::Vector3d(-30.0, 0.0, 0.0), Eigen::Vector3d::Zero()});
-  SimBackend sim(c);
-  sim.configure();
-  sim.activate();
+  StiffSim held(c);
+  SimBackend& sim = held.sim;
+  JointController& ctl = held.ctl;
   const auto& d = sim.description();
-  JointControllerConfig cc;
-  cc.gains = stiff_gains(d);
-  JointController ctl(d, cc);
-  const Eigen::VectorXd q_j0 = sim.ground_truth().q.tail(d.n_joints());
+  const Eigen::VectorXd& q_j0 = held.q_j0;
   const double x0 = sim.ground_truth().base_position.x();
   double min_x = x0;
   double min_z = 1.0;

@@ -25,14 +25,11 @@ void run_without_allocation(SimConfig c, ControlMode mode) {
   c.encoders.position_noise = 1e-4;
   c.imus[0].gyro_noise = 1e-3;
   c.pushes.push_back({"root_link", 0.01, 0.02, Eigen::Vector3d(5, 0, 0), Eigen::Vector3d::Zero()});
-  SimBackend sim(c);
-  sim.configure();
-  sim.activate();
+  StiffSim held(c);
+  SimBackend& sim = held.sim;
+  JointController& ctl = held.ctl;
   const auto& d = sim.description();
-  JointControllerConfig cc;
-  cc.gains = stiff_gains(d);
-  JointController ctl(d, cc);
-  const Eigen::VectorXd q_j0 = sim.ground_truth().q.tail(d.n_joints());
+  const Eigen::VectorXd& q_j0 = held.q_j0;
   const JointCommandBatch batch =
       all_joints(d.n_joints(), mode,
                  mode == ControlMode::kTorque ? Eigen::VectorXd::Zero(d.n_joints()) : q_j0);

@@ -9,14 +9,17 @@
 namespace {
 
 std::atomic<long> g_allocations{0};
+thread_local long t_allocations = 0;  // a plain int: no allocation of its own
 
 void* allocate(std::size_t size) {
   ++g_allocations;
+  ++t_allocations;
   return std::malloc(size == 0 ? 1 : size);
 }
 
 void* allocate_aligned(std::size_t size, std::align_val_t alignment) {
   ++g_allocations;
+  ++t_allocations;
   const auto align = static_cast<std::size_t>(alignment);
   return std::aligned_alloc(align, (size + align - 1) / align * align);
 }
@@ -24,6 +27,7 @@ void* allocate_aligned(std::size_t size, std::align_val_t alignment) {
 }  // namespace
 
 long wbi::test::allocation_count() { return g_allocations.load(); }
+long wbi::test::thread_allocation_count() { return t_allocations; }
 
 void* operator new(std::size_t size) {
   if (void* p = allocate(size)) {

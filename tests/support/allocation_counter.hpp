@@ -5,6 +5,10 @@
 
 namespace wbi::test {
 
+// Every thread's allocations: for code whose work runs on DDS threads too.
 long allocation_count();
+// The calling thread's allocations only: what a control tick itself allocates,
+// whatever the DDS threads do meanwhile (heartbeats, acknowledgements).
+long thread_allocation_count();
 
 }  // namespace wbi::test
