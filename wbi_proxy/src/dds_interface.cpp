@@ -293,7 +293,7 @@ class DdsInterface final : public WholeBodyInterface {
   int dofs() const override { return static_cast<int>(controlled_.size()); }
   const IdList& joint_list() const override { return controlled_; }
   JointLimits joint_limits(int joint) const override { return model().joint_limits(joint); }
-  const IdList& frame_list() const override { return model().frames(); }
+  const IdList& frame_list() const override { return model().frame_list(); }
   int frame_index(const std::string& frame) const override { return model().frame_index(frame); }
 
   void frame_pose(const ConstVectorRef& q, const Transform& world_H_base, int frame,
@@ -351,11 +351,11 @@ class DdsInterface final : public WholeBodyInterface {
     }
   }
 
-  ModelBackend& model() {
+  wbi::Model& model() {
     require_init();
     return *model_;
   }
-  const ModelBackend& model() const {
+  const wbi::Model& model() const {
     require_init();
     return *model_;
   }
@@ -667,8 +667,9 @@ class DdsInterface final : public WholeBodyInterface {
       robot_index_;  // [dofs] position of controlled joint k in the robot's order
   IdList imu_names_;
   IdList force_torque_names_;
-  std::unique_ptr<ModelBackend> model_;  // LocalModel, or RemoteModel from construction on
-  RemoteModel* remote_ = nullptr;        // model_ when the model is remote
+  std::unique_ptr<wbi::Model> model_;  // LocalModel, or RemoteModel from construction on
+                                       // (DdsInterfaceOptions::model_source)
+  RemoteModel* remote_ = nullptr;      // model_ when the model is remote
 
   std::vector<ControlMode> modes_;  // [dofs] current mode per controlled joint
   Eigen::VectorXd references_;      // [dofs] current reference per controlled joint

@@ -13,11 +13,11 @@
 #include <wbi/model/backend.hpp>
 #include <wbi/model/model.hpp>
 
-#include "model_backend.hpp"
+#include "wbi/model.hpp"
 
 namespace wbi::proxy {
 
-class LocalModel final : public ModelBackend {
+class LocalModel final : public wbi::Model {
  public:
   // Throws Error naming the file, joint or backend when the model does not load.
   // backend: "wbi" or "dart" (wbi::model::model_backend_names()).
@@ -25,8 +25,9 @@ class LocalModel final : public ModelBackend {
              const std::map<std::string, double>& locked_positions,
              const std::string& backend = "wbi");
 
-  int dofs() const { return model_.n_joints; }
-  const IdList& frames() const override { return model_.frame_name; }
+  int dofs() const override { return model_.n_joints; }
+  const IdList& joint_list() const override { return model_.joint_name; }
+  const IdList& frame_list() const override { return model_.frame_name; }
   int frame_index(const std::string& frame) const override;
   JointLimits joint_limits(int joint) const override;
 

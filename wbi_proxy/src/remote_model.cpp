@@ -54,6 +54,7 @@ void RemoteModel::bind(const IdList& controlled, const std::map<std::string, dou
   base_nv_ = floating_base_ ? 6 : 0;
   service_nv_ = base_nv_ + n_service;
 
+  controlled_ = controlled;
   service_joint_.clear();
   for (const auto& joint : controlled) {
     int found = -1;

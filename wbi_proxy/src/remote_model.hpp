@@ -29,12 +29,12 @@
 #include <wbi/dds/client.hpp>
 #include <wbi/dds/subscriber.hpp>
 
-#include "model_backend.hpp"
 #include "wbi/dds_interface.hpp"
+#include "wbi/model.hpp"
 
 namespace wbi::proxy {
 
-class RemoteModel final : public ModelBackend {
+class RemoteModel final : public wbi::Model {
  public:
   // Creates the DDS endpoints; discovery runs while the proxy waits for the robot.
   RemoteModel(dds::Participant& participant, const DdsInterfaceOptions& options);
@@ -50,7 +50,9 @@ class RemoteModel final : public ModelBackend {
 
   const std::string& service() const { return client_.service(); }
 
-  const IdList& frames() const override { return frames_; }
+  int dofs() const override { return static_cast<int>(service_joint_.size()); }
+  const IdList& joint_list() const override { return controlled_; }
+  const IdList& frame_list() const override { return frames_; }
   int frame_index(const std::string& frame) const override;
   JointLimits joint_limits(int joint) const override;
 
@@ -79,7 +81,6 @@ class RemoteModel final : public ModelBackend {
   void com_jacobian(const ConstVectorRef& q, const Transform& world_H_base, MatrixRef J) override;
 
  private:
-  int dofs() const { return static_cast<int>(service_joint_.size()); }
   // Request fields from the interface's arguments (controlled joints → service order).
   void set_position(const ConstVectorRef& q, const Transform& world_H_base);
   void set_velocity(const ConstVectorRef& dq, const ConstVectorRef& base_velocity);
@@ -103,6 +104,7 @@ class RemoteModel final : public ModelBackend {
   bool floating_base_ = false;
   int service_nv_ = 0;
   int base_nv_ = 0;                 // 6 for a floating base, 0 for a fixed one
+  IdList controlled_;               // the controlled joints, as bound
   std::vector<int> service_joint_;  // [dofs] index of controlled joint k in the service's joints
   std::vector<int> generalized_;    // [6 + dofs] service generalized index, −1: none (zero)
   mutable IdList frames_;           // see the header comment
