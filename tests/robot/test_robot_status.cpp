@@ -1,11 +1,13 @@
 // sim_robot in a wbi_host process; this process is the controller and the
 // monitor: a command for an unknown joint or of the wrong size is rejected
 // (counter and last_error on wbi/status, nothing applied), and a streaming
-// joint left without commands trips the watchdog (on wbi/status) and holds.
+// joint left without commands trips the watchdog (on wbi/status) and holds;
+// a simulation that diverges stops stepping with an error, the process lives.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <string>
@@ -39,16 +41,19 @@ std::uint64_t counter(const ComponentStatus& status, const std::string& name) {
 // real-time, with this process's endpoints on its topics.
 class RemoteArm {
  public:
-  explicit RemoteArm(const std::string& robot)
+  // extra_sim_config: YAML appended to deploy/arm/sim.yaml (e.g. pushes).
+  explicit RemoteArm(const std::string& robot, const std::string& extra_sim_config = "")
       : robot_(robot),
         status_(participant_, topics::kStatus, qos::kStatus),
         sensors_(participant_, topics::sensors(robot), qos::kStream),
         commands_(participant_, topics::commands(robot), qos::kCommand) {
-    const auto file = wbi::test::binary_dir() / "tests" / ("robot_status_" + robot + ".yaml");
+    const auto dir = wbi::test::binary_dir() / "tests";
+    const auto file = dir / ("robot_status_" + robot + ".yaml");
+    const auto sim_config = dir / ("robot_status_" + robot + "_sim.yaml");
+    write_sim_config(sim_config, extra_sim_config);
     std::ofstream(file) << "status_period_s: 0.05\ncomponents:\n"
                         << "  - name: arm\n    type: sim_robot\n    parameters:\n"
-                        << "      robot: " << robot << "\n      config: "
-                        << (wbi::test::source_dir() / "deploy" / "arm" / "sim.yaml").string()
+                        << "      robot: " << robot << "\n      config: " << sim_config.string()
                         << "\n      watchdog_timeout_s: 0.1\n";
     host_ = std::make_unique<wbi::test::ChildProcess>(wbi::test::binary_dir() / "bin" / "wbi_host",
                                                       std::vector<std::string>{file.string()});
@@ -100,6 +105,20 @@ class RemoteArm {
   }
 
  private:
+  // deploy/arm/sim.yaml with its URDF path made absolute, then `extra`.
+  static void write_sim_config(const std::filesystem::path& to, const std::string& extra) {
+    std::ifstream in(wbi::test::source_dir() / "deploy" / "arm" / "sim.yaml");
+    std::ofstream out(to);
+    std::string line;
+    while (std::getline(in, line)) {
+      out << (line.rfind("urdf:", 0) == 0
+                  ? "urdf: " + wbi::test::project_model("arm7.urdf").string()
+                  : line)
+          << "\n";
+    }
+    out << extra;
+  }
+
   std::string robot_;
   wbi::dds::Participant participant_{"robot_status_test"};
   wbi::dds::Subscriber<ComponentStatus> status_;
@@ -144,6 +163,18 @@ TEST(RobotStatus, WatchdogTripIsOnTheStatusTopicAndTheJointHolds) {
   // Still moving at 0.5 rad/s, it would travel 0.25 rad in 0.5 s.
   const SensorSample later = arm.sample_after(tripped, 0.5);
   EXPECT_NEAR(later.encoder_position()[2], tripped.encoder_position()[2], 0.01);
+}
+
+TEST(RobotStatus, DivergedSimulationStopsWithAnErrorAndTheProcessLives) {
+  // An absurd push makes the plant's state overflow to inf / NaN within a few steps.
+  RemoteArm arm("arm_diverges",
+                "pushes:\n  - {link: link_7, start: 0.2, duration: 0.05, force: [1e300, 0, 0]}\n");
+  const auto status = arm.status_where([](const ComponentStatus& s) {
+    return s.last_error().to_string().rfind("simulation stopped at t = ", 0) == 0;
+  });
+  EXPECT_NE(status.last_error().to_string().find("not finite"), std::string::npos)
+      << status.last_error();
+  // The destructor checks that wbi_host still stops cleanly (exit code 0) on SIGTERM.
 }
 
 }  // namespace

@@ -139,12 +139,29 @@ class SimRobot final : public runtime::Component {
     }
   }
 
+  // The stepping thread: a diverged simulation (the plant's state no longer
+  // finite) throws from the model library; it stops the stepping with an error
+  // on the status topic instead of terminating the process.
   void run() {
+    try {
+      step_until_stopped();
+    } catch (const std::exception& e) {
+      const std::string what =
+          "simulation stopped at t = " + std::to_string(sim_->time()) + " s: " + e.what();
+      report().set_error(what);
+      std::cerr << "sim_robot '" << robot_ << "': " << what << std::endl;
+    }
+  }
+
+  void step_until_stopped() {
     const auto period =
         std::chrono::nanoseconds(static_cast<std::int64_t>(sim_->config().step * 1e9));
     const auto start = Clock::now();
     for (std::uint64_t tick = 0; running_; ++tick) {
       if (duration_s_ > 0.0 && sim_->time() >= duration_s_) {
+        // A line to wait for: a lockstep run's outcome is fixed from here on.
+        std::cout << "sim_robot '" << robot_ << "': duration_s " << duration_s_
+                  << " reached: stopped stepping" << std::endl;
         break;
       }
       const auto now = sim_->stamp();

@@ -14,7 +14,8 @@
 //   lockstep_timeout_s    longest wait for a tick's commands (default 2 s; then a warning)
 //   lockstep_start_timeout_s  longest wait for the first tick's commands, while the
 //                         controllers start (default 60 s)
-//   duration_s            stop stepping after this simulated time (default 0: never)
+//   duration_s            stop stepping after this simulated time (default 0: never),
+//                         printing "sim_robot 'NAME': duration_s D reached: stopped stepping"
 //   watchdog_timeout_s    joint controller watchdog (default 0.1 s; 0 disables)
 //   reference_speed       default POSITION-mode speed [rad/s] (default 0.5)
 //   hold_at_start         true (default): every joint holds its initial position (POSITION
