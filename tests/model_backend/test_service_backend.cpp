@@ -20,19 +20,6 @@ using namespace std::chrono_literals;
 using wbi::msg::ModelReply;
 using wbi::msg::ModelRequest;
 
-const std::vector<wbi::msg::ModelOperation> kAll = {wbi::msg::MASS_MATRIX,
-                                                    wbi::msg::BIAS_FORCES,
-                                                    wbi::msg::GRAVITY_FORCES,
-                                                    wbi::msg::FRAME_POSE,
-                                                    wbi::msg::JACOBIAN,
-                                                    wbi::msg::DJNU,
-                                                    wbi::msg::COM,
-                                                    wbi::msg::COM_JACOBIAN,
-                                                    wbi::msg::CENTROIDAL_MOMENTUM,
-                                                    wbi::msg::CENTROIDAL_MOMENTUM_MATRIX,
-                                                    wbi::msg::JACOBIAN,
-                                                    wbi::msg::FRAME_POSE};
-
 TEST(ServiceBackend, DartEvaluatorMatchesTheLibrary) {
   if (!wbi::test::dart_built()) {
     GTEST_SKIP() << wbi::test::kDartMissing;
@@ -47,7 +34,8 @@ TEST(ServiceBackend, DartEvaluatorMatchesTheLibrary) {
     ModelRequest request;
     ModelReply reply;
     for (int round = 0; round < 10; ++round) {
-      wbi::test::random_model_request(model, "robot", rng, kAll, request);
+      wbi::test::random_model_request(model, "robot", rng, wbi::test::every_model_operation(),
+                                      request);
       evaluator.evaluate(request, reply);
       ASSERT_EQ(wbi::test::model_mismatch(model, data, request, reply), "")
           << file << ", round " << round;
@@ -80,7 +68,7 @@ TEST_F(ServiceBackendComponent, ServesWithTheDartBackend) {
   ModelRequest request;
   ModelReply reply;
   for (int i = 0; i < 5; ++i) {
-    wbi::test::random_model_request(model, "hum", rng, kAll, request);
+    wbi::test::random_model_request(model, "hum", rng, wbi::test::every_model_operation(), request);
     client.call(request, reply, 10s);
     ASSERT_EQ(wbi::test::model_mismatch(model, data, request, reply), "") << "call " << i;
   }

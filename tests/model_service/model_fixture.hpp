@@ -15,6 +15,25 @@
 
 namespace wbi::test {
 
+// Every operation of the model service, frame operations twice (two frames in one request).
+inline const std::vector<wbi::msg::ModelOperation>& every_model_operation() {
+  static const std::vector<wbi::msg::ModelOperation> operations = {
+      wbi::msg::MASS_MATRIX,
+      wbi::msg::BIAS_FORCES,
+      wbi::msg::GRAVITY_FORCES,
+      wbi::msg::FRAME_POSE,
+      wbi::msg::JACOBIAN,
+      wbi::msg::DJNU,
+      wbi::msg::COM,
+      wbi::msg::COM_JACOBIAN,
+      wbi::msg::CENTROIDAL_MOMENTUM,
+      wbi::msg::CENTROIDAL_MOMENTUM_MATRIX,
+      wbi::msg::JACOBIAN,
+      wbi::msg::FRAME_POSE,
+      wbi::msg::DJNU};
+  return operations;
+}
+
 // A random state of model (unit quaternion, q, ν, gravity −9.81 z) and the
 // given operations on random frames.
 inline void random_model_request(const wbi::model::Model& model, const std::string& robot,

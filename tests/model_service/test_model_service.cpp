@@ -33,20 +33,9 @@ struct EvaluatorTest : ::testing::Test {
 };
 
 TEST_F(EvaluatorTest, EveryOperationMatchesTheLibrary) {
-  const std::vector<wbi::msg::ModelOperation> all = {wbi::msg::MASS_MATRIX,
-                                                     wbi::msg::BIAS_FORCES,
-                                                     wbi::msg::GRAVITY_FORCES,
-                                                     wbi::msg::FRAME_POSE,
-                                                     wbi::msg::JACOBIAN,
-                                                     wbi::msg::DJNU,
-                                                     wbi::msg::COM,
-                                                     wbi::msg::COM_JACOBIAN,
-                                                     wbi::msg::CENTROIDAL_MOMENTUM,
-                                                     wbi::msg::CENTROIDAL_MOMENTUM_MATRIX,
-                                                     wbi::msg::JACOBIAN,
-                                                     wbi::msg::DJNU};
   for (int round = 0; round < 20; ++round) {
-    wbi::test::random_model_request(model, "humanoid", rng, all, request);
+    wbi::test::random_model_request(model, "humanoid", rng, wbi::test::every_model_operation(),
+                                    request);
     evaluator.evaluate(request, reply);
     ASSERT_EQ(wbi::test::model_mismatch(model, data, request, reply), "") << "round " << round;
     EXPECT_GT(reply.compute_ns(), 0);
