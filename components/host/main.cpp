@@ -1,6 +1,7 @@
 // wbi_host FILE.yaml: runs the components a host file lists (see
 // wbi/runtime/host.hpp) in this process until SIGINT or SIGTERM, then stops
-// them cleanly (deactivate, cleanup, shutdown, in reverse order).
+// them cleanly (deactivate, cleanup, shutdown, in reverse order); started by
+// `wbi launch`, also when the launcher dies.
 // Exit codes: 0 after SIGTERM, 130 after SIGINT, 1 on error (one line on stderr).
 #include <csignal>
 #include <cstring>
@@ -11,6 +12,7 @@
 #include <pthread.h>
 
 #include <wbi/dds/participant.hpp>
+#include <wbi/launch/launcher.hpp>
 #include <wbi/runtime/builtin.hpp>
 #include <wbi/runtime/host.hpp>
 
@@ -44,6 +46,9 @@ int main(int argc, char** argv) {
     usage(std::cerr, registry);
     return 1;
   }
+  // Started by `wbi launch`: its death (even SIGKILL) is a SIGTERM here, taken
+  // by sigwait below like any other, so the components stop in order.
+  wbi::launch::stop_when_launcher_dies();
   // Signals are taken by sigwait below; blocked before any thread starts so
   // that no DDS or loop thread receives them.
   sigset_t signals;

@@ -6,6 +6,8 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <thread>
 
 #include "child_process.hpp"
 #include "test_support.hpp"
@@ -119,6 +121,49 @@ TEST_F(LaunchTest, CtrlCStopsEverything) {
   ASSERT_TRUE(code.has_value()) << launch.output();
   EXPECT_EQ(*code, 130) << launch.output();
   EXPECT_TRUE(contains(launch.output(), "interrupted (SIGINT)")) << launch.output();
+}
+
+// Into a pipe (this test's, `| tee`, a supervisor) a process's lines come out
+// as they are printed, not when the launcher's buffer fills or the launch ends.
+TEST_F(LaunchTest, OutputReachesAPipeWhileTheLaunchRuns) {
+  const auto deploy = write("pipe.yaml",
+                            "processes:\n"
+                            "  - {name: chatty, command: [sh, -c, \"echo first line; sleep 30\"]}\n");
+  ChildProcess launch(wbi_exe(), {"launch", deploy.string()});
+  EXPECT_TRUE(launch.wait_for_output("[chatty] first line\n", 10s)) << launch.output();
+  EXPECT_EQ(launch.stop(SIGINT, 10s), 130) << launch.output();
+}
+
+// Running, or a zombie nobody reaps (the launcher that would is gone).
+bool running(pid_t pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string skip;
+  char state = 0;
+  return stat >> skip >> skip >> state && state != 'Z';
+}
+
+// A launcher killed outright (SIGKILL: no chance to stop anything) still takes
+// its component processes with it: no controller outlives its supervisor.
+TEST_F(LaunchTest, ComponentsStopWhenTheLauncherIsKilled) {
+  const auto deploy = write("orphans.yaml",
+                            "processes:\n"
+                            "  - {name: host, components: [{name: idle, type: idle}]}\n");
+  ChildProcess launch(wbi_exe(), {"launch", deploy.string()});
+  ASSERT_TRUE(launch.wait_for_output("wbi_host: running", 30s)) << launch.output();
+  const std::string marker = "host: started (pid ";
+  const auto at = launch.output().find(marker);
+  ASSERT_NE(at, std::string::npos) << launch.output();
+  const pid_t host = std::stoi(launch.output().substr(at + marker.size()));
+  ASSERT_TRUE(running(host));
+  launch.stop(SIGKILL);
+  const auto deadline = std::chrono::steady_clock::now() + 10s;
+  while (running(host) && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(20ms);  // polling another process's state: nothing to wait on
+  }
+  EXPECT_FALSE(running(host)) << "wbi_host (pid " << host << ") outlived its launcher";
+  if (running(host)) {
+    kill(host, SIGKILL);
+  }
 }
 
 TEST_F(LaunchTest, ProcessIgnoringSigtermIsKilled) {

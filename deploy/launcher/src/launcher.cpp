@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <optional>
@@ -14,6 +15,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -133,6 +135,8 @@ class Launcher {
     if (!deploy_.qos_file.empty()) {
       env["WBI_QOS_FILE"] = deploy_.qos_file.string();
     }
+    // wbi_host stops when this process dies, even by SIGKILL (components/host/main.cpp).
+    env[kLauncherPidVariable] = std::to_string(getpid());
     for (const auto& [key, value] : deploy_.environment) {
       env[key] = value;
     }
@@ -296,6 +300,9 @@ class Launcher {
       emit(process, process.partial);
       process.partial.clear();
     }
+    // Whole lines out now, also into a pipe (`| tee`, a supervisor): a
+    // process's progress must not wait for a 4 KiB buffer or the launch's end.
+    out_ << std::flush;
   }
 
   void emit(Managed& process, const std::string& line) {
@@ -475,6 +482,21 @@ int run_launch(const DeployFile& deploy, const LaunchOptions& options, std::ostr
   close(wake_pipe[0]);
   close(wake_pipe[1]);
   return code;
+}
+
+bool stop_when_launcher_dies() {
+  const char* launcher = std::getenv(kLauncherPidVariable);
+  if (launcher == nullptr || std::to_string(getppid()) != launcher) {
+    return false;
+  }
+  if (prctl(PR_SET_PDEATHSIG, SIGTERM) != 0) {
+    return false;
+  }
+  // The launcher may have died before prctl: then this process has another parent now.
+  if (std::to_string(getppid()) != launcher) {
+    raise(SIGTERM);
+  }
+  return true;
 }
 
 }  // namespace wbi::launch

@@ -20,4 +20,14 @@ struct LaunchOptions {
 // start, 130 when interrupted. Installs SIGINT/SIGTERM handlers while running.
 int run_launch(const DeployFile& deploy, const LaunchOptions& options, std::ostream& out);
 
+// The launcher's pid, in the environment of every process it starts.
+inline constexpr const char* kLauncherPidVariable = "WBI_LAUNCHER_PID";
+
+// For a process `wbi launch` started directly (its parent is kLauncherPidVariable's
+// pid): asks the kernel for SIGTERM when the launcher dies, even by SIGKILL, so
+// that no component — a controller commanding a robot — outlives its
+// supervisor. Returns whether it did (false: not started by a launcher, or by
+// way of another process such as a shell). Linux only; call before threads start.
+bool stop_when_launcher_dies();
+
 }  // namespace wbi::launch
