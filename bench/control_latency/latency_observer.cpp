@@ -20,7 +20,9 @@ LatencyObserver::LatencyObserver(dds::Participant& participant, const std::strin
                                  const std::string& controller_instance, std::size_t max_samples)
     : controller_instance_(controller_instance),
       max_samples_(max_samples),
-      sensors_(participant, dds::topics::sensors(robot), dds::qos::kStream,
+      // A best-effort reader (the status profile's) matches the sensor writers
+      // of any deploy, reliable or best effort (deploy/qos_realtime.xml).
+      sensors_(participant, dds::topics::sensors(robot), dds::qos::kStatus,
                [this](const msg::SensorSample& sample, const dds::detail::SampleInfo& info) {
                  on_sensor(sample, info);
                }),
@@ -67,7 +69,16 @@ void LatencyObserver::on_status(const msg::ComponentStatus& status) {
   if (status.iterations() >= result_.ticks) {
     result_.ticks = status.iterations();
     result_.overruns = status.overruns();
+    result_.status_stamp_ns = status.header().stamp_ns();
   }
+}
+
+double LatencyObserver::loop_rate_hz(const Result& before, const Result& after) {
+  if (before.status_stamp_ns == 0) {
+    return 0.0;  // no report yet at `before`
+  }
+  const double seconds = 1e-9 * static_cast<double>(after.status_stamp_ns - before.status_stamp_ns);
+  return seconds > 0.0 ? static_cast<double>(after.ticks - before.ticks) / seconds : 0.0;
 }
 
 LatencyObserver::Result LatencyObserver::result() const {

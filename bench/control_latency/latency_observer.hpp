@@ -33,7 +33,13 @@ class LatencyObserver {
     std::uint64_t unmatched_commands = 0;  // their sensor sample was not seen (or too old)
     std::uint64_t ticks = 0;               // controller loop iterations (its status)
     std::uint64_t overruns = 0;            // controller deadline misses (its status)
+    std::int64_t status_stamp_ns = 0;      // stamp of the status that gave ticks and overruns
   };
+  // The controller's loop rate [Hz] between two results, from its status reports
+  // (ticks over the time between the reports, not over the observer's window:
+  // reports come at the status period, and best effort may lose one). 0 when
+  // no report came in between.
+  static double loop_rate_hz(const Result& before, const Result& after);
   Result result() const;
 
  private:

@@ -1,6 +1,8 @@
 #include "wbi/dds/detail/endpoints.hpp"
 
+#include <atomic>
 #include <condition_variable>
+#include <cstdio>
 #include <mutex>
 #include <stdexcept>
 
@@ -180,6 +182,40 @@ struct ReaderImpl : fdds::DataReaderListener {
     matches.set(status.current_count);
   }
 
+  // A writer on this topic that cannot serve this reader — typically a
+  // best-effort stream of a real-time deploy (deploy/qos_realtime.xml) read by
+  // a process started without that deploy's QoS file — would leave the reader
+  // waiting in silence: say so, once per reader.
+  void on_requested_incompatible_qos(fdds::DataReader* /*reader*/,
+                                     const fdds::RequestedIncompatibleQosStatus& status) override {
+    incompatible_writers.store(static_cast<int>(status.total_count));
+    if (!incompatible_said.exchange(true)) {
+      std::fprintf(stderr,
+                   "wbi: a writer of '%s' does not match this reader: incompatible %s QoS (a "
+                   "best-effort writer and a reliable reader? start this process with the "
+                   "deploy file's qos_file, e.g. WBI_QOS_FILE=deploy/qos_realtime.xml)\n",
+                   topic_name.c_str(), policy_name(status.last_policy_id));
+    }
+  }
+
+  static const char* policy_name(fdds::QosPolicyId_t id) {
+    switch (id) {
+      case fdds::RELIABILITY_QOS_POLICY_ID:
+        return "reliability";
+      case fdds::DURABILITY_QOS_POLICY_ID:
+        return "durability";
+      case fdds::DEADLINE_QOS_POLICY_ID:
+        return "deadline";
+      case fdds::OWNERSHIP_QOS_POLICY_ID:
+        return "ownership";
+      default:
+        return "some";
+    }
+  }
+
+  std::atomic<int> incompatible_writers{0};
+  std::atomic<bool> incompatible_said{false};
+
   void on_data_available(fdds::DataReader* data_reader) override {
     fdds::SampleInfo info;
     while (data_reader->take_next_sample(sink.storage(), &info) == ReturnCode_t::RETCODE_OK) {
@@ -202,7 +238,9 @@ Reader::Reader(Participant& participant, const std::string& topic, fdds::TopicDa
                                                       : fdds::VOLATILE_DURABILITY_QOS;
   }
   fdds::Topic& dds_topic = impl_->participant.acquire_topic(topic, type);
-  const auto mask = fdds::StatusMask::subscription_matched() << fdds::StatusMask::data_available();
+  const auto mask = fdds::StatusMask::subscription_matched()
+                    << fdds::StatusMask::data_available()
+                    << fdds::StatusMask::requested_incompatible_qos();
   impl_->reader =
       impl_->participant.subscriber().create_datareader(&dds_topic, qos, impl_.get(), mask);
   if (impl_->reader == nullptr) {
@@ -218,6 +256,8 @@ Reader::~Reader() {
 }
 
 int Reader::matched() const { return impl_->matches.get(); }
+
+int Reader::incompatible_writers() const { return impl_->incompatible_writers.load(); }
 
 bool Reader::wait_matched(int count, std::chrono::nanoseconds timeout) const {
   return impl_->matches.wait_for(count, timeout);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <mutex>
 #include <set>
 #include <sstream>
@@ -13,6 +15,7 @@
 
 #include "discovery.hpp"
 #include "participant_impl.hpp"
+#include "qos_layers.hpp"
 #include "qos_profiles_default.hpp"
 #include "security.hpp"
 #include "transports.hpp"
@@ -53,11 +56,24 @@ void load_qos_profiles(const std::string& requested_file) {
     return;
   }
   auto* factory = fdds::DomainParticipantFactory::get_instance();
-  const auto rc = file.empty() ? factory->load_XML_profiles_string(kDefaultQosProfiles.data(),
-                                                                   kDefaultQosProfiles.size())
-                               : factory->load_XML_profiles_file(file);
-  if (rc != ReturnCode_t::RETCODE_OK) {
-    throw std::runtime_error("cannot load DDS QoS profiles from " + key);
+  std::string builtin(kDefaultQosProfiles);
+  if (!file.empty()) {
+    // The file's profiles first; the built-in ones it does not name fill in (qos_layers.hpp).
+    std::ifstream in(file);
+    if (!in) {
+      throw std::runtime_error("cannot read the DDS QoS profiles file " + file);
+    }
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (factory->load_XML_profiles_file(file) != ReturnCode_t::RETCODE_OK) {
+      throw std::runtime_error("cannot load DDS QoS profiles from " + file +
+                               " (not a Fast DDS profiles XML file?)");
+    }
+    builtin = detail::qos_profiles_without(builtin, detail::qos_profile_names(text));
+  }
+  if (!detail::qos_profile_names(builtin).empty() &&  // Fast DDS refuses an empty <profiles>
+      factory->load_XML_profiles_string(builtin.data(), builtin.size()) !=
+          ReturnCode_t::RETCODE_OK) {
+    throw std::runtime_error("cannot load the built-in DDS QoS profiles");
   }
   loaded.insert(key);
 }

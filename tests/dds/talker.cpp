@@ -1,7 +1,9 @@
 // Test helper: publishes COUNT pattern sensor samples on wbi/<ROBOT>/sensors
 // once a subscriber has matched, each acknowledged before the next (so none
 // is lost to the writer's bounded history), and exits 0. With COUNT = 0 it
-// publishes at 100 Hz, best effort, until SIGTERM.
+// publishes at 100 Hz on the wbi.stream profile until SIGTERM, and has a
+// writer of commands too (wbi.command), so that a test can see which QoS
+// each profile got (WBI_QOS_FILE).
 // usage: wbi_test_talker ROBOT COUNT
 #include <atomic>
 #include <chrono>
@@ -10,6 +12,9 @@
 #include <iostream>
 #include <thread>
 
+#include <optional>
+
+#include <wbi/msg/commands.h>
 #include <wbi/dds/publisher.hpp>
 #include <wbi/dds/topics.hpp>
 
@@ -29,7 +34,14 @@ int main(int argc, char** argv) {
   std::signal(SIGINT, on_signal);
   const std::string robot = argv[1];
   const long count = std::atol(argv[2]);
-  wbi::dds::Participant participant("talker");
+  std::optional<wbi::dds::Participant> created;
+  try {
+    created.emplace("talker");
+  } catch (const std::exception& error) {
+    std::cerr << "talker: " << error.what() << "\n";
+    return 1;
+  }
+  wbi::dds::Participant& participant = *created;
   wbi::dds::Publisher<wbi::msg::SensorSample> publisher(
       participant, wbi::dds::topics::sensors(robot),
       // Counted: transient local, so that a reader whose side of the match comes
@@ -52,6 +64,8 @@ int main(int argc, char** argv) {
     std::cout << "talker: done" << std::endl;
     return 0;
   }
+  wbi::dds::Publisher<wbi::msg::ActuatorCommand> commands(
+      participant, wbi::dds::topics::commands(robot), wbi::dds::qos::kCommand);
   for (std::uint64_t seq = 0; !stop_requested; ++seq) {
     wbi::test::fill_pattern(sample, robot, seq);
     publisher.publish(sample);

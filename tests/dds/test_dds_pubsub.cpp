@@ -1,11 +1,14 @@
 // The typed DDS layer between two participants of one process: samples arrive
 // intact and in order, latched samples reach late joiners, the latest sample
-// carries its stamps, and bad settings are refused with a clear error.
+// carries its stamps, bad settings are refused with a clear error, and a
+// writer whose QoS cannot serve a reader is reported.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <cstdlib>
 #include <stdexcept>
+#include <string>
+#include <thread>
 
 #include <wbi/dds/publisher.hpp>
 #include <wbi/dds/subscriber.hpp>
@@ -125,6 +128,29 @@ TEST(DdsPubSub, UnknownQosProfileIsNamed) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("wbi.no_such_profile"), std::string::npos) << e.what();
   }
+}
+
+TEST(DdsPubSub, BestEffortWriterAndReliableReaderAreReported) {
+  // As a process started without a real-time deploy's qos_file would see its
+  // best-effort streams: no match, and the subscriber says why.
+  Participant a("a");
+  Participant b("b");
+  Publisher<wbi::msg::SensorSample> best_effort(a, topics::sensors("incompatible"), qos::kStatus);
+  testing::internal::CaptureStderr();
+  {
+    Subscriber<wbi::msg::SensorSample> reliable(b, topics::sensors("incompatible"), qos::kStream);
+    const auto deadline = std::chrono::steady_clock::now() + 10s;
+    while (reliable.incompatible_writers() == 0 && std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(10ms);  // discovery has no event to wait on here
+    }
+    EXPECT_EQ(reliable.incompatible_writers(), 1);
+    EXPECT_EQ(reliable.matched(), 0);
+  }
+  const std::string said = testing::internal::GetCapturedStderr();
+  EXPECT_NE(said.find("a writer of 'wbi/incompatible/sensors' does not match this reader: "
+                      "incompatible reliability QoS"),
+            std::string::npos)
+      << said;
 }
 
 TEST(DdsPubSub, TopicWithAnotherTypeIsRefused) {

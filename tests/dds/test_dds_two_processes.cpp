@@ -1,8 +1,12 @@
 // A sensor sample crosses between two real processes on loopback: the talker
-// process publishes pattern samples, this process checks every one.
+// process publishes pattern samples, this process checks every one. And a QoS
+// file (WBI_QOS_FILE, a deploy file's qos_file) overrides only the profiles it
+// names: seen from here, on the talker's writers.
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <optional>
+#include <string>
 
 #include <wbi/dds/subscriber.hpp>
 #include <wbi/dds/topics.hpp>
@@ -46,6 +50,50 @@ TEST(DdsTwoProcesses, EverySampleArrivesIntact) {
   for (std::uint64_t i = 0; i < kCount; ++i) {
     ASSERT_EQ(seen[i], i);
   }
+}
+
+// The QoS of the writers of the talker started with env (e.g. WBI_QOS_FILE=...).
+struct TalkerQos {
+  std::optional<wbi::dds::TopicInfo> stream;
+  std::optional<wbi::dds::TopicInfo> command;
+  std::string output;
+};
+TalkerQos talker_qos(const std::string& robot, const std::vector<std::string>& env) {
+  wbi::dds::Participant participant("qos_probe");
+  wbi::test::ChildProcess talker(wbi::test::binary_dir() / "tests" / "wbi_test_talker",
+                                 {robot, "0"}, env);
+  TalkerQos qos;
+  qos.stream = participant.wait_for_topic(wbi::dds::topics::sensors(robot), 20s);
+  qos.command = participant.wait_for_topic(wbi::dds::topics::commands(robot), 20s);
+  talker.stop();
+  qos.output = talker.output();
+  return qos;
+}
+
+TEST(DdsQosFile, BuiltInStreamsAreReliableAndKeepTheirLastSample) {
+  const TalkerQos qos = talker_qos("qos_builtin", {});
+  ASSERT_TRUE(qos.stream && qos.command) << qos.output;
+  EXPECT_TRUE(qos.stream->writers_reliable);
+  EXPECT_TRUE(qos.stream->writers_transient_local);
+  EXPECT_TRUE(qos.command->writers_reliable);
+}
+
+TEST(DdsQosFile, TheRealTimeFileMakesStreamsBestEffortAndKeepsTheRest) {
+  const auto file = wbi::test::source_dir() / "deploy" / "qos_realtime.xml";
+  const TalkerQos qos = talker_qos("qos_realtime", {"WBI_QOS_FILE=" + file.string()});
+  ASSERT_TRUE(qos.stream && qos.command) << qos.output;
+  EXPECT_FALSE(qos.stream->writers_reliable);
+  EXPECT_FALSE(qos.stream->writers_transient_local);
+  EXPECT_TRUE(qos.command->writers_reliable) << "the built-in wbi.command was not filled in";
+}
+
+TEST(DdsQosFile, AMissingFileIsNamed) {
+  wbi::test::ChildProcess talker(wbi::test::binary_dir() / "tests" / "wbi_test_talker",
+                                 {"qos_missing", "0"}, {"WBI_QOS_FILE=/nonexistent/qos.xml"});
+  const auto code = talker.wait(20s);
+  ASSERT_TRUE(code.has_value()) << talker.output();
+  EXPECT_NE(*code, 0);
+  EXPECT_NE(talker.output().find("/nonexistent/qos.xml"), std::string::npos) << talker.output();
 }
 
 }  // namespace

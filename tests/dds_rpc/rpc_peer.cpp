@@ -43,7 +43,9 @@ int run_server(const std::string& service, bool worker_thread) {
   int signal_number = 0;
   sigwait(&signals, &signal_number);
   const auto stats = server.stats();
-  std::cout << "server: received " << stats.received << " answered " << stats.answered << std::endl;
+  // distinct: requests answered at least once (a resent copy may be answered again).
+  std::cout << "server: received " << stats.received << " answered " << stats.answered
+            << " distinct " << stats.answered - stats.answered_again << std::endl;
   return 0;
 }
 

@@ -54,7 +54,7 @@ TEST(RpcProcesses, EightClientProcessesGetOnlyTheirOwnReplies) {
         << clients[c]->output();
   }
   EXPECT_EQ(server.stop(), 0);
-  EXPECT_NE(server.output().find("answered " + std::to_string(8 * calls)), std::string::npos)
+  EXPECT_NE(server.output().find("distinct " + std::to_string(8 * calls) + "\n"), std::string::npos)
       << server.output();
 }
 

@@ -454,7 +454,9 @@ TEST(HostFile, RunsItsComponentsAndStopsThemInReverse) {
 TEST(HostFile, BadFilesGetErrorsNamingFileLineAndKey) {
   EXPECT_EQ(host_error("components:\n  - {name: a, type: idle}\nlogging: on\n"),
             "robot.yaml:3: host file: unknown key 'logging' (known: clock, components, domain_id, "
-            "network, security, status_period_s)");
+            "network, qos_file, security, status_period_s)");
+  EXPECT_EQ(host_error("qos_file: no_such_qos.xml\ncomponents: []\n"),
+            "robot.yaml:1: host file: 'qos_file': no such file: no_such_qos.xml");
   EXPECT_EQ(host_error("components:\n  - name: a\n    type: idle\n    rate: 5\n"),
             "robot.yaml:4: component: unknown key 'rate' (known: name, parameters, rate_hz, type)");
   EXPECT_EQ(host_error("components:\n  - name: a\n    type: idel\n"),

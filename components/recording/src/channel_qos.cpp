@@ -15,13 +15,14 @@ struct ProfileFacts {
 };
 
 // The writer side of deploy/qos_profiles.xml, first match wins in lookups by
-// reliability and durability.
+// reliability and durability (so best-effort volatile topics — status, request/reply,
+// real-time streams — play back as wbi.status).
 constexpr std::array<ProfileFacts, 5> kProfiles{{
     {dds::qos::kStream, true, true, 1},
     {dds::qos::kCommand, true, false, 8},
     {dds::qos::kStatus, false, false, 1},
     {dds::qos::kLatched, true, true, 1},
-    {dds::qos::kRequestReply, true, false, 64},
+    {dds::qos::kRequestReply, false, false, 64},
 }};
 
 const ProfileFacts& profile_with(bool reliable, bool transient_local) {

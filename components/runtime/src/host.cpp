@@ -1,5 +1,6 @@
 #include "wbi/runtime/host.hpp"
 
+#include <filesystem>
 #include <set>
 #include <stdexcept>
 
@@ -75,7 +76,8 @@ YAML::Node process_of_deploy(const std::string& file, const YAML::Node& deploy,
         }
         YAML::Node host;
         host["components"] = entry["components"];
-        for (const char* key : {"domain_id", wbi::deploy::kNetworkKey, wbi::deploy::kSecurityKey}) {
+        for (const char* key :
+             {"domain_id", "qos_file", wbi::deploy::kNetworkKey, wbi::deploy::kSecurityKey}) {
           if (deploy[key]) {
             host[key] = deploy[key];
           }
@@ -114,8 +116,8 @@ void Host::load(const std::string& source, bool is_text, const std::string& file
   }
   const std::string context = "host file";
   check_keys(file, root,
-             {"domain_id", "clock", "status_period_s", "components", wbi::deploy::kNetworkKey,
-              wbi::deploy::kSecurityKey},
+             {"domain_id", "qos_file", "clock", "status_period_s", "components",
+              wbi::deploy::kNetworkKey, wbi::deploy::kSecurityKey},
              context);
 
   dds::ParticipantOptions options;
@@ -124,6 +126,18 @@ void Host::load(const std::string& source, bool is_text, const std::string& file
   if (options.domain_id < 0 || options.domain_id > 232) {
     throw ParameterError(at(file, root["domain_id"]) +
                          ": host file: 'domain_id' must be in [0, 232]");
+  }
+  // The deploy file's QoS file (relative to it), as `wbi launch` passes it in
+  // WBI_QOS_FILE: a process started by hand on another host gets the same QoS.
+  if (const std::string qos_file =
+          scalar<std::string>(file, root, "qos_file", "", context, "a path");
+      !qos_file.empty()) {
+    const auto path = std::filesystem::path(is_text ? "" : file).parent_path() / qos_file;
+    if (!std::filesystem::exists(path)) {
+      throw ParameterError(at(file, root["qos_file"]) +
+                           ": host file: 'qos_file': no such file: " + path.string());
+    }
+    options.qos_file = path.string();
   }
   const std::string clock = scalar<std::string>(file, root, "clock", "system", context, "a string");
   const double status_period_s =

@@ -2,14 +2,18 @@
 // contract, call outcomes and their errors.
 //
 // A service named S uses two topics, S/request and S/reply (QoS profile
-// wbi.request_reply). Correlation: every request carries the client's id and a
-// per-client sequence number, and its reply carries both back. The client id is
-// the GUID of the client's reply reader (32 hex digits), so the server can tell
-// whether that reader has matched its reply writer before answering: a reply
-// written earlier could be lost (the classic lost-first-reply of request/reply
-// over DDS). See client.hpp and server.hpp.
+// wbi.request_reply: best effort, so delivery is the client's job: it sends a
+// request again while no reply came, like an RPC over UDP). Correlation: every
+// request carries the client's id and a per-client sequence number, and its
+// reply carries both back. The client id is the GUID of the client's reply
+// reader (32 hex digits), so the server can tell whether that reader has
+// matched its reply writer before answering: a reply written earlier could be
+// lost (the classic lost-first-reply of request/reply over DDS). Sequence
+// number 0 is a connection probe (kProbeSeq), answered by the server itself.
+// See client.hpp and server.hpp.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <concepts>
 #include <cstdint>
@@ -86,9 +90,40 @@ class TimeoutError : public CallError {
   using CallError::CallError;
 };
 
+// The sequence number of a connection probe: a client sends it until a server
+// answers (see Client::wait_connected); a server answers it without its handler.
+inline constexpr std::uint64_t kProbeSeq = 0;
+
 namespace detail {
 // System clock now [ns since the Unix epoch]: the time base of request deadlines.
 std::int64_t system_now_ns();
+
+// When to send a request again for want of a reply: `first` after it was sent,
+// then twice as long after each resend, at most `max` (a busy server is not
+// flooded). first == 0: never.
+class ResendSchedule {
+ public:
+  using Clock = std::chrono::steady_clock;
+  ResendSchedule(std::chrono::nanoseconds first, std::chrono::nanoseconds max)
+      : first_(first), max_(std::max(first, max)) {}
+  void sent(Clock::time_point now) {
+    interval_ = first_;
+    next_ = now + first_;
+  }
+  bool due(Clock::time_point now) const { return first_.count() > 0 && now >= next_; }
+  void resent(Clock::time_point now) {
+    interval_ = std::min(2 * interval_, max_);
+    next_ = now + interval_;
+  }
+  // The next resend time (time_point::max() when never).
+  Clock::time_point next() const { return first_.count() > 0 ? next_ : Clock::time_point::max(); }
+
+ private:
+  std::chrono::nanoseconds first_;
+  std::chrono::nanoseconds max_;
+  std::chrono::nanoseconds interval_{};
+  Clock::time_point next_{};
+};
 }  // namespace detail
 
 }  // namespace wbi::dds

@@ -14,8 +14,15 @@
 //              nothing else is queued, else by the server's worker thread
 //              (see ServerOptions::handle_on_dds_thread);
 //   dropped    when its client is gone (its reply reader unmatched), when its
-//              deadline passed before it could start, or when the pool is full
-//              (the client then gets an error reply if Rep has an error text).
+//              deadline passed before it could start, when it is a copy of a
+//              request still held, queued or running (clients resend, see
+//              client.hpp), or when the pool is full (the client then gets an
+//              error reply if Rep has an error text).
+// A copy that arrives after the reply was written is answered again (the
+// reply may have been lost): handlers must be idempotent. A connection probe
+// (seq kProbeSeq) is answered at once on the DDS thread, without the handler,
+// when its client's reply reader has matched, and dropped otherwise (the client
+// probes again): an answered probe tells the client both paths work.
 // The handler fills every field of the reply except client_id and seq, which the
 // server copies from the request. Handlers run one at a time. An exception from
 // the handler becomes the reply's error text (when Rep has one), never silence.
@@ -63,6 +70,9 @@ struct ServerStats {
   std::uint64_t dropped_unmatched = 0;  // client's reply reader never matched within match_wait
   std::uint64_t rejected_full = 0;      // pool full
   std::uint64_t handler_errors = 0;     // handler threw
+  std::uint64_t duplicates = 0;         // copies of a request still held, queued or running
+  std::uint64_t answered_again = 0;     // replies to a request answered before (a resent copy)
+  std::uint64_t probes = 0;             // connection probes answered
 };
 
 template <class Req, class Rep>
@@ -115,6 +125,7 @@ class Server : private detail::ReaderSink, private detail::MatchObserver {
     ServerStats copy = stats_;
     copy.answered = answered_.load();
     copy.handler_errors = handler_errors_.load();
+    copy.answered_again = answered_again_.load();
     return copy;
   }
 
@@ -124,6 +135,7 @@ class Server : private detail::ReaderSink, private detail::MatchObserver {
     SlotState state = SlotState::free;
     bool has_guid = false;
     detail::Guid guid{};
+    std::uint64_t seq = 0;
     std::int64_t hold_until_ns = 0;  // steady clock, while held
     std::int64_t deadline_ns = 0;    // system clock, 0: none
   };
@@ -134,24 +146,40 @@ class Server : private detail::ReaderSink, private detail::MatchObserver {
   void on_sample(const detail::SampleInfo& info) override {
     Slot slot;
     slot.has_guid = detail::parse_guid_hex(incoming_.client_id().c_str(), slot.guid);
+    slot.seq = incoming_.seq();
     if constexpr (HasDeadline<Req>) {
       slot.deadline_ns = incoming_.deadline_ns();
     }
     std::unique_lock lock(mutex_);
-    ++stats_.received;
     if (slot.has_guid && is_gone(slot.guid)) {
-      ++stats_.dropped_gone;
+      if (slot.seq != kProbeSeq) {
+        ++stats_.dropped_gone;
+      }
       return;
     }
+    const bool matched = !slot.has_guid || is_matched(slot.guid);
+    if (slot.seq == kProbeSeq) {
+      if (matched) {
+        ++stats_.probes;
+        lock.unlock();
+        answer_aside(incoming_, nullptr);
+      }
+      return;
+    }
+    ++stats_.received;
     if (expired(slot.deadline_ns)) {
       ++stats_.dropped_expired;
       return;
     }
-    const bool matched = !slot.has_guid || is_matched(slot.guid);
+    if (slot.has_guid && in_progress(slot)) {
+      ++stats_.duplicates;
+      return;
+    }
     if (options_.handle_on_dds_thread && matched && queued_ == 0 && !running_) {
       running_ = true;
+      running_slot_ = slot;
       lock.unlock();
-      handle(incoming_);
+      handle(incoming_, slot);
       lock.lock();
       running_ = false;
       if (queued_ > 0) {
@@ -162,7 +190,9 @@ class Server : private detail::ReaderSink, private detail::MatchObserver {
     if (free_.empty()) {
       ++stats_.rejected_full;
       lock.unlock();
-      reject_busy(incoming_);
+      if constexpr (HasErrorText<Rep>) {
+        answer_aside(incoming_, "server busy: too many requests queued");
+      }
       return;
     }
     const int index = free_.back();
@@ -233,8 +263,9 @@ class Server : private detail::ReaderSink, private detail::MatchObserver {
         }
         slot.state = SlotState::running;
         running_ = true;
+        running_slot_ = slot;
         lock.unlock();
-        handle(slots_[index]);
+        handle(slots_[index], running_slot_);
         lock.lock();
         running_ = false;
         release(index);
@@ -268,7 +299,7 @@ class Server : private detail::ReaderSink, private detail::MatchObserver {
   }
 
   // Runs the handler and writes the reply; one at a time (running_).
-  void handle(const Req& request) {
+  void handle(const Req& request, const Slot& slot) {
     try {
       handler_(request, reply_);
     } catch (const std::exception& error) {
@@ -284,16 +315,36 @@ class Server : private detail::ReaderSink, private detail::MatchObserver {
     reply_.seq() = request.seq();
     reply_writer_.write(&reply_);
     answered_.fetch_add(1);
+    if (slot.has_guid && answered_before(slot)) {
+      answered_again_.fetch_add(1);
+    }
   }
 
-  void reject_busy(const Req& request) {
-    if constexpr (HasErrorText<Rep>) {
-      std::lock_guard lock(busy_mutex_);
-      busy_reply_.client_id() = request.client_id();
-      busy_reply_.seq() = request.seq();
-      busy_reply_.error() = "server busy: too many requests queued";
-      reply_writer_.write(&busy_reply_);
+  // Whether the client of slot had its request slot.seq answered before; then
+  // remembers it as that client's last answered one. Only the running handler
+  // calls this, so the table needs no lock.
+  bool answered_before(const Slot& slot) {
+    for (auto& [guid, seq] : last_answered_) {
+      if (guid == slot.guid) {
+        const bool again = slot.seq <= seq;
+        seq = std::max(seq, slot.seq);
+        return again;
+      }
     }
+    last_answered_[last_answered_next_] = {slot.guid, slot.seq};
+    last_answered_next_ = (last_answered_next_ + 1) % last_answered_.size();
+    return false;
+  }
+
+  // A reply that is not the handler's: a probe's (error == nullptr) or an error.
+  void answer_aside(const Req& request, const char* error) {
+    std::lock_guard lock(aside_mutex_);
+    aside_reply_.client_id() = request.client_id();
+    aside_reply_.seq() = request.seq();
+    if constexpr (HasErrorText<Rep>) {
+      aside_reply_.error() = error != nullptr ? error : "";
+    }
+    reply_writer_.write(&aside_reply_);
   }
 
   static std::vector<int> free_list(std::size_t capacity) {
@@ -308,6 +359,19 @@ class Server : private detail::ReaderSink, private detail::MatchObserver {
   // ---- helpers; caller holds mutex_ ----
   bool is_matched(const detail::Guid& guid) const {
     return std::find(matched_.begin(), matched_.end(), guid) != matched_.end();
+  }
+  // A request of slot's client and sequence number is held, queued or running.
+  bool in_progress(const Slot& slot) const {
+    if (running_ && running_slot_.seq == slot.seq && running_slot_.guid == slot.guid) {
+      return true;
+    }
+    for (const Slot& other : meta_) {
+      if ((other.state == SlotState::held || other.state == SlotState::queued) &&
+          other.seq == slot.seq && other.guid == slot.guid) {
+        return true;
+      }
+    }
+    return false;
   }
   bool is_gone(const detail::Guid& guid) const {
     return std::find(gone_.begin(), gone_.begin() + static_cast<std::ptrdiff_t>(gone_count_),
@@ -345,6 +409,7 @@ class Server : private detail::ReaderSink, private detail::MatchObserver {
   std::size_t head_ = 0;
   std::size_t queued_ = 0;
   bool running_ = false;            // a handler is running
+  Slot running_slot_;               // the request it runs
   std::uint64_t held_changes_ = 0;  // +1 per newly held request
   bool stop_ = false;
   std::vector<detail::Guid> matched_;    // client reply readers matched with reply_writer_
@@ -355,9 +420,12 @@ class Server : private detail::ReaderSink, private detail::MatchObserver {
 
   std::atomic<std::uint64_t> answered_{0};
   std::atomic<std::uint64_t> handler_errors_{0};
+  std::atomic<std::uint64_t> answered_again_{0};
   Rep reply_;  // used by the one running handler
-  std::mutex busy_mutex_;
-  Rep busy_reply_;
+  std::array<std::pair<detail::Guid, std::uint64_t>, 64> last_answered_{};  // by the handler
+  std::size_t last_answered_next_ = 0;
+  std::mutex aside_mutex_;
+  Rep aside_reply_;
   Req incoming_;  // written only on the DDS thread that takes requests
 
   detail::Writer reply_writer_;

@@ -80,6 +80,9 @@ class Subscriber : private detail::ReaderSink {
   }
 
   int matched() const { return reader_.matched(); }
+  // Writers of the topic this subscriber cannot match (e.g. best effort, while
+  // its profile is reliable); the first is also said on stderr.
+  int incompatible_writers() const { return reader_.incompatible_writers(); }
   bool wait_for_publishers(int count, std::chrono::nanoseconds timeout) const {
     return reader_.wait_matched(count, timeout);
   }

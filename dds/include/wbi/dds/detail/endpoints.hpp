@@ -91,6 +91,8 @@ class Reader {
 
   int matched() const;
   bool wait_matched(int count, std::chrono::nanoseconds timeout) const;
+  // Writers found on the topic whose QoS cannot serve this reader (said once on stderr).
+  int incompatible_writers() const;
   const std::string& topic() const;
   Guid guid() const;
 
