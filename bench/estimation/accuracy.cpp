@@ -1,5 +1,6 @@
 #include "accuracy.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -80,6 +81,69 @@ Fit accuracy(const Motion& motion, const EncoderRecording& recording,
     }
   }
   return {rmse_at(0.0), 0.5 * (a + b)};
+}
+
+SampleMask near_velocity_reversals(const EncoderRecording& recording, double before_s,
+                                   double after_s) {
+  const Eigen::MatrixXd& dq = recording.dq_true;
+  const auto seconds = [&](Eigen::Index k) {
+    return 1e-9 * static_cast<double>(recording.stamp_ns[static_cast<std::size_t>(k)]);
+  };
+  SampleMask mask = SampleMask::Constant(dq.rows(), dq.cols(), false);
+  for (Eigen::Index j = 0; j < dq.rows(); ++j) {
+    for (Eigen::Index k = 1; k < dq.cols(); ++k) {
+      if ((dq(j, k - 1) > 0.0) == (dq(j, k) > 0.0)) {
+        continue;
+      }
+      // Reversal at t_k: mark every sample in [t_k − before, t_k + after].
+      const double t = seconds(k);
+      for (Eigen::Index i = k; i >= 0 && seconds(i) >= t - before_s; --i) {
+        mask(j, i) = true;
+      }
+      for (Eigen::Index i = k; i < dq.cols() && seconds(i) <= t + after_s; ++i) {
+        mask(j, i) = true;
+      }
+    }
+  }
+  return mask;
+}
+
+double rmse_outside(const EncoderRecording& recording, const Eigen::MatrixXd& estimate,
+                    const Eigen::MatrixXd& truth, const SampleMask& excluded, double warm_up_s) {
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (Eigen::Index k = 0; k < estimate.cols(); ++k) {
+    if (1e-9 * static_cast<double>(recording.stamp_ns[static_cast<std::size_t>(k)]) < warm_up_s) {
+      continue;
+    }
+    for (Eigen::Index j = 0; j < estimate.rows(); ++j) {
+      if (!excluded(j, k)) {
+        const double error = estimate(j, k) - truth(j, k);
+        sum += error * error;
+        ++count;
+      }
+    }
+  }
+  return count > 0 ? std::sqrt(sum / static_cast<double>(count)) : 0.0;
+}
+
+Estimates truth_blind_to_jumps(const EncoderRecording& recording, double jump, int blind) {
+  Estimates out{recording.dq_true, recording.ddq_true};
+  const Eigen::MatrixXd& ddq = recording.ddq_true;
+  for (Eigen::Index j = 0; j < ddq.rows(); ++j) {
+    for (Eigen::Index k = 1; k < ddq.cols(); ++k) {
+      if (std::abs(ddq(j, k) - ddq(j, k - 1)) <= jump) {
+        continue;
+      }
+      // Blind for `blind` samples: the value before the jump is kept.
+      const Eigen::Index end = std::min<Eigen::Index>(k + blind, ddq.cols());
+      for (Eigen::Index i = k; i < end; ++i) {
+        out.ddq(j, i) = ddq(j, k - 1);
+      }
+      k = end - 1;
+    }
+  }
+  return out;
 }
 
 }  // namespace wbi::bench

@@ -35,4 +35,24 @@ struct Fit {
 Fit accuracy(const Motion& motion, const EncoderRecording& recording,
              const Eigen::MatrixXd& estimate, Derivative derivative, double warm_up_s);
 
+using SampleMask = Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic>;  // (joints × samples)
+
+// The samples of each joint within [−before_s, +after_s] of a velocity
+// reversal of the truth (a sign change of dq_true between two samples): where
+// Coulomb friction makes the acceleration jump, and the estimators recover.
+SampleMask near_velocity_reversals(const EncoderRecording& recording, double before_s,
+                                   double after_s);
+
+// RMSE at zero lag of estimate against truth (joints × samples, at the
+// recording's stamps) over the samples after warm_up_s that `excluded` does
+// not mark.
+double rmse_outside(const EncoderRecording& recording, const Eigen::MatrixXd& estimate,
+                    const Eigen::MatrixXd& truth, const SampleMask& excluded, double warm_up_s);
+
+// A lower bound for estimators that must see an acceleration jump in the
+// positions before they can follow it: the truth itself, except that after
+// every jump of the true ddq by more than jump (rad/s², from one sample to
+// the next) it keeps the value before the jump for `blind` samples.
+Estimates truth_blind_to_jumps(const EncoderRecording& recording, double jump, int blind);
+
 }  // namespace wbi::bench

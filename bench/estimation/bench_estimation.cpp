@@ -3,11 +3,17 @@
 // Accuracy/<motion>/<method>: the whole recording (1 kHz, 14-bit encoders)
 // through the estimator; counters rmse_dq (rad/s), rmse_ddq (rad/s²) over all
 // joints after a 0.5 s warm-up, lag_dq_ms and lag_ddq_ms (the delay that
-// minimises the RMSE), us_per_sample (time per joint-vector sample).
+// minimises the RMSE), rmse_ddq_away (rmse_ddq without the samples from 5 ms
+// before to 50 ms after each velocity reversal of a joint, where friction
+// makes the true ddq jump), us_per_sample (time per joint-vector sample).
+// Accuracy/<motion>/truth-blind-<N>ms (motions with friction): the truth,
+// blind for N ms after every jump of the true ddq: a lower bound for
+// estimators that must see a jump in the positions before following it.
 // Cost/<method>: one update of 32 joints per iteration.
 // Run with --benchmark_format=json for JSON.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,10 +26,13 @@
 namespace wbi::bench {
 namespace {
 
-constexpr double kRateHz = 1000.0;
-constexpr double kCounts = 16384.0;  // 14-bit encoders
 constexpr double kWarmUpS = 0.5;
-constexpr double kHumanoidDurationS = 6.0;
+// Around each velocity reversal: the friction notch and the estimators' recovery.
+constexpr double kReversalBeforeS = 0.005;
+constexpr double kReversalAfterS = 0.05;
+// A jump of the true ddq between two samples (a jerk of 10^4 rad/s³, ten
+// times the fastest commanded one): only friction makes such jumps.
+constexpr double kJumpRadPerS2 = 10.0;
 
 struct Configuration {
   std::string label;
@@ -42,6 +51,7 @@ const std::vector<Configuration>& configurations() {
       {"kalman-agile", "kalman", {{"process-noise", 3000.0}}},
       {"kalman-order2", "kalman", {{"model-order", 2.0}, {"process-noise", 30.0}}},
       {"split-kalman", "split-kalman", {}},
+      {"split-kalman-no-stick", "split-kalman", {{"stick-duration", 0.0}}},
       {"split-kalman-loop-lp30",
        "split-kalman",
        {{"velocity-order", 2.0}, {"velocity-process-noise", 3000.0}, {"velocity-cutoff", 30.0}}},
@@ -57,6 +67,7 @@ struct Scenario {
   double duration_s;
   double drop_probability;
   std::string label;
+  bool friction = false;  // the truth has acceleration jumps (Coulomb friction)
 };
 
 const std::vector<Scenario>& scenarios() {
@@ -74,17 +85,37 @@ const std::vector<Scenario>& scenarios() {
       {sine(1.0, 0.4), 5.0, 0.0, "sine_1Hz"},
       {sine(2.0, 0.2), 5.0, 0.0, "sine_2Hz"},
       {sine(5.0, 0.1), 5.0, 0.0, "sine_5Hz"},
-      {humanoid, kHumanoidDurationS, 0.0, "humanoid_sim"},
-      {humanoid, kHumanoidDurationS, 0.01, "humanoid_sim_1pc_dropped"},
+      {humanoid, kHumanoidDurationS, 0.0, "humanoid_sim", true},
+      {humanoid, kHumanoidDurationS, 0.01, "humanoid_sim_1pc_dropped", true},
       {frictionless, kHumanoidDurationS, 0.0, "humanoid_sim_no_friction"},
   };
   return all;
 }
 
+EncoderRecording record_scenario(const Scenario& scenario) {
+  return record(*scenario.motion, kRateHz, scenario.duration_s, kCounts, scenario.drop_probability);
+}
+
+void report_accuracy(benchmark::State& state, const Scenario& scenario,
+                     const EncoderRecording& recording, const Estimates& estimates) {
+  const Fit dq =
+      accuracy(*scenario.motion, recording, estimates.dq, Derivative::velocity, kWarmUpS);
+  const Fit ddq =
+      accuracy(*scenario.motion, recording, estimates.ddq, Derivative::acceleration, kWarmUpS);
+  const SampleMask reversals =
+      near_velocity_reversals(recording, kReversalBeforeS, kReversalAfterS);
+  state.counters["rmse_dq"] = dq.rmse;
+  state.counters["rmse_ddq"] = ddq.rmse;
+  state.counters["lag_dq_ms"] = 1e3 * dq.lag_s;
+  state.counters["lag_ddq_ms"] = 1e3 * ddq.lag_s;
+  state.counters["rmse_ddq_away"] =
+      rmse_outside(recording, estimates.ddq, recording.ddq_true, reversals, kWarmUpS);
+  state.counters["joints"] = scenario.motion->joints();
+}
+
 void accuracy(benchmark::State& state, const Scenario& scenario,
               const Configuration& configuration) {
-  const EncoderRecording recording =
-      record(*scenario.motion, kRateHz, scenario.duration_s, kCounts, scenario.drop_probability);
+  const EncoderRecording recording = record_scenario(scenario);
   const auto estimator = estimation::make_estimator(configuration.method, scenario.motion->joints(),
                                                     configuration.parameters);
   Estimates estimates;
@@ -92,18 +123,21 @@ void accuracy(benchmark::State& state, const Scenario& scenario,
     run_estimator(*estimator, recording, estimates);
     benchmark::DoNotOptimize(estimates.dq.data());
   }
-  const Fit dq =
-      accuracy(*scenario.motion, recording, estimates.dq, Derivative::velocity, kWarmUpS);
-  const Fit ddq =
-      accuracy(*scenario.motion, recording, estimates.ddq, Derivative::acceleration, kWarmUpS);
-  state.counters["rmse_dq"] = dq.rmse;
-  state.counters["rmse_ddq"] = ddq.rmse;
-  state.counters["lag_dq_ms"] = 1e3 * dq.lag_s;
-  state.counters["lag_ddq_ms"] = 1e3 * ddq.lag_s;
-  state.counters["joints"] = scenario.motion->joints();
+  report_accuracy(state, scenario, recording, estimates);
   state.counters["us_per_sample"] = benchmark::Counter(
       1e-6 * static_cast<double>(recording.stamp_ns.size()),
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+void truth_blind(benchmark::State& state, const Scenario& scenario, int blind_ms) {
+  const EncoderRecording recording = record_scenario(scenario);
+  Estimates estimates;
+  for (auto _ : state) {
+    const int blind_samples = static_cast<int>(std::lround(1e-3 * blind_ms * kRateHz));
+    estimates = truth_blind_to_jumps(recording, kJumpRadPerS2, blind_samples);
+    benchmark::DoNotOptimize(estimates.ddq.data());
+  }
+  report_accuracy(state, scenario, recording, estimates);
 }
 
 void cost(benchmark::State& state, const Configuration& configuration) {
@@ -133,6 +167,16 @@ int register_all() {
           [&](benchmark::State& state) { accuracy(state, scenario, configuration); })
           ->Iterations(1)
           ->Unit(benchmark::kMillisecond);
+    }
+    for (const int blind_ms : {3, 5}) {
+      if (scenario.friction) {
+        benchmark::RegisterBenchmark(
+            ("Accuracy/" + scenario.label + "/truth-blind-" + std::to_string(blind_ms) + "ms")
+                .c_str(),
+            [&, blind_ms](benchmark::State& state) { truth_blind(state, scenario, blind_ms); })
+            ->Iterations(1)
+            ->Unit(benchmark::kMillisecond);
+      }
     }
   }
   for (const auto& configuration : configurations()) {

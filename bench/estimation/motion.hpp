@@ -11,6 +11,11 @@
 
 namespace wbi::bench {
 
+// The benchmark's encoders: 1 kHz, 14 bits; the humanoid motion's length.
+constexpr double kRateHz = 1000.0;
+constexpr double kCounts = 16384.0;
+constexpr double kHumanoidDurationS = 6.0;
+
 class Motion {
  public:
   virtual ~Motion() = default;

@@ -30,7 +30,8 @@ std::vector<MethodInfo> build_methods() {
       {"split-kalman",
        "a Kalman filter for the velocity (loop-safe) and, for the acceleration, a bank of "
        "Kalman filters from quiet to agile blended per joint by the likelihood of their "
-       "innovations; gains from the encoder resolution, the sample rate and the process noises",
+       "innovations, with a second bank that anticipates friction sticks at velocity reversals; "
+       "gains from the encoder resolution, the sample rate and the process noises",
        with_stream_parameters({
            {"resolution", "COUNTS", split.resolution_counts, 2, 1e12, false,
             "encoder counts per revolution (quantisation noise)"},
@@ -51,6 +52,13 @@ std::vector<MethodInfo> build_methods() {
             "acceleration filters, process noises spaced geometrically from min to max"},
            {"acceleration-memory", "S", split.acceleration_memory_s, 1e-4, 1e3, false,
             "forgetting time of the likelihoods that blend the acceleration filters, s"},
+           {"stick-duration", "S", split.stick_duration_s, 0, 1, false,
+            "stick assumed at each velocity reversal (Coulomb friction) by a second "
+            "acceleration bank, s; 0: no stick anticipation"},
+           {"stick-fraction", "F", split.stick_fraction, 0, 1, false,
+            "fraction of the acceleration kept during an assumed stick"},
+           {"stick-memory", "S", split.stick_memory_s, 1e-3, 1e3, false,
+            "forgetting time of the likelihoods that blend the sticking and non-sticking banks, s"},
        })},
       {"kalman",
        "Kalman filter on a constant-jerk model (by default), its gain computed from the "
@@ -165,7 +173,10 @@ std::unique_ptr<DerivativeEstimator> make_estimator(const std::string& method, E
                                        p.at("acceleration-noise-min"),
                                        p.at("acceleration-noise-max"),
                                        static_cast<int>(p.at("acceleration-models")),
-                                       p.at("acceleration-memory")};
+                                       p.at("acceleration-memory"),
+                                       p.at("stick-duration"),
+                                       p.at("stick-fraction"),
+                                       p.at("stick-memory")};
     return std::make_unique<SplitKalmanEstimator>(joints, params, stream);
   }
   if (method == "kalman") {

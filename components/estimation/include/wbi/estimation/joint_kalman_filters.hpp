@@ -20,6 +20,11 @@ class JointKalmanFilters {
   void start(const Eigen::Ref<const Eigen::VectorXd>& q);
   // The next sample, dt_s > 0 after the previous one. Never allocates.
   void step(double dt_s, const Eigen::Ref<const Eigen::VectorXd>& q);
+  // The same sample as `stepped`, a filter set of the same model and joints
+  // that has just run step(): its transition and gain are reused, so the
+  // Riccati step runs once for both. Use either this or step(), never both,
+  // on one object (the covariance is only advanced by step()).
+  void step_like(const JointKalmanFilters& stepped, const Eigen::Ref<const Eigen::VectorXd>& q);
   // The current estimates in SI units (rad/s, rad/s²).
   void velocity(Eigen::VectorXd& dq) const { dq = x_.row(1).transpose() * to_velocity_; }
   void acceleration(Eigen::VectorXd& ddq) const {
@@ -27,6 +32,9 @@ class JointKalmanFilters {
   }
   double velocity(Eigen::Index j) const { return x_(1, j) * to_velocity_; }
   double acceleration(Eigen::Index j) const { return x_(2, j) * to_velocity_ * to_velocity_; }
+  // Sets joint j's acceleration (rad/s²) and zeroes its higher derivatives:
+  // a jump the filter is told about instead of finding it in the innovations.
+  void set_acceleration(Eigen::Index j, double ddq);
   const IntegratorChain& model() const { return chain_; }
   // Of the last step: per joint the innovation q − q̂⁻ (rad), and its
   // predicted variance S = P⁻_00 + r (rad², the same for every joint).
@@ -34,12 +42,17 @@ class JointKalmanFilters {
   double innovation_variance() const { return innovation_variance_; }
 
  private:
+  // Predicts with F_ and corrects with K_ every joint; sets innovation_.
+  void correct(const Eigen::Ref<const Eigen::VectorXd>& q);
+
   IntegratorChain chain_;
   IntegratorChain::States x_;  // (kStates × joints) scaled state per joint
   double to_velocity_;         // 1/T: scaled units to SI
   double measurement_variance_;
   Eigen::VectorXd innovation_;
   double innovation_variance_;
+  IntegratorChain::Matrix F_;  // transition of the last step
+  IntegratorChain::Vector K_;  // gain of the last step
 };
 
 }  // namespace wbi::estimation

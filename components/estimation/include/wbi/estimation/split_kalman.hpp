@@ -4,20 +4,27 @@
 //
 // * dq: one filter whose bandwidth is set for the velocity alone, low enough
 //   to stay safe in a stiff PD loop (see README.md, "Closed loop").
-// * ddq: a bank of filters with process noises spaced geometrically between
-//   a minimum and a maximum, blended per joint by the likelihood of their
-//   recent innovations (multiple-model adaptive estimation, Magill 1965;
-//   Bar-Shalom, Li and Kirubarajan 2001, §11.6) with a forgetting time:
-//     ℓ_i ← λ ℓ_i + ν_i²/S_i + ln S_i,   λ = exp(−Δt / memory)
-//     w_i ∝ exp(−ℓ_i / 2),               ddq = Σ w_i ddq_i
-//   A slow joint, where quantisation noise dominates, follows the quiet
-//   low-noise model; a fast one (a wrist waving), where lag dominates, the
-//   agile one. The quantisation noise in ddq grows with the bandwidth to the
-//   power 2.5, so no single bandwidth suits both.
+// * ddq: a bank of filters from quiet to agile blended per joint by the
+//   likelihood of their innovations (acceleration_bank.hpp). A slow joint,
+//   where quantisation noise dominates, follows the quiet model; a fast one
+//   (a wrist waving), where lag dominates, the agile one. The quantisation
+//   noise in ddq grows with the bandwidth to the power 2.5, so no single
+//   bandwidth suits both.
+// * stick anticipation (stick_duration_s > 0): Coulomb friction makes a
+//   joint stick for a few ms at each velocity reversal, and its acceleration
+//   jumps towards zero — too briefly for the positions to show it before it
+//   is over. A second bank assumes the stick: when the first bank's velocity
+//   of a joint changes sign (whatever the dq filter's settings), its filters
+//   scale that joint's acceleration by stick_fraction for stick_duration_s,
+//   then restore it. The two banks are blended per joint by the likelihood
+//   of their predictions over stick_memory_s (long enough to span several
+//   reversals), so a joint that sticks follows the second bank and one that
+//   does not (or a robot without friction) the first.
 #pragma once
 
-#include <vector>
+#include <optional>
 
+#include "wbi/estimation/acceleration_bank.hpp"
 #include "wbi/estimation/derivative_estimator.hpp"
 #include "wbi/estimation/joint_kalman_filters.hpp"
 
@@ -33,6 +40,9 @@ struct SplitKalmanParameters {
   double acceleration_noise_max = 2000.0;  // σ_w of the most agile ddq filter
   int acceleration_models = 4;             // filters in the ddq bank (1: the quietest only)
   double acceleration_memory_s = 0.1;      // forgetting time of the model likelihoods
+  double stick_duration_s = 0.010;         // assumed stick at a reversal, s; 0: no anticipation
+  double stick_fraction = 0.15;            // acceleration kept while stuck, [0, 1]
+  double stick_memory_s = 0.5;             // forgetting time of the stick/no-stick likelihoods
 };
 
 class SplitKalmanEstimator final : public DerivativeEstimator {
@@ -41,21 +51,31 @@ class SplitKalmanEstimator final : public DerivativeEstimator {
                        const StreamParameters& stream = {});
   const char* method() const override { return "split-kalman"; }
   const IntegratorChain& velocity_model() const { return velocity_filters_.model(); }
-  // The bank's current weights, (models × joints), columns sum to 1.
-  const Eigen::MatrixXd& acceleration_weights() const { return weights_; }
+  // The (non-sticking) bank's current weights, (models × joints), columns sum to 1.
+  const Eigen::MatrixXd& acceleration_weights() const { return moving_.weights(); }
+  // Per joint, the weight of the sticking bank (0 without stick anticipation).
+  const Eigen::VectorXd& stick_weights() const { return stick_weight_; }
 
  private:
   void start(const Eigen::Ref<const Eigen::VectorXd>& q) override;
   void step(double dt_s, const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::VectorXd& dq,
             Eigen::VectorXd& ddq) override;
+  // Starts or ends the sticking bank's assumed stick of each joint.
+  void anticipate_sticks(double dt_s);
 
   JointKalmanFilters velocity_filters_;
   double velocity_cutoff_hz_;
-  Eigen::VectorXd velocity_;  // (joints) the dq filter's output before the low-pass
-  std::vector<JointKalmanFilters> acceleration_filters_;
+  Eigen::VectorXd velocity_;           // (joints) the dq filter's output before the low-pass
+  Eigen::VectorXd previous_velocity_;  // (joints) moving_'s velocity one sample earlier
   double memory_s_;
-  Eigen::MatrixXd log_likelihood_;  // (models × joints) −2 ln L with forgetting
-  Eigen::MatrixXd weights_;         // (models × joints)
+  AccelerationBank moving_;                   // no stick assumed
+  std::optional<AccelerationBank> sticking_;  // sticks at reversals (stick_duration_s > 0)
+  double stick_duration_s_;
+  double stick_fraction_;
+  double stick_memory_s_;
+  Eigen::VectorXd stick_remaining_s_;   // (joints) time left in the assumed stick, 0: none
+  Eigen::Matrix2Xd family_likelihood_;  // (2 × joints) −2 ln L of moving_, sticking_
+  Eigen::VectorXd stick_weight_;        // (joints)
 };
 
 }  // namespace wbi::estimation
