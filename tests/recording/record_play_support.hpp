@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -13,10 +14,12 @@
 #include <unistd.h>
 
 #include <wbi/msg/sensorsPubSubTypes.h>
+#include <wbi/mcap/reader.hpp>
 #include <wbi/mcap/writer.hpp>
 #include <wbi/msg/idl_text.hpp>
 
 #include "child_process.hpp"
+#include "mcap_samples.hpp"
 #include "sample_pattern.hpp"
 #include "test_support.hpp"
 
@@ -47,6 +50,17 @@ inline std::vector<std::uint8_t> pattern_cdr(const std::string& robot, std::uint
     ADD_FAILURE() << "cannot serialize sample " << seq;
   }
   return {payload.data, payload.data + payload.length};
+}
+
+// Per topic, the messages of a file in log-time order.
+inline std::map<std::string, std::vector<SampleMessage>> messages_by_topic(
+    const std::filesystem::path& file) {
+  const mcap::Reader reader(file);
+  std::map<std::string, std::vector<SampleMessage>> by_topic;
+  for (auto& message : read_all(reader, mcap::Order::log_time)) {
+    by_topic[message.topic].push_back(std::move(message));
+  }
+  return by_topic;
 }
 
 // A unique scratch file name for this test process.

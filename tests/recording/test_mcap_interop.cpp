@@ -11,54 +11,20 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <cstdlib>
 #include <fstream>
 #include <iostream>
-#include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "child_process.hpp"
 #include "mcap_samples.hpp"
+#include "npm_packages.hpp"
 
 namespace {
 
 using namespace std::chrono_literals;
 using wbi::test::ChildProcess;
 using wbi::test::SampleMessage;
-
-std::optional<std::filesystem::path> find_on_path(const std::string& program) {
-  const char* path = std::getenv("PATH");
-  if (path == nullptr) {
-    return std::nullopt;
-  }
-  std::stringstream dirs(path);
-  std::string dir;
-  while (std::getline(dirs, dir, ':')) {
-    const auto candidate = std::filesystem::path(dir.empty() ? "." : dir) / program;
-    if (::access(candidate.c_str(), X_OK) == 0) {
-      return candidate;
-    }
-  }
-  return std::nullopt;
-}
-
-// The line of npm's output that says what went wrong (else its last line).
-std::string error_line(const std::string& text) {
-  std::string line;
-  std::string last;
-  std::stringstream lines(text);
-  while (std::getline(lines, line)) {
-    if (line.find("error") != std::string::npos && line.find("complete log") == std::string::npos) {
-      return line;
-    }
-    if (!line.empty()) {
-      last = line;
-    }
-  }
-  return last;
-}
 
 // The line check.cjs prints for a message.
 std::string line_of(const SampleMessage& m) {
@@ -147,26 +113,12 @@ main(process.argv[2]).catch((e) => { console.error(`check failed: ${e.stack || e
 )js";
 
 TEST(McapInterop, McapCoreReadsOurFiles) {
-  const auto node = find_on_path("node");
-  const auto npm = find_on_path("npm");
-  if (!node || !npm) {
-    std::cout << "skipped: node or npm not found on PATH\n";
-    GTEST_SKIP() << "skipped: node or npm not found on PATH";
-  }
   wbi::test::TempDir dir;
-  {
-    ChildProcess install(*npm,
-                         {"install", "--no-audit", "--no-fund", "--no-save", "--prefix",
-                          dir.path().string(), "@mcap/core@^2", "fzstd@^0.1", "lz4js@^0.2"},
-                         {"npm_config_loglevel=error", "npm_config_update_notifier=false"});
-    const auto code = install.wait(90s);
-    if (code != 0) {
-      const std::string reason = code ? "npm install failed (exit " + std::to_string(*code) +
-                                            "): " + error_line(install.output())
-                                      : "npm install did not finish within 90 s";
-      std::cout << "skipped: " << reason << "\n";
-      GTEST_SKIP() << "skipped: " << reason;
-    }
+  const auto npm =
+      wbi::test::install_npm_packages(dir.path(), {"@mcap/core@^2", "fzstd@^0.1", "lz4js@^0.2"});
+  if (npm.node.empty()) {
+    std::cout << "skipped: " << npm.skip_reason << "\n";
+    GTEST_SKIP() << "skipped: " << npm.skip_reason;
   }
   const auto script = dir / "check.cjs";
   std::ofstream(script) << kCheckScript;
@@ -181,7 +133,7 @@ TEST(McapInterop, McapCoreReadsOurFiles) {
     options.chunk_size = 64 * 1024;
     const auto written = wbi::test::write_sample(file, options, 2000);
 
-    ChildProcess check(*node, {script.string(), file.string()});
+    ChildProcess check(npm.node, {script.string(), file.string()});
     const auto code = check.wait(60s);
     ASSERT_EQ(code, 0) << check.output();
     expect_lines(file.string() + ".indexed.txt", wbi::test::by_log_time(written));

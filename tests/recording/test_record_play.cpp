@@ -3,22 +3,20 @@
 // subscribers in this process; loopback discovery on the test's own domain.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <fstream>
 #include <map>
-#include <mutex>
 #include <set>
 #include <string>
 #include <vector>
 
 #include <wbi/dds/publisher.hpp>
-#include <wbi/dds/subscriber.hpp>
 #include <wbi/mcap/reader.hpp>
 
 #include "mcap_samples.hpp"
 #include "record_play_support.hpp"
+#include "sensor_listener.hpp"
 
 namespace {
 
@@ -33,81 +31,6 @@ std::uint64_t system_now_ns() {
   return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
                                         std::chrono::system_clock::now().time_since_epoch())
                                         .count());
-}
-
-// Per topic, the messages of a file in log-time order.
-std::map<std::string, std::vector<wbi::test::SampleMessage>> messages_by_topic(
-    const std::filesystem::path& file) {
-  wbi::mcap::Reader reader(file);
-  std::map<std::string, std::vector<wbi::test::SampleMessage>> by_topic;
-  auto cursor = reader.messages(wbi::mcap::Order::log_time);
-  while (const auto* m = cursor.next()) {
-    by_topic[m->channel->topic].push_back(
-        {m->channel->topic, m->schema != nullptr ? m->schema->name : "", m->sequence, m->log_time,
-         m->publish_time, std::vector<std::uint8_t>(m->data.begin(), m->data.end())});
-  }
-  return by_topic;
-}
-
-// What a subscriber in this process received: sequence numbers, arrival times
-// and the first sample that broke the talker's pattern.
-class Listener {
- public:
-  Listener(wbi::dds::Participant& participant, const std::string& robot, const std::string& topic)
-      : subscriber_(participant, topic, wbi::dds::qos::kStream,
-                    [this, robot](const wbi::msg::SensorSample& sample,
-                                  const wbi::dds::detail::SampleInfo& info) {
-                      std::lock_guard lock(mutex_);
-                      seqs_.push_back(sample.header().seq());
-                      arrivals_ns_.push_back(info.received_ns);
-                      if (mismatch_.empty()) {
-                        mismatch_ = wbi::test::pattern_mismatch(sample, robot);
-                      }
-                    }) {}
-
-  // Waits until `count` samples arrived; false on timeout.
-  bool wait_for(std::size_t count, std::chrono::milliseconds timeout) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    while (std::chrono::steady_clock::now() < deadline) {
-      if (received() >= count) {
-        return true;
-      }
-      wbi::dds::Received<wbi::msg::SensorSample> latest;
-      subscriber_.wait_newer(latest, subscriber_.count(), 100ms);  // wakes on the next sample
-    }
-    return received() >= count;
-  }
-  std::size_t received() const {
-    std::lock_guard lock(mutex_);
-    return seqs_.size();
-  }
-  std::vector<std::uint64_t> seqs() const {
-    std::lock_guard lock(mutex_);
-    return seqs_;
-  }
-  std::vector<std::int64_t> arrivals_ns() const {
-    std::lock_guard lock(mutex_);
-    return arrivals_ns_;
-  }
-  std::string mismatch() const {
-    std::lock_guard lock(mutex_);
-    return mismatch_;
-  }
-
- private:
-  mutable std::mutex mutex_;
-  std::vector<std::uint64_t> seqs_;
-  std::vector<std::int64_t> arrivals_ns_;
-  std::string mismatch_;
-  wbi::dds::Subscriber<wbi::msg::SensorSample> subscriber_;
-};
-
-std::vector<std::uint64_t> iota_seqs(std::uint64_t count) {
-  std::vector<std::uint64_t> seqs(count);
-  for (std::uint64_t i = 0; i < count; ++i) {
-    seqs[i] = i;
-  }
-  return seqs;
 }
 
 class RecordPlay : public ::testing::Test {
@@ -160,7 +83,7 @@ TEST_F(RecordPlay, RecordsLivePublishersByteForByteWithFilters) {
   EXPECT_EQ(reader.info().schemas.begin()->second.encoding, "omgidl");
   EXPECT_EQ(reader.info().schemas.begin()->second.name, "wbi::msg::SensorSample");
 
-  const auto by_topic = messages_by_topic(out);
+  const auto by_topic = wbi::test::messages_by_topic(out);
   for (const auto& [robot, count] : {std::pair<std::string, std::uint64_t>{"rec_a", 200},
                                      std::pair<std::string, std::uint64_t>{"rec_b", 100}}) {
     const auto& messages = by_topic.at("wbi/" + robot + "/sensors");
@@ -186,7 +109,7 @@ TEST_F(RecordPlay, KilledRecorderLeavesFileReadableToTheLastFlush) {
 
   const wbi::mcap::Reader reader(out);
   EXPECT_TRUE(reader.info().truncated);
-  const auto by_topic = messages_by_topic(out);
+  const auto by_topic = wbi::test::messages_by_topic(out);
   ASSERT_EQ(by_topic.count("wbi/kill_me/sensors"), 1u);
   const auto& messages = by_topic.at("wbi/kill_me/sensors");
   ASSERT_GT(messages.size(), 50u);
@@ -219,7 +142,7 @@ TEST_F(RecordPlay, SplitsIntoFilesThatEachStandAlone) {
       break;
     }
     ++files;
-    const auto by_topic = messages_by_topic(part);
+    const auto by_topic = wbi::test::messages_by_topic(part);
     std::filesystem::remove(part);
     ASSERT_EQ(by_topic.count("wbi/split_me/sensors"), 1u) << part;
     for (const auto& message : by_topic.at("wbi/split_me/sensors")) {
@@ -249,12 +172,12 @@ TEST_F(RecordPlay, PlaysValuesInOrderWithRecordedTimingAtRates1And2) {
   wbi::dds::Participant participant("listener");
   std::map<double, double> span_by_rate;
   for (const double rate : {1.0, 2.0}) {
-    Listener listener(participant, "play_t", "wbi/play_t/sensors");
+    wbi::test::SensorListener listener(participant, "play_t", "wbi/play_t/sensors");
     const auto run = wbi::test::run_wbi(
         {"play", recording.string(), "--rate", std::to_string(rate), "--wait-subscribers", "20"});
     ASSERT_EQ(run.code, 0) << run.output;
     ASSERT_TRUE(listener.wait_for(kCount, 10s)) << listener.received() << " of " << kCount;
-    EXPECT_EQ(listener.seqs(), iota_seqs(kCount));
+    EXPECT_EQ(listener.seqs(), wbi::test::consecutive_seqs(0, kCount));
     EXPECT_EQ(listener.mismatch(), "");
     span_by_rate[rate] = arrival_span_s(listener.arrivals_ns());
     EXPECT_GT(span_by_rate[rate], 0.85 * expected_s / rate) << "rate " << rate;
@@ -269,13 +192,13 @@ TEST_F(RecordPlay, RemapPublishesUnderTheNewName) {
   const auto recording = file("remap.mcap");
   wbi::test::write_pattern_recording(recording, {"remap_src"}, 20, 5ms);
   wbi::dds::Participant participant("listener");
-  Listener listener(participant, "remap_src", "wbi/remapped/sensors");
+  wbi::test::SensorListener listener(participant, "remap_src", "wbi/remapped/sensors");
   const auto run = wbi::test::run_wbi({"play", recording.string(), "--remap",
                                        "wbi/remap_src/sensors:=wbi/remapped/sensors",
                                        "--wait-subscribers", "20"});
   ASSERT_EQ(run.code, 0) << run.output;
   ASSERT_TRUE(listener.wait_for(20, 10s)) << listener.received() << "\n" << run.output;
-  EXPECT_EQ(listener.seqs(), iota_seqs(20));
+  EXPECT_EQ(listener.seqs(), wbi::test::consecutive_seqs(0, 20));
   EXPECT_EQ(listener.mismatch(), "");
 }
 
@@ -290,8 +213,8 @@ TEST_F(RecordPlay, RecordPlayRecordKeepsEveryPayload) {
   ASSERT_EQ(run.code, 0) << run.output;
   // The player waited for every reader's acknowledgement before it exited.
   ASSERT_EQ(recorder.stop(SIGTERM, 20s), 0) << recorder.output();
-  auto expected = messages_by_topic(original);
-  auto recorded = messages_by_topic(again);
+  auto expected = wbi::test::messages_by_topic(original);
+  auto recorded = wbi::test::messages_by_topic(again);
   ASSERT_EQ(recorded.size(), expected.size()) << recorder.output();
   for (const auto& [topic, messages] : expected) {
     const auto& got = recorded[topic];
@@ -307,7 +230,7 @@ TEST_F(RecordPlay, PauseAndStepThroughTheControlTopic) {
   const auto recording = file("paused.mcap");
   wbi::test::write_pattern_recording(recording, {"step_me"}, 10, 5ms);
   wbi::dds::Participant participant("controller");
-  Listener listener(participant, "step_me", "wbi/step_me/sensors");
+  wbi::test::SensorListener listener(participant, "step_me", "wbi/step_me/sensors");
   wbi::dds::Publisher<wbi::msg::PlaybackCommand> control(participant, "wbi/play/control",
                                                          wbi::dds::qos::kCommand);
   ChildProcess player(wbi::test::wbi_program(), {"play", recording.string(), "--paused"});
@@ -331,7 +254,7 @@ TEST_F(RecordPlay, PauseAndStepThroughTheControlTopic) {
   EXPECT_FALSE(listener.wait_for(after_step + 1, 300ms)) << "still paused after the step";
   ASSERT_TRUE(send_until(wbi::msg::RESUME, 10)) << player.output();
   EXPECT_EQ(player.wait(20s), std::optional<int>(0)) << player.output();
-  EXPECT_EQ(listener.seqs(), iota_seqs(10));
+  EXPECT_EQ(listener.seqs(), wbi::test::consecutive_seqs(0, 10));
 }
 
 TEST_F(RecordPlay, BadArgumentsAndFilesGiveClearErrors) {
@@ -356,6 +279,7 @@ TEST_F(RecordPlay, BadArgumentsAndFilesGiveClearErrors) {
       {{"play", garbage.string()}, "bad magic"},
       {{"play", file("missing.mcap").string()}, "no such file"},
       {{"play", recording.string(), "--rate", "0"}, "--rate must be > 0"},
+      {{"play", recording.string(), "--start-offset", "5"}, "past the end of the recording"},
       {{"play", recording.string(), "--remap", "nothing"}, "FROM:=TO"},
       {{"play", recording.string(), "--remap", "wbi/none:=wbi/x"}, "no topic 'wbi/none'"},
       {{"play", recording.string(), "--topics", "wbi/none"}, "no topic to play"},

@@ -47,6 +47,8 @@ struct Player::Impl {
   std::vector<int> output_of_channel;  // channel id -> index into outputs, -1: not played
   std::optional<dds::Publisher<msg::SimulationClock>> clock_publisher;
   msg::SimulationClock clock_sample;
+  std::uint64_t next_clock_tick = 0;
+  bool clock_first_sent = false;
   std::uint64_t recording_start = 0;  // log time of the first message
   std::uint64_t play_start = 0;       // recording_start + start offset
 
@@ -83,6 +85,12 @@ struct Player::Impl {
     play_start = recording_start + static_cast<std::uint64_t>(options.start_offset_s * 1e9);
     progress.duration_s = 1e-9 * static_cast<double>(info.statistics.message_end_time -
                                                      info.statistics.message_start_time);
+    if (play_start > info.statistics.message_end_time) {
+      // Nothing would play (and --loop would spin on empty passes).
+      throw std::invalid_argument("--start-offset " + std::to_string(options.start_offset_s) +
+                                  " s is past the end of the recording (" +
+                                  std::to_string(progress.duration_s) + " s long)");
+    }
     create_outputs();
     if (options.clock) {
       clock_publisher.emplace(participant, options.clock_topic, dds::qos::kStream);
@@ -147,12 +155,32 @@ struct Player::Impl {
 
   void wait_for_subscribers() {
     const auto deadline = std::chrono::steady_clock::now() + options.wait_for_subscribers;
+    const auto left = [&] {
+      return std::max(std::chrono::nanoseconds(deadline - std::chrono::steady_clock::now()),
+                      std::chrono::nanoseconds::zero());
+    };
     for (auto& output : outputs) {
-      const auto left = deadline - std::chrono::steady_clock::now();
-      if (!output.publisher->wait_for_subscribers(1, std::max(left, decltype(left)::zero()))) {
+      if (!output.publisher->wait_for_subscribers(1, left())) {
         log("warning: no subscriber on " + output.topic + "; playing anyway");
       }
     }
+    if (clock_publisher && !clock_publisher->wait_for_subscribers(1, left())) {
+      log("warning: no subscriber on " + options.clock_topic + "; playing anyway");
+    }
+  }
+
+  // A reader that matched just now may not have matched us yet: its
+  // acknowledgement of the first sample says it has it. Timing restarts after
+  // it, so that the wait does not squeeze the spacing of what follows.
+  template <class Publisher>
+  void confirm_first(Publisher& publisher, bool& first_sent, std::uint64_t log_time) {
+    if (first_sent || options.wait_for_subscribers.count() == 0) {
+      return;
+    }
+    first_sent = true;
+    publisher.wait_acknowledged(options.wait_for_subscribers);
+    std::lock_guard lock(mutex);
+    rebase(log_time);
   }
 
   // Rebases the timing so that log time `log` is due now. Caller holds mutex.
@@ -215,8 +243,9 @@ struct Player::Impl {
       return false;
     }
     clock_sample.time_ns(static_cast<std::int64_t>(log_time));
-    clock_sample.tick(clock_sample.tick() + 1);
+    clock_sample.tick(next_clock_tick++);  // from 0, as the simulation's clock
     played(log_time, true, clock_publisher->publish(clock_sample));
+    confirm_first(*clock_publisher, clock_first_sent, log_time);
     return true;
   }
 
@@ -249,14 +278,7 @@ struct Player::Impl {
       Output& output = outputs[static_cast<std::size_t>(index)];
       const bool accepted = output.publisher->publish(message->data);
       played(message->log_time, false, accepted);
-      if (!output.first_sent && options.wait_for_subscribers.count() > 0) {
-        // A reader that matched just now may not have matched us yet; its
-        // acknowledgement says it has the first sample. Timing starts after it.
-        output.first_sent = true;
-        output.publisher->wait_acknowledged(options.wait_for_subscribers);
-        std::lock_guard lock(mutex);
-        rebase(message->log_time);
-      }
+      confirm_first(*output.publisher, output.first_sent, message->log_time);
     }
     return true;
   }
@@ -276,6 +298,9 @@ struct Player::Impl {
     }
     for (auto& output : outputs) {  // reliable readers get the tail before we go
       output.publisher->wait_acknowledged(std::chrono::seconds(1));
+    }
+    if (clock_publisher) {
+      clock_publisher->wait_acknowledged(std::chrono::seconds(1));
     }
   }
 

@@ -146,6 +146,7 @@ struct Recorder::Impl {
   }
 
   void write(const QueuedSample& sample) {
+    split_if_large();  // here, not after a drain: a new file starts with a message, never empty
     Subscription& subscription = subscriptions[sample.source];
     writer->write(subscription.channel_id, subscription.sequence++, sample.log_time,
                   sample.publish_time, sample.bytes);
@@ -189,7 +190,6 @@ struct Recorder::Impl {
     };
     while (!stop_requested) {
       queue.drain(consume, options.discovery_period / 2);
-      split_if_large();
       const auto now = clock::now();
       if (now >= next_discovery) {
         discover();
