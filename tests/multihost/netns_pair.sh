@@ -3,6 +3,9 @@
 #   source netns_pair.sh
 #   netns_pair_create || exit $?   # 77 (skip) when namespaces cannot be created
 #   on_host_a CMD... / on_host_b CMD...
+# With `netns_pair_create EMULATOR ARGS...` the link is instead two TAP devices
+# joined by the link emulator (wbi_link_emulator: delay, jitter, loss; the
+# kernel may have no netem), started as `EMULATOR --tap-a .. --tap-b .. ARGS...`.
 # Host A is 10.77.0.1, host B 10.77.0.2 (/24). The addresses live only inside
 # the pair, so concurrent runs do not collide; the names are unique per run.
 # Everything is removed on exit, even on failure (trap).
@@ -11,8 +14,10 @@ HOST_A_ADDRESS=10.77.0.1
 HOST_B_ADDRESS=10.77.0.2
 NETNS_A="wbi$$a"
 NETNS_B="wbi$$b"
-VETH_A="wbv$$a"  # at most 15 characters
+VETH_A="wbv$$a"  # the link's ends (veth, or TAP with the emulator); at most 15 characters
 VETH_B="wbv$$b"
+NETNS_EMULATOR_PID=""
+NETNS_EMULATOR_LOG=""  # its output: "ready", then its counters when stopped
 NETNS_PIDS=()    # processes started with on_host_*: stopped by netns_pair_cleanup
 NETNS_TEMP_DIR="" # removed by netns_pair_cleanup too (the tests' logs)
 
@@ -29,9 +34,35 @@ netns_stop_processes() {
 
 netns_pair_cleanup() {
   netns_stop_processes
+  netns_stop_emulator
+  [[ -z "$NETNS_EMULATOR_LOG" ]] || rm -f "$NETNS_EMULATOR_LOG"
   ip netns del "$NETNS_A" 2>/dev/null || true  # also removes the veth pair
   ip netns del "$NETNS_B" 2>/dev/null || true
   [[ -z "$NETNS_TEMP_DIR" ]] || rm -rf "$NETNS_TEMP_DIR"
+}
+
+# Stops the link emulator (the TAP devices go with it); its counters stay in its log.
+netns_stop_emulator() {
+  [[ -n "$NETNS_EMULATOR_PID" ]] || return 0
+  kill -TERM "$NETNS_EMULATOR_PID" 2>/dev/null || true
+  wait "$NETNS_EMULATOR_PID" 2>/dev/null || true
+  NETNS_EMULATOR_PID=""
+}
+
+# The emulator in this (the root) namespace, its two TAP devices moved to the hosts'.
+netns_start_emulator() {
+  if [[ ! -c /dev/net/tun ]]; then
+    echo "skipped: no /dev/net/tun: the link emulator needs TAP devices"
+    return 77
+  fi
+  NETNS_EMULATOR_LOG=$(mktemp /tmp/wbi-link-emulator.XXXXXX)
+  "$@" --tap-a "$VETH_A" --tap-b "$VETH_B" >"$NETNS_EMULATOR_LOG" 2>&1 &
+  NETNS_EMULATOR_PID=$!
+  if ! wait_for_text "$NETNS_EMULATOR_LOG" "ready" 10; then
+    cat "$NETNS_EMULATOR_LOG"
+    echo "skipped: the link emulator could not make its TAP devices"
+    return 77
+  fi
 }
 
 netns_pair_create() {
@@ -42,7 +73,11 @@ netns_pair_create() {
   trap netns_pair_cleanup EXIT
   trap 'exit 130' INT TERM
   ip netns add "$NETNS_B"
-  ip link add "$VETH_A" type veth peer name "$VETH_B"
+  if (($# > 0)); then
+    netns_start_emulator "$@" || return $?
+  else
+    ip link add "$VETH_A" type veth peer name "$VETH_B"
+  fi
   ip link set "$VETH_A" netns "$NETNS_A"
   ip link set "$VETH_B" netns "$NETNS_B"
   local ns dev address
@@ -60,12 +95,8 @@ netns_pair_create() {
 on_host_a() { local log=$1; shift; ip netns exec "$NETNS_A" "$@" >"$log" 2>&1 & NETNS_PIDS+=($!); }
 on_host_b() { local log=$1; shift; ip netns exec "$NETNS_B" "$@" >"$log" 2>&1 & NETNS_PIDS+=($!); }
 
-# The link between the hosts: netns_link down|up, netns_netem ARGS (tc netem on both ends).
+# The link between the hosts: netns_link down|up (both ends).
 netns_link() { ip -n "$NETNS_A" link set "$VETH_A" "$1"; ip -n "$NETNS_B" link set "$VETH_B" "$1"; }
-netns_netem() {
-  tc -n "$NETNS_A" qdisc replace dev "$VETH_A" root netem "$@"
-  tc -n "$NETNS_B" qdisc replace dev "$VETH_B" root netem "$@"
-}
 
 # wait_for_text FILE TEXT SECONDS: 0 once FILE contains TEXT, 1 on timeout.
 wait_for_text() {
