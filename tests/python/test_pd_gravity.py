@@ -19,7 +19,8 @@ class PythonPdGravity(unittest.TestCase):
         self.assertEqual(result.returncode, 0, out)
         for process in ("robot", "estimator", "controller"):
             self.assertIn(f"[launch] {process}: started", out)
-        self.assertIn("[controller] t =   1.00 s", out, "no progress lines")
+        # t is the loop's measured time: under load the line after 1 s may read 1.01.
+        self.assertIn("[controller] t =   1.", out, "no progress lines")
         loop = re.search(r"\[controller\] loop: (\d+) iterations at ([\d.]+) Hz", out)
         self.assertIsNotNone(loop, out)
         self.assertGreater(int(loop.group(1)), 0)
