@@ -126,9 +126,10 @@ TEST_F(LaunchTest, CtrlCStopsEverything) {
 // Into a pipe (this test's, `| tee`, a supervisor) a process's lines come out
 // as they are printed, not when the launcher's buffer fills or the launch ends.
 TEST_F(LaunchTest, OutputReachesAPipeWhileTheLaunchRuns) {
-  const auto deploy = write("pipe.yaml",
-                            "processes:\n"
-                            "  - {name: chatty, command: [sh, -c, \"echo first line; sleep 30\"]}\n");
+  const auto deploy =
+      write("pipe.yaml",
+            "processes:\n"
+            "  - {name: chatty, command: [sh, -c, \"echo first line; sleep 30\"]}\n");
   ChildProcess launch(wbi_exe(), {"launch", deploy.string()});
   EXPECT_TRUE(launch.wait_for_output("[chatty] first line\n", 10s)) << launch.output();
   EXPECT_EQ(launch.stop(SIGINT, 10s), 130) << launch.output();

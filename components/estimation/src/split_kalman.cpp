@@ -101,14 +101,15 @@ void SplitKalmanEstimator::step(double dt_s, const Eigen::Ref<const Eigen::Vecto
   for (Eigen::Index j = 0; j < joints(); ++j) {
     previous_velocity_(j) = moving_.velocity(j);
   }
-  moving_.step(dt_s, q, std::exp(-dt_s / memory_s_));
+  const double bank_forget = std::exp(-dt_s / memory_s_);
+  moving_.step(dt_s, q, bank_forget);
   if (!sticking_) {
     for (Eigen::Index j = 0; j < joints(); ++j) {
       ddq(j) = moving_.acceleration(j);
     }
     return;
   }
-  sticking_->step_like(moving_, q, std::exp(-dt_s / memory_s_));
+  sticking_->step_like(moving_, q, bank_forget);
   anticipate_sticks(dt_s);
   const double forget = std::exp(-dt_s / stick_memory_s_);
   for (Eigen::Index j = 0; j < joints(); ++j) {

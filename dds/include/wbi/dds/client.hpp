@@ -163,7 +163,7 @@ class Client : private detail::ReaderSink {
       probe_if_due();
       return CallStatus::not_connected;
     }
-    probing_ = false;
+    send_probes_.reset();  // should the connection be lost, the first probe goes out at once
     const CallStatus sent = start(request, std::chrono::steady_clock::now() + timeout);
     if (sent == CallStatus::ok) {
       in_flight_ = request;  // after the write: no delay; buffers reused after warm-up
@@ -234,18 +234,16 @@ class Client : private detail::ReaderSink {
     }
     detail::ResendSchedule probes(kProbeFirst, kProbeMax);
     std::unique_lock lock(mutex_);
-    bool first = true;
     while (!confirmed_) {
       const auto now = std::chrono::steady_clock::now();
       if (now >= deadline) {
         return false;
       }
-      if (first || probes.due(now)) {
+      if (!probes.started() || probes.due(now)) {
         lock.unlock();
         request_writer_.write(&probe_);
         lock.lock();
-        first ? probes.sent(now) : probes.resent(now);
-        first = false;
+        probes.record(now);
       }
       replied_.wait_until(lock, std::min(deadline, probes.next()), [&] { return confirmed_; });
     }
@@ -258,10 +256,9 @@ class Client : private detail::ReaderSink {
       return;
     }
     const auto now = std::chrono::steady_clock::now();
-    if (!probing_ || send_probes_.due(now)) {
+    if (!send_probes_.started() || send_probes_.due(now)) {
       request_writer_.write(&probe_);
-      probing_ ? send_probes_.resent(now) : send_probes_.sent(now);
-      probing_ = true;
+      send_probes_.record(now);
     }
   }
 
@@ -336,8 +333,7 @@ class Client : private detail::ReaderSink {
   std::uint64_t next_seq_ = 0;
   std::uint64_t last_seq_ = 0;
   detail::ResendSchedule resend_;       // of the call in flight
-  detail::ResendSchedule send_probes_;  // of send()'s probes
-  bool probing_ = false;                // send() has probed since it was last connected
+  detail::ResendSchedule send_probes_;  // of send()'s probes, started by the first since connected
   Req in_flight_;                       // send()'s request, for poll()'s resends
   Req probe_;                           // client_id and kProbeSeq, else default
 

@@ -106,21 +106,29 @@ class ResendSchedule {
   using Clock = std::chrono::steady_clock;
   ResendSchedule(std::chrono::nanoseconds first, std::chrono::nanoseconds max)
       : first_(first), max_(std::max(first, max)) {}
+  // A first send: the schedule starts afresh.
   void sent(Clock::time_point now) {
+    started_ = true;
     interval_ = first_;
     next_ = now + first_;
   }
-  bool due(Clock::time_point now) const { return first_.count() > 0 && now >= next_; }
+  // A send again: the next interval doubles.
   void resent(Clock::time_point now) {
     interval_ = std::min(2 * interval_, max_);
     next_ = now + interval_;
   }
+  // sent() for the first send since the start or reset(), resent() after it.
+  void record(Clock::time_point now) { started_ ? resent(now) : sent(now); }
+  bool started() const { return started_; }
+  void reset() { started_ = false; }
+  bool due(Clock::time_point now) const { return first_.count() > 0 && now >= next_; }
   // The next resend time (time_point::max() when never).
   Clock::time_point next() const { return first_.count() > 0 ? next_ : Clock::time_point::max(); }
 
  private:
   std::chrono::nanoseconds first_;
   std::chrono::nanoseconds max_;
+  bool started_ = false;
   std::chrono::nanoseconds interval_{};
   Clock::time_point next_{};
 };
