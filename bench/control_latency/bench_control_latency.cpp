@@ -201,6 +201,12 @@ int main(int argc, char** argv) {
                                   ? 0.0
                                   : *std::max_element(r.latencies_us.begin(), r.latencies_us.end());
       out["latency_samples"] = r.latencies_us.size();
+      for (const auto& [key, values] : {std::pair{"sensor_to_state", &r.to_state_us},
+                                        std::pair{"state_to_command", &r.to_command_us},
+                                        std::pair{"command_delivery", &r.delivery_us}}) {
+        out[std::string(key) + "_p50_us"] = percentile(*values, 0.5);
+        out[std::string(key) + "_p99_us"] = percentile(*values, 0.99);
+      }
       // Commands that came more than one control period (1 ms) after their sensor sample.
       out["late_commands"] = std::count_if(r.latencies_us.begin(), r.latencies_us.end(),
                                            [](double us) { return us > 1000.0; });

@@ -26,15 +26,22 @@ LatencyObserver::LatencyObserver(dds::Participant& participant, const std::strin
                [this](const msg::SensorSample& sample, const dds::detail::SampleInfo& info) {
                  on_sensor(sample, info);
                }),
+      states_(participant, dds::topics::state(robot), dds::qos::kStatus,
+              [this](const msg::StateEstimate& state, const dds::detail::SampleInfo& info) {
+                on_state(state, info);
+              }),
       commands_(participant, dds::topics::commands(robot), dds::qos::kCommand,
-                [this](const msg::ActuatorCommand& command, const dds::detail::SampleInfo&) {
-                  on_command(command);
+                [this](const msg::ActuatorCommand& command, const dds::detail::SampleInfo& info) {
+                  on_command(command, info);
                 }),
       status_(participant, dds::topics::kStatus, dds::qos::kStatus,
               [this](const msg::ComponentStatus& status, const dds::detail::SampleInfo&) {
                 on_status(status);
               }) {
-  result_.latencies_us.reserve(max_samples_);
+  for (auto* v : {&result_.latencies_us, &result_.to_state_us, &result_.to_command_us,
+                  &result_.delivery_us}) {
+    v->reserve(max_samples_);
+  }
 }
 
 // A sensor sample's slot is its sequence number (the robot's tick), which a
@@ -42,11 +49,22 @@ LatencyObserver::LatencyObserver(dds::Participant& participant, const std::strin
 void LatencyObserver::on_sensor(const msg::SensorSample& sample,
                                 const dds::detail::SampleInfo& info) {
   std::lock_guard lock(mutex_);
-  seen_[sample.header().seq() % kSlots] = {sample.header().stamp_ns(), info.source_stamp_ns};
+  seen_[sample.header().seq() % kSlots] = {sample.header().stamp_ns(), info.source_stamp_ns, 0};
   ++result_.sensor_samples;
 }
 
-void LatencyObserver::on_command(const msg::ActuatorCommand& command) {
+// The estimator copies the sensor sample's seq and stamp into its estimate.
+void LatencyObserver::on_state(const msg::StateEstimate& state,
+                               const dds::detail::SampleInfo& info) {
+  std::lock_guard lock(mutex_);
+  Seen& sensor = seen_[state.header().seq() % kSlots];
+  if (sensor.stamp_ns == state.header().stamp_ns()) {
+    sensor.state_published_ns = info.source_stamp_ns;
+  }
+}
+
+void LatencyObserver::on_command(const msg::ActuatorCommand& command,
+                                 const dds::detail::SampleInfo& info) {
   const std::int64_t arrived_ns = system_now_ns();
   std::lock_guard lock(mutex_);
   ++result_.commands;
@@ -57,6 +75,13 @@ void LatencyObserver::on_command(const msg::ActuatorCommand& command) {
   }
   if (result_.latencies_us.size() < max_samples_) {
     result_.latencies_us.push_back(1e-3 * static_cast<double>(arrived_ns - sensor.published_ns));
+    result_.delivery_us.push_back(1e-3 * static_cast<double>(arrived_ns - info.source_stamp_ns));
+    if (sensor.state_published_ns != 0) {  // the estimate may reach us after the command
+      result_.to_state_us.push_back(
+          1e-3 * static_cast<double>(sensor.state_published_ns - sensor.published_ns));
+      result_.to_command_us.push_back(
+          1e-3 * static_cast<double>(info.source_stamp_ns - sensor.state_published_ns));
+    }
   }
 }
 

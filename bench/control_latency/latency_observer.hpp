@@ -15,6 +15,7 @@
 
 #include <wbi/msg/commands.h>
 #include <wbi/msg/sensors.h>
+#include <wbi/msg/state.h>
 #include <wbi/msg/status.h>
 #include <wbi/dds/subscriber.hpp>
 
@@ -28,6 +29,11 @@ class LatencyObserver {
 
   struct Result {
     std::vector<double> latencies_us;  // one per command matched to its sensor sample
+    // The same commands' latency split in three, by the writers' DDS source
+    // timestamps: robot write -> estimator write (hop + estimate), estimator
+    // write -> controller write (hop + control cycle with its model calls),
+    // controller write -> arrival here (the command's delivery).
+    std::vector<double> to_state_us, to_command_us, delivery_us;
     std::uint64_t sensor_samples = 0;
     std::uint64_t commands = 0;
     std::uint64_t unmatched_commands = 0;  // their sensor sample was not seen (or too old)
@@ -44,12 +50,14 @@ class LatencyObserver {
 
  private:
   void on_sensor(const msg::SensorSample& sample, const dds::detail::SampleInfo& info);
-  void on_command(const msg::ActuatorCommand& command);
+  void on_state(const msg::StateEstimate& state, const dds::detail::SampleInfo& info);
+  void on_command(const msg::ActuatorCommand& command, const dds::detail::SampleInfo& info);
   void on_status(const msg::ComponentStatus& status);
 
   struct Seen {
-    std::int64_t stamp_ns = -1;     // Header.stamp_ns
-    std::int64_t published_ns = 0;  // DDS source timestamp (system clock)
+    std::int64_t stamp_ns = -1;           // Header.stamp_ns
+    std::int64_t published_ns = 0;        // DDS source timestamp (system clock)
+    std::int64_t state_published_ns = 0;  // its estimate's DDS source timestamp, 0: not seen
   };
   static constexpr std::size_t kSlots = 4096;  // sensor samples remembered (4 s at 1 kHz)
 
@@ -61,6 +69,7 @@ class LatencyObserver {
   std::size_t max_samples_;
 
   dds::Subscriber<msg::SensorSample> sensors_;
+  dds::Subscriber<msg::StateEstimate> states_;
   dds::Subscriber<msg::ActuatorCommand> commands_;
   dds::Subscriber<msg::ComponentStatus> status_;
 };

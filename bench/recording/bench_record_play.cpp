@@ -7,7 +7,12 @@
 //   max_rate   the same payloads written as fast as the writers take them
 //              (wbi.command QoS, depth 8) on N topics for D s
 //   play       a 1 kHz recording played to a subscriber: the error of each
-//              inter-arrival interval against 1 ms, p50 / p99 / max
+//              inter-arrival interval against 1 ms, p50 / p99 / max, and of
+//              the intervals between writes (DDS source timestamps); once with
+//              normal scheduling, once at `wbi play --realtime-priority 20`
+//
+// The streams' QoS is the built-in one (reliable) unless WBI_QOS_FILE names
+// another, e.g. deploy/qos_realtime.xml (best effort); the JSON says which.
 //
 // usage: wbi_bench_record_play [--duration S] [--topics N,N,...] [--json FILE]
 // Prints one JSON object (also to FILE with --json).
@@ -15,6 +20,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -133,7 +139,7 @@ nlohmann::json record_run(std::size_t topics, double duration_s, std::chrono::na
   };
 }
 
-nlohmann::json play_run(std::size_t count) {
+nlohmann::json play_run(std::size_t count, int realtime_priority) {
   const auto file = scratch("play.mcap");
   {
     wbi::mcap::Writer writer(file);
@@ -155,27 +161,41 @@ nlohmann::json play_run(std::size_t count) {
   wbi::dds::Participant player_side("bench player");
   wbi::dds::Participant listener_side("bench listener");
   std::mutex mutex;
-  std::vector<std::int64_t> arrivals;
+  std::vector<std::int64_t> arrivals;   // steady clock, at the listener
+  std::vector<std::int64_t> published;  // DDS source timestamps: the player's write
   arrivals.reserve(count);
+  published.reserve(count);
   wbi::dds::Subscriber<Sample> listener(
       listener_side, "wbi/bench_play/sensors", wbi::dds::qos::kStream,
       [&](const Sample&, const wbi::dds::detail::SampleInfo& info) {
         std::lock_guard lock(mutex);
         arrivals.push_back(info.received_ns);
+        published.push_back(info.source_stamp_ns);
       });
   wbi::recording::PlayerOptions options;
   options.file = file;
   options.wait_for_subscribers = std::chrono::seconds(10);
+  options.realtime_priority = realtime_priority;
+  std::string warnings;
+  options.log = [&warnings](const std::string& line) { warnings += line + "\n"; };
   wbi::recording::Player player(player_side, options);
   player.run();
   wbi::dds::Received<Sample> last;
   listener.wait_newer(last, count - 1, std::chrono::seconds(5));
   std::filesystem::remove(file);
   std::lock_guard lock(mutex);
+  // Arrival intervals against 1 ms: what a subscriber sees, its own wake-ups included.
   std::vector<double> errors_us;
   for (std::size_t i = 2; i < arrivals.size(); ++i) {  // the first comes after the start-up wait
     errors_us.push_back(
         std::abs(1e-3 * static_cast<double>(arrivals[i] - arrivals[i - 1]) - 1000.0));
+  }
+  // The same for the writes (their DDS source timestamps): the player's own
+  // timing, without the delivery to the subscriber.
+  std::vector<double> publish_errors_us;
+  for (std::size_t i = 2; i < published.size(); ++i) {
+    publish_errors_us.push_back(
+        std::abs(1e-3 * static_cast<double>(published[i] - published[i - 1]) - 1000.0));
   }
   if (errors_us.empty()) {
     throw std::runtime_error("the listener received nothing");
@@ -186,6 +206,11 @@ nlohmann::json play_run(std::size_t count) {
       {"interval_error_us_p50", percentile(errors_us, 0.50)},
       {"interval_error_us_p99", percentile(errors_us, 0.99)},
       {"interval_error_us_max", percentile(errors_us, 1.0)},
+      {"publish_error_us_p50", percentile(publish_errors_us, 0.50)},
+      {"publish_error_us_p99", percentile(publish_errors_us, 0.99)},
+      {"publish_error_us_max", percentile(publish_errors_us, 1.0)},
+      {"realtime_priority", realtime_priority},
+      {"warnings", warnings},
   };
 }
 
@@ -228,7 +253,11 @@ int main(int argc, char** argv) {
       result["max_rate"].push_back(
           record_run(topics, duration_s, std::chrono::nanoseconds(0), wbi::dds::qos::kCommand));
     }
-    result["play_1khz"] = play_run(static_cast<std::size_t>(duration_s * 1000));
+    const auto play_count = static_cast<std::size_t>(duration_s * 1000);
+    result["play_1khz"] = play_run(play_count, 0);
+    result["play_1khz_realtime"] = play_run(play_count, 20);  // wbi play --realtime-priority 20
+    const char* qos_file = std::getenv("WBI_QOS_FILE");
+    result["qos_file"] = qos_file != nullptr ? qos_file : "";  // "": the built-in profiles
     std::cout << result.dump(2) << std::endl;
     if (!json_file.empty()) {
       std::ofstream(json_file) << result.dump(2) << "\n";

@@ -279,6 +279,8 @@ TEST_F(RecordPlay, BadArgumentsAndFilesGiveClearErrors) {
       {{"play", garbage.string()}, "bad magic"},
       {{"play", file("missing.mcap").string()}, "no such file"},
       {{"play", recording.string(), "--rate", "0"}, "--rate must be > 0"},
+      {{"play", recording.string(), "--realtime-priority", "100"},
+       "--realtime-priority must be in [0, 99]"},
       {{"play", recording.string(), "--start-offset", "5"}, "past the end of the recording"},
       {{"play", recording.string(), "--remap", "nothing"}, "FROM:=TO"},
       {{"play", recording.string(), "--remap", "wbi/none:=wbi/x"}, "no topic 'wbi/none'"},

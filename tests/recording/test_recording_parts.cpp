@@ -3,6 +3,9 @@
 // bytes, and the QoS profile chosen from channel metadata.
 #include <gtest/gtest.h>
 
+#include <pthread.h>
+#include <sched.h>
+
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -15,6 +18,7 @@
 
 #include "allocation_counter.hpp"
 #include "channel_qos.hpp"
+#include "realtime_scope.hpp"
 #include "record_play_support.hpp"
 #include "sample_queue.hpp"
 #include "source_stamp.hpp"
@@ -25,6 +29,40 @@ using wbi::recording::SampleQueue;
 
 std::vector<std::uint8_t> bytes_of(std::uint8_t value, std::size_t size) {
   return std::vector<std::uint8_t>(size, value);
+}
+
+int thread_policy(int* priority = nullptr) {
+  int policy = -1;
+  sched_param param{};
+  pthread_getschedparam(pthread_self(), &policy, &param);
+  if (priority != nullptr) {
+    *priority = param.sched_priority;
+  }
+  return policy;
+}
+
+// The player's real-time scheduling: SCHED_FIFO inside the scope where the OS
+// allows it (CI runs as root), the old policy after it; a reason otherwise.
+TEST(RealtimeScope, RunsTheThreadFifoForItsLifeOrSaysWhyNot) {
+  const int before = thread_policy();
+  {
+    const wbi::recording::RealtimeScope scope(7);
+    int priority = 0;
+    if (scope.active()) {
+      EXPECT_EQ(thread_policy(&priority), SCHED_FIFO);
+      EXPECT_EQ(priority, 7);
+      EXPECT_EQ(scope.refusal(), "");
+    } else {
+      EXPECT_EQ(thread_policy(), before);
+      EXPECT_NE(scope.refusal().find("SCHED_FIFO 7"), std::string::npos) << scope.refusal();
+    }
+  }
+  EXPECT_EQ(thread_policy(), before);
+  const wbi::recording::RealtimeScope off(0);
+  EXPECT_FALSE(off.active());
+  EXPECT_EQ(off.refusal(), "");
+  EXPECT_THROW(wbi::recording::RealtimeScope(100), std::invalid_argument);
+  EXPECT_THROW(wbi::recording::RealtimeScope(-1), std::invalid_argument);
 }
 
 TEST(SampleQueue, DeliversInOrderAndCountsDropsWhenFull) {

@@ -122,6 +122,10 @@ int run_play(Args raw_args) {
                  "first wait up to this long for a subscriber on every topic (0: start at once)",
                  "0");
   options.flag("paused", "start paused (space or 'resume' on the control topic to start)");
+  options.option("realtime-priority", "N",
+                 "play at SCHED_FIFO priority N (1-99), on time under load (needs "
+                 "CAP_SYS_NICE; else a warning; 0: off)",
+                 "0");
   options.option("domain", "ID", "DDS domain id (default: WBI_DOMAIN_ID, else 0)");
   std::vector<std::string> args(raw_args.begin(), raw_args.end());
   const bool wants_help = std::find(args.begin(), args.end(), "--help") != args.end() ||
@@ -140,6 +144,12 @@ int run_play(Args raw_args) {
   player_options.topics_pattern = options.get_optional("topics").value_or("");
   player_options.clock = options.has("clock");
   player_options.clock_rate_hz = options.get_double("clock-rate");
+  const long priority = options.get_int("realtime-priority");
+  if (priority < 0 || priority > 99) {
+    throw UsageError("--realtime-priority must be in [0, 99] (0: off), got " +
+                     std::to_string(priority));
+  }
+  player_options.realtime_priority = static_cast<int>(priority);
   const double wait_s = options.get_double("wait-subscribers");
   if (wait_s < 0) {
     throw UsageError("--wait-subscribers must be >= 0");

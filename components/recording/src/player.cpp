@@ -13,6 +13,7 @@
 #include <wbi/mcap/reader.hpp>
 
 #include "channel_qos.hpp"
+#include "realtime_scope.hpp"
 #include "topic_filter.hpp"
 
 namespace wbi::recording {
@@ -74,6 +75,7 @@ struct Player::Impl {
     if (options.clock && !(options.clock_rate_hz > 0.0)) {
       throw std::invalid_argument("clock rate must be > 0");
     }
+    RealtimeScope::check_priority(options.realtime_priority, "--realtime-priority");
     const auto& info = reader.info();
     for (const auto& warning : info.warnings) {
       log("warning: " + warning);
@@ -284,6 +286,10 @@ struct Player::Impl {
   }
 
   void run() {
+    const RealtimeScope realtime(options.realtime_priority);
+    if (!realtime.refusal().empty()) {
+      log("warning: no real-time priority, timing will suffer under load: " + realtime.refusal());
+    }
     if (options.wait_for_subscribers.count() > 0) {
       wait_for_subscribers();
     }

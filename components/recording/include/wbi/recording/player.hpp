@@ -41,6 +41,10 @@ struct PlayerOptions {
   std::chrono::nanoseconds wait_for_subscribers{0};
   // The last stretch of each wait is spun rather than slept, for timing accuracy.
   std::chrono::nanoseconds spin{200'000};
+  // > 0: run() plays at this SCHED_FIFO priority (1-99), so that other work
+  // on a loaded machine does not delay its messages; a warning, not an error,
+  // where the OS refuses (no CAP_SYS_NICE or rtprio limit). 0: normal scheduling.
+  int realtime_priority = 0;
   std::function<void(const std::string&)> log;  // warnings, one line each; may be empty
 };
 
