@@ -111,9 +111,9 @@ TickResult run_ticks(wbi::DdsInterfaceOptions::ModelSource source, int ticks) {
   target << 0.3, 0.6, -0.2, 1.2, 0.1, 0.9, 0.0;
   Eigen::MatrixXd M(6 + n, 6 + n);
   robot->mass_matrix(target, wbi::Transform::Identity(), M);
-  const double omega = 2.0 * M_PI * 3.0;  // the demo's 3 Hz bandwidth
-  const Eigen::VectorXd m = M.diagonal().tail(n);
-  wbi::controllers::PdGravity pd(*robot, {omega * omega * m, 2.0 * omega * m}, target);
+  const auto gains =  // the demo's: 5 Hz bandwidth
+      wbi::controllers::PdGravityGains::from_inertia(M.bottomRightCorner(n, n), 5.0);
+  wbi::controllers::PdGravity pd(*robot, gains, target);
   pd.start();
 
   TickResult result;

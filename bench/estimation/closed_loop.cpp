@@ -85,12 +85,16 @@ LoopResult run_loop(const Configuration& configuration, const std::string& robot
   const int n = arm->dofs();
   Eigen::VectorXd q_desired(n);
   q_desired << 0.3, 0.6, -0.2, 1.2, 0.1, 0.9, 0.0;  // the demo's target
-  // The demo's gains: critically damped joints at bandwidth_hz from their inertia.
+  // Critically damped joints at bandwidth_hz from the diagonal of their inertia:
+  // the demo's gains until 2026-11-24 (the figures in components/estimation/README.md;
+  // the demo now takes the whole inertia, PdGravityGains::from_inertia).
   Eigen::MatrixXd M(6 + n, 6 + n);
   arm->mass_matrix(q_desired, wbi::Transform::Identity(), M);
   const double omega = 2.0 * M_PI * bandwidth_hz;
   const Eigen::VectorXd m = M.diagonal().tail(n);
-  wbi::controllers::PdGravity pd(*arm, {omega * omega * m, 2.0 * omega * m}, q_desired);
+  wbi::controllers::PdGravity pd(
+      *arm, wbi::controllers::PdGravityGains::diagonal(omega * omega * m, 2.0 * omega * m),
+      q_desired);
   pd.start();
 
   const int late = std::min(ticks, 1000);  // the last second

@@ -54,11 +54,8 @@ ArmRun run_arm(const std::string& robot, int ticks) {
   // driven unstable by the one-tick delay of the loop.
   Eigen::MatrixXd M(6 + n, 6 + n);
   arm->mass_matrix(q_desired, wbi::Transform::Identity(), M);
-  const double omega = 2.0 * M_PI * 6.0;
-  const Eigen::VectorXd m = M.diagonal().tail(n);
-  const Eigen::VectorXd kp = omega * omega * m;
-  const Eigen::VectorXd kd = 2.0 * omega * m;
-  wbi::controllers::PdGravity pd(*arm, {kp, kd}, q_desired);
+  const auto gains = wbi::controllers::PdGravityGains::from_inertia(M.bottomRightCorner(n, n), 6.0);
+  wbi::controllers::PdGravity pd(*arm, gains, q_desired);
   pd.start();
   ArmRun run;
   for (int k = 0; k < ticks; ++k) {

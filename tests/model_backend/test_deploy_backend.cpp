@@ -76,8 +76,8 @@ TEST(DeployBackend, PdGravityDemoGivesTheSameFinalErrorWithDart) {
     GTEST_SKIP() << wbi::test::kDartMissing;
   }
   const std::string marker = "final max joint error";
-  const auto wbi_file = deploy_variant("demo_lockstep.yaml", "bandwidth_hz: 3", "", "wbi");
-  const auto dart_file = deploy_variant("demo_lockstep.yaml", "bandwidth_hz: 3",
+  const auto wbi_file = deploy_variant("demo_lockstep.yaml", "bandwidth_hz: 5", "", "wbi");
+  const auto dart_file = deploy_variant("demo_lockstep.yaml", "bandwidth_hz: 5",
                                         "          model_backend: dart", "dart");
   const double with_wbi = launch_summary(wbi_file, marker, kDemoSeconds);
   const double with_dart = launch_summary(dart_file, marker, kDemoSeconds);

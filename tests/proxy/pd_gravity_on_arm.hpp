@@ -20,7 +20,8 @@ struct PdGravityOnArm {
   explicit PdGravityOnArm(const wbi::DdsInterfaceOptions& options)
       : robot(init(options)),
         n(robot->dofs()),
-        gains{Eigen::VectorXd::Constant(n, 50.0), Eigen::VectorXd::Constant(n, 5.0)},
+        gains(wbi::controllers::PdGravityGains::diagonal(Eigen::VectorXd::Constant(n, 50.0),
+                                                         Eigen::VectorXd::Constant(n, 5.0))),
         q_desired(Eigen::VectorXd::LinSpaced(n, 0.2, -0.2)),
         controller(*robot, gains, q_desired) {}
 
@@ -39,7 +40,7 @@ struct PdGravityOnArm {
     wbi::model::Data data(full);
     const Eigen::VectorXd g =
         wbi::model::gravity_forces(full, data, peer_q(), Eigen::Vector3d(0, 0, -9.81));
-    return g - gains.kp.cwiseProduct(peer_q() - q_desired) - gains.kd.cwiseProduct(peer_dq());
+    return g - gains.kp * (peer_q() - q_desired) - gains.kd * peer_dq();
   }
 
   Eigen::VectorXd peer_q() const {

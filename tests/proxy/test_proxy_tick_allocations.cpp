@@ -91,8 +91,8 @@ class ProxyTick : public ::testing::Test {
 
 TEST_F(ProxyTick, APdGravityTickAllocatesNoMoreThanItsDdsWrite) {
   const int n = robot_->dofs();
-  wbi::controllers::PdGravityGains gains{Eigen::VectorXd::Constant(n, 50.0),
-                                         Eigen::VectorXd::Constant(n, 5.0)};
+  const auto gains = wbi::controllers::PdGravityGains::diagonal(Eigen::VectorXd::Constant(n, 50.0),
+                                                                Eigen::VectorXd::Constant(n, 5.0));
   wbi::controllers::PdGravity controller(*robot_, gains, Eigen::VectorXd::Zero(n));
   controller.start();
   const double per_tick =

@@ -1,5 +1,6 @@
 #include "wbi/controllers/pd_gravity.hpp"
 
+#include <cmath>
 #include <string>
 
 namespace wbi::controllers {
@@ -11,17 +12,42 @@ void require_size(const char* what, Eigen::Index size, int dofs) {
                 ", the controller has " + std::to_string(dofs) + " joints");
   }
 }
+
+void require_square(const char* what, const Eigen::MatrixXd& gain, int dofs) {
+  if (gain.rows() != dofs || gain.cols() != dofs) {
+    throw Error(std::string("PD + gravity: ") + what + " is " + std::to_string(gain.rows()) + "×" +
+                std::to_string(gain.cols()) + ", the controller has " + std::to_string(dofs) +
+                " joints");
+  }
+}
 }  // namespace
+
+PdGravityGains PdGravityGains::diagonal(const Eigen::VectorXd& kp, const Eigen::VectorXd& kd) {
+  return {kp.asDiagonal(), kd.asDiagonal()};
+}
+
+PdGravityGains PdGravityGains::from_inertia(const Eigen::MatrixXd& joint_inertia,
+                                            double bandwidth_hz) {
+  if (joint_inertia.rows() != joint_inertia.cols()) {
+    throw Error("PD + gravity: the joint inertia is not square");
+  }
+  if (!(bandwidth_hz > 0.0)) {
+    throw Error("PD + gravity: the bandwidth must be > 0 Hz, got " + std::to_string(bandwidth_hz));
+  }
+  const double omega = 2.0 * M_PI * bandwidth_hz;
+  return {omega * omega * joint_inertia, 2.0 * omega * joint_inertia};
+}
 
 PdGravity::PdGravity(WholeBodyInterface& robot, PdGravityGains gains, Eigen::VectorXd q_desired,
                      Eigen::Vector3d gravity)
     : robot_(robot), gains_(std::move(gains)), q_desired_(std::move(q_desired)), gravity_(gravity) {
   const int n = robot_.dofs();
-  require_size("kp", gains_.kp.size(), n);
-  require_size("kd", gains_.kd.size(), n);
+  require_square("kp", gains_.kp, n);
+  require_square("kd", gains_.kd, n);
   require_size("q_desired", q_desired_.size(), n);
   q_.setZero(n);
   dq_.setZero(n);
+  error_.setZero(n);
   tau_.setZero(n);
   g_.setZero(n + 6);
 }
@@ -46,9 +72,11 @@ void PdGravity::update(ReadMode mode) {
     base = robot_.read_base_pose(world_H_base_);
   }
   robot_.gravity_forces(q_, world_H_base_, gravity_, g_);
-  tau_ = g_.tail(robot_.dofs()) - gains_.kp.cwiseProduct(q_ - q_desired_) -
-         gains_.kd.cwiseProduct(dq_);
-  max_error_ = (q_ - q_desired_).cwiseAbs().maxCoeff();
+  error_ = q_ - q_desired_;
+  tau_ = g_.tail(robot_.dofs());
+  tau_.noalias() -= gains_.kp * error_;
+  tau_.noalias() -= gains_.kd * dq_;
+  max_error_ = error_.cwiseAbs().maxCoeff();
   robot_.set_control_reference(tau_);
 }
 

@@ -60,6 +60,11 @@ class PdGravityComponent final : public runtime::Component {
       throw runtime::ParameterError(parameters.where(kp.empty() ? "kd" : "kp") +
                                     ": give both kp and kd, or neither (gains from bandwidth_hz)");
     }
+    if (!(bandwidth_hz > 0.0)) {
+      throw runtime::ParameterError(parameters.where("bandwidth_hz") +
+                                    ": bandwidth_hz must be > 0, got " +
+                                    std::to_string(bandwidth_hz));
+    }
 
     robot_ = make_dds_interface(options);
     robot_->add_joints(joints);
@@ -77,14 +82,12 @@ class PdGravityComponent final : public runtime::Component {
     if (!kp.empty()) {
       check("kp", kp.size());
       check("kd", kd.size());
-      gains = {to_vector(kp), to_vector(kd)};
+      gains = PdGravityGains::diagonal(to_vector(kp), to_vector(kd));
     } else {
-      // Critically damped joints at bandwidth_hz, from their inertia at the target.
+      // Every mode critically damped at bandwidth_hz, from the inertia at the target.
       Eigen::MatrixXd M(6 + n, 6 + n);
       robot_->mass_matrix(to_vector(target), Transform::Identity(), M);
-      const double omega = 2.0 * M_PI * bandwidth_hz;
-      const Eigen::VectorXd m = M.diagonal().tail(n);
-      gains = {omega * omega * m, 2.0 * omega * m};
+      gains = PdGravityGains::from_inertia(M.bottomRightCorner(n, n), bandwidth_hz);
     }
     controller_.emplace(*robot_, gains, to_vector(target));
     newest_q_.setZero(n);

@@ -11,9 +11,21 @@
 
 namespace wbi::controllers {
 
+// K_p and K_d: symmetric positive definite [dofs × dofs] matrices (the
+// paper's form; any such pair makes PD + gravity converge, Takegaki and
+// Arimoto 1981). Diagonal gains are the usual hand-tuned case.
 struct PdGravityGains {
-  Eigen::VectorXd kp;  // [dofs] N m/rad
-  Eigen::VectorXd kd;  // [dofs] N m s/rad
+  Eigen::MatrixXd kp;  // N m/rad
+  Eigen::MatrixXd kd;  // N m s/rad
+
+  static PdGravityGains diagonal(const Eigen::VectorXd& kp, const Eigen::VectorXd& kd);
+  // Every mode of the arm critically damped at bandwidth_hz about the posture
+  // whose joint-space inertia is M_jj (the mass matrix's joint block):
+  // K_p = ω² M_jj, K_d = 2ω M_jj. Scaling by the diagonal of M_jj alone
+  // leaves coupled modes with up to max eig(M_jj⁻¹ diag M_jj) times the
+  // damping gain (19 for the project's arm), which a few milliseconds of
+  // loop delay destabilise (tests/multihost/README.md).
+  static PdGravityGains from_inertia(const Eigen::MatrixXd& joint_inertia, double bandwidth_hz);
 };
 
 class PdGravity {
@@ -38,7 +50,7 @@ class PdGravity {
   PdGravityGains gains_;
   Eigen::VectorXd q_desired_;
   Eigen::Vector3d gravity_;
-  Eigen::VectorXd q_, dq_, g_, tau_;
+  Eigen::VectorXd q_, dq_, error_, g_, tau_;
   Transform world_H_base_ = Transform::Identity();
   double max_error_ = 0.0;
 };
