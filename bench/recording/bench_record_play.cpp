@@ -139,7 +139,7 @@ nlohmann::json record_run(std::size_t topics, double duration_s, std::chrono::na
   };
 }
 
-nlohmann::json play_run(std::size_t count, int realtime_priority) {
+nlohmann::json play_run(std::size_t count, int realtime_priority, std::chrono::nanoseconds spin) {
   const auto file = scratch("play.mcap");
   {
     wbi::mcap::Writer writer(file);
@@ -176,6 +176,7 @@ nlohmann::json play_run(std::size_t count, int realtime_priority) {
   options.file = file;
   options.wait_for_subscribers = std::chrono::seconds(10);
   options.realtime_priority = realtime_priority;
+  options.spin = spin;
   std::string warnings;
   options.log = [&warnings](const std::string& line) { warnings += line + "\n"; };
   wbi::recording::Player player(player_side, options);
@@ -210,6 +211,7 @@ nlohmann::json play_run(std::size_t count, int realtime_priority) {
       {"publish_error_us_p99", percentile(publish_errors_us, 0.99)},
       {"publish_error_us_max", percentile(publish_errors_us, 1.0)},
       {"realtime_priority", realtime_priority},
+      {"spin_us", 1e-3 * static_cast<double>(spin.count())},
       {"warnings", warnings},
   };
 }
@@ -254,8 +256,11 @@ int main(int argc, char** argv) {
           record_run(topics, duration_s, std::chrono::nanoseconds(0), wbi::dds::qos::kCommand));
     }
     const auto play_count = static_cast<std::size_t>(duration_s * 1000);
-    result["play_1khz"] = play_run(play_count, 0);
-    result["play_1khz_realtime"] = play_run(play_count, 20);  // wbi play --realtime-priority 20
+    const wbi::recording::PlayerOptions defaults;
+    result["play_1khz"] = play_run(play_count, 0, defaults.spin);
+    // wbi play --realtime-priority 20, then also --spin-us 900
+    result["play_1khz_realtime"] = play_run(play_count, 20, defaults.spin);
+    result["play_1khz_realtime_spin900"] = play_run(play_count, 20, std::chrono::microseconds(900));
     const char* qos_file = std::getenv("WBI_QOS_FILE");
     result["qos_file"] = qos_file != nullptr ? qos_file : "";  // "": the built-in profiles
     std::cout << result.dump(2) << std::endl;

@@ -50,15 +50,16 @@ TEST_F(PlayOptions, LoopPlaysTheFileAgainInOrder) {
 
 // Samples stamped 1 ms apart, logged 1 ms apart: an offset of 49.5 ms starts
 // at the sample stamped 50 ms, and nothing before it is published. Played at a
-// real-time priority (granted or refused with a warning: the same messages).
+// real-time priority (granted or refused with a warning: the same messages)
+// and a longer spin.
 TEST_F(PlayOptions, StartOffsetSkipsTheFirstSeconds) {
   constexpr std::uint64_t kCount = 100;
   const auto recording = dir_ / "offset.mcap";
   wbi::test::write_pattern_recording(recording, {"offset_me"}, kCount, 1ms);
   wbi::test::SensorListener listener(participant_, "offset_me", "wbi/offset_me/sensors");
-  const auto run =
-      wbi::test::run_wbi({"play", recording.string(), "--start-offset", "0.0495", "--rate", "0.25",
-                          "--wait-subscribers", "20", "--realtime-priority", "10"});
+  const auto run = wbi::test::run_wbi({"play", recording.string(), "--start-offset", "0.0495",
+                                       "--rate", "0.25", "--wait-subscribers", "20",
+                                       "--realtime-priority", "10", "--spin-us", "500"});
   ASSERT_EQ(run.code, 0) << run.output;
   ASSERT_TRUE(listener.wait_for(kCount - 50, 10s)) << listener.received() << "\n" << run.output;
   const auto seqs = listener.seqs();

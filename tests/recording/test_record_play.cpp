@@ -281,6 +281,7 @@ TEST_F(RecordPlay, BadArgumentsAndFilesGiveClearErrors) {
       {{"play", recording.string(), "--rate", "0"}, "--rate must be > 0"},
       {{"play", recording.string(), "--realtime-priority", "100"},
        "--realtime-priority must be in [0, 99]"},
+      {{"play", recording.string(), "--spin-us", "-1"}, "--spin-us must be in [0, 1000000]"},
       {{"play", recording.string(), "--start-offset", "5"}, "past the end of the recording"},
       {{"play", recording.string(), "--remap", "nothing"}, "FROM:=TO"},
       {{"play", recording.string(), "--remap", "wbi/none:=wbi/x"}, "no topic 'wbi/none'"},

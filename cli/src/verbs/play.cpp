@@ -122,6 +122,9 @@ int run_play(Args raw_args) {
                  "first wait up to this long for a subscriber on every topic (0: start at once)",
                  "0");
   options.flag("paused", "start paused (space or 'resume' on the control topic to start)");
+  options.option("spin-us", "US",
+                 "spin, not sleep, this long before each message: timing for CPU (max 1000000)",
+                 "200");
   options.option("realtime-priority", "N",
                  "play at SCHED_FIFO priority N (1-99), on time under load (needs "
                  "CAP_SYS_NICE; else a warning; 0: off)",
@@ -150,6 +153,11 @@ int run_play(Args raw_args) {
                      std::to_string(priority));
   }
   player_options.realtime_priority = static_cast<int>(priority);
+  const long spin_us = options.get_int("spin-us");
+  if (spin_us < 0 || spin_us > 1'000'000) {
+    throw UsageError("--spin-us must be in [0, 1000000], got " + std::to_string(spin_us));
+  }
+  player_options.spin = std::chrono::microseconds(spin_us);
   const double wait_s = options.get_double("wait-subscribers");
   if (wait_s < 0) {
     throw UsageError("--wait-subscribers must be >= 0");
