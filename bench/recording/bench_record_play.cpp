@@ -1,5 +1,5 @@
 // End-to-end figures of `wbi record` and `wbi play` (wbi::recording), over
-// real DDS between two participants of this process (shared memory):
+// real DDS between two participants of this process:
 //
 //   sustained  N topics of 100-double SensorSamples at 1 kHz each for D s:
 //              messages/s recorded, samples lost (published - recorded) and
@@ -8,8 +8,9 @@
 //              (wbi.command QoS, depth 8) on N topics for D s
 //   play       a 1 kHz recording played to a subscriber: the error of each
 //              inter-arrival interval against 1 ms, p50 / p99 / max, and of
-//              the intervals between writes (DDS source timestamps); once with
-//              normal scheduling, once at `wbi play --realtime-priority 20`
+//              the intervals between writes (DDS source timestamps); with
+//              normal scheduling, at `wbi play --realtime-priority 20`, and at
+//              that with `--spin-us 900`
 //
 // The streams' QoS is the built-in one (reliable) unless WBI_QOS_FILE names
 // another, e.g. deploy/qos_realtime.xml (best effort); the JSON says which.

@@ -6,8 +6,8 @@
 through the whole-body interface over DDS, at 1 kHz by default, against the
 demo's simulated arm (the robot and the estimator of deploy/demo.yaml). The
 parameters are those of demo.yaml's pd_gravity component: the 7 arm joints,
-the same target, gains for a critically damped 3 Hz response per joint from
-the mass-matrix diagonal at the target.
+the same target, gains for a critically damped 5 Hz response of every mode
+from the joint inertia at the target (controllers/README.md, "Gains").
 
     wbi launch build/examples/python/pd_gravity.yaml          # robot, estimator, this
     python3 examples/python/pd_gravity.py --duration 5        # against a running robot
@@ -39,11 +39,16 @@ class PdGravity:
         n = robot.dofs
         self.robot = robot
         self.q_desired = np.asarray(q_desired, dtype=float)
-        self.kp, self.kd = np.asarray(kp, dtype=float), np.asarray(kd, dtype=float)
-        for name, values in (("q_desired", self.q_desired), ("kp", self.kp), ("kd", self.kd)):
-            if values.shape != (n,):
-                raise ValueError(f"PD + gravity: {name} has {values.size} values, the robot has "
-                                 f"{n} controlled joints")
+        # kp, kd: n x n matrices, or n values for diagonal gains
+        self.kp, self.kd = (np.diag(g) if np.ndim(g) == 1 else np.asarray(g, dtype=float)
+                            for g in (np.asarray(kp, dtype=float), np.asarray(kd, dtype=float)))
+        if self.q_desired.shape != (n,):
+            raise ValueError(f"PD + gravity: q_desired has {self.q_desired.size} values, the "
+                             f"robot has {n} controlled joints")
+        for name, gain in (("kp", self.kp), ("kd", self.kd)):
+            if gain.shape != (n, n):
+                raise ValueError(f"PD + gravity: {name} is {gain.shape}, the robot has {n} "
+                                 "controlled joints")
         self.gravity = np.asarray(gravity, dtype=float)
         self.q, self.dq = np.zeros(n), np.zeros(n)
         self.g = np.zeros(n + 6)
@@ -64,17 +69,18 @@ class PdGravity:
                 break
         robot.gravity_forces(self.q, world_H_base, self.gravity, out=self.g)
         error = self.q - self.q_desired
-        np.subtract(self.g[6:], self.kp * error + self.kd * self.dq, out=self.tau)
+        np.subtract(self.g[6:], self.kp @ error + self.kd @ self.dq, out=self.tau)
         self.max_error = float(np.abs(error).max())
         robot.set_control_reference(self.tau)
 
 
 def gains_from_bandwidth(robot, q_desired, bandwidth_hz):
-    """kp = w^2 M_jj, kd = 2 w M_jj at the target: a critically damped response per joint."""
+    """Kp = w^2 M_jj, Kd = 2 w M_jj with the joint block of the inertia at the target:
+    every mode critically damped at the bandwidth (the C++ PdGravityGains::from_inertia)."""
     M = robot.mass_matrix(np.asarray(q_desired, dtype=float), np.eye(4))
-    m = np.diag(M)[6:]
+    joint_inertia = M[6:, 6:]
     omega = 2.0 * math.pi * bandwidth_hz
-    return omega * omega * m, 2.0 * omega * m
+    return omega * omega * joint_inertia, 2.0 * omega * joint_inertia
 
 
 def main(argv=None):
@@ -83,7 +89,7 @@ def main(argv=None):
     parser.add_argument("--urdf", default=str(DEFAULT_URDF), help="the robot's URDF")
     parser.add_argument("--target", type=float, nargs="+", default=DEMO_TARGET,
                         help="q_d, one per joint [rad]")
-    parser.add_argument("--bandwidth-hz", type=float, default=3.0)
+    parser.add_argument("--bandwidth-hz", type=float, default=5.0)
     parser.add_argument("--rate-hz", type=float, default=1000.0)
     parser.add_argument("--duration", type=float, default=None,
                         help="seconds of control (default: until SIGINT/SIGTERM)")
