@@ -60,6 +60,18 @@ void spin_for(std::int64_t duration_ns, SpinResult& r) {
   }
 }
 
+// SCHED_FIFO at `priority` for the calling thread; false, with the reason in
+// *refusal, where the OS refuses.
+bool run_fifo(int priority, std::string* refusal) {
+  sched_param param{};
+  param.sched_priority = priority;
+  if (const int error = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param); error != 0) {
+    *refusal = std::strerror(error);
+    return false;
+  }
+  return true;
+}
+
 // fifo_priority 0: normal scheduling, spinning all along. Otherwise SCHED_FIFO,
 // spinning 400 ms of every 500 (under the kernel's real-time throttling, 950
 // of every 1000 ms), so that only interrupts, higher-priority kernel threads
@@ -75,10 +87,7 @@ SpinResult spin_on(int cpu, double seconds, int fifo_priority, std::string* refu
     spin_for(total_ns, r);
     return r;
   }
-  sched_param param{};
-  param.sched_priority = fifo_priority;
-  if (const int error = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param); error != 0) {
-    *refusal = std::strerror(error);
+  if (!run_fifo(fifo_priority, refusal)) {
     return r;
   }
   for (std::int64_t spun = 0; spun < total_ns; spun += 400'000'000) {
@@ -93,13 +102,8 @@ SpinResult spin_on(int cpu, double seconds, int fifo_priority, std::string* refu
 std::vector<double> timer_lateness_us(double seconds, int fifo_priority, std::string* refusal) {
   std::vector<double> late_us;
   std::thread thread([&] {
-    if (fifo_priority > 0) {
-      sched_param param{};
-      param.sched_priority = fifo_priority;
-      if (const int error = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param); error != 0) {
-        *refusal = std::strerror(error);
-        return;
-      }
+    if (fifo_priority > 0 && !run_fifo(fifo_priority, refusal)) {
+      return;
     }
     const auto ticks = static_cast<std::size_t>(seconds * 1000.0);
     late_us.reserve(ticks);

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -147,12 +148,10 @@ int run_play(Args raw_args) {
   player_options.topics_pattern = options.get_optional("topics").value_or("");
   player_options.clock = options.has("clock");
   player_options.clock_rate_hz = options.get_double("clock-rate");
-  const long priority = options.get_int("realtime-priority");
-  if (priority < 0 || priority > 99) {
-    throw UsageError("--realtime-priority must be in [0, 99] (0: off), got " +
-                     std::to_string(priority));
-  }
-  player_options.realtime_priority = static_cast<int>(priority);
+  // The player checks the range; the clamp only keeps a huge value from wrapping to a valid one.
+  player_options.realtime_priority = static_cast<int>(
+      std::clamp<long>(options.get_int("realtime-priority"), std::numeric_limits<int>::min(),
+                       std::numeric_limits<int>::max()));
   const long spin_us = options.get_int("spin-us");
   if (spin_us < 0 || spin_us > 1'000'000) {
     throw UsageError("--spin-us must be in [0, 1000000], got " + std::to_string(spin_us));
