@@ -120,9 +120,18 @@ void AccelerationBank::stick(Eigen::Index j, double fraction) {
   blend(j);
 }
 
-void AccelerationBank::slip(Eigen::Index j) {
+void AccelerationBank::slip(Eigen::Index j, double fraction) {
   for (std::size_t i = 0; i < filters_.size(); ++i) {
-    filters_[i].set_acceleration(j, acceleration_at_stick_(static_cast<Eigen::Index>(i), j));
+    filters_[i].set_acceleration(
+        j, fraction * acceleration_at_stick_(static_cast<Eigen::Index>(i), j));
+  }
+  blend(j);
+}
+
+void AccelerationBank::recover(Eigen::Index j, double increment) {
+  for (std::size_t i = 0; i < filters_.size(); ++i) {
+    filters_[i].add_acceleration(
+        j, increment * acceleration_at_stick_(static_cast<Eigen::Index>(i), j));
   }
   blend(j);
 }

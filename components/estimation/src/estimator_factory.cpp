@@ -57,6 +57,11 @@ std::vector<MethodInfo> build_methods() {
             "acceleration bank, s; 0: no stick anticipation"},
            {"stick-fraction", "F", split.stick_fraction, 0, 1, false,
             "fraction of the acceleration kept during an assumed stick"},
+           {"stick-release", "S", split.stick_release_s, 0, 1, false,
+            "time constant of the acceleration's return after an assumed stick, s; 0: at once"},
+           {"stick-velocity", "RAD/S", split.stick_velocity, 0, 1e3, false,
+            "a joint slowing down below this speed is taken to reverse; 0: at the sign change "
+            "only"},
            {"stick-memory", "S", split.stick_memory_s, 1e-3, 1e3, false,
             "forgetting time of the likelihoods that blend the sticking and non-sticking banks, s"},
        })},
@@ -176,6 +181,8 @@ std::unique_ptr<DerivativeEstimator> make_estimator(const std::string& method, E
                                        p.at("acceleration-memory"),
                                        p.at("stick-duration"),
                                        p.at("stick-fraction"),
+                                       p.at("stick-release"),
+                                       p.at("stick-velocity"),
                                        p.at("stick-memory")};
     return std::make_unique<SplitKalmanEstimator>(joints, params, stream);
   }

@@ -52,4 +52,8 @@ void JointKalmanFilters::set_acceleration(Eigen::Index j, double ddq) {
   x_.col(j).tail(IntegratorChain::kStates - 3).setZero();
 }
 
+void JointKalmanFilters::add_acceleration(Eigen::Index j, double delta) {
+  x_(2, j) += delta / (to_velocity_ * to_velocity_);
+}
+
 }  // namespace wbi::estimation

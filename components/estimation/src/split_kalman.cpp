@@ -12,6 +12,8 @@ namespace {
 
 constexpr const char* kMethod = "split-kalman";
 
+double sign(double x) { return static_cast<double>((x > 0.0) - (x < 0.0)); }
+
 void require(bool ok, const std::string& message) {
   if (!ok) {
     throw std::invalid_argument(std::string(kMethod) + ": " + message);
@@ -27,6 +29,10 @@ AccelerationBankParameters bank_parameters(const SplitKalmanParameters& p) {
           "stick-duration must be >= 0 s, got " + std::to_string(p.stick_duration_s));
   require(p.stick_fraction >= 0.0 && p.stick_fraction <= 1.0,
           "stick-fraction must be in [0, 1], got " + std::to_string(p.stick_fraction));
+  require(p.stick_release_s >= 0.0 && std::isfinite(p.stick_release_s),
+          "stick-release must be >= 0 s, got " + std::to_string(p.stick_release_s));
+  require(p.stick_velocity >= 0.0 && std::isfinite(p.stick_velocity),
+          "stick-velocity must be >= 0 rad/s, got " + std::to_string(p.stick_velocity));
   require(p.stick_memory_s > 0.0 && std::isfinite(p.stick_memory_s),
           "stick-memory must be > 0 s, got " + std::to_string(p.stick_memory_s));
   return {p.acceleration_order, p.resolution_counts, p.acceleration_noise_min,
@@ -58,8 +64,13 @@ SplitKalmanEstimator::SplitKalmanEstimator(Eigen::Index joints, const SplitKalma
       sticking_(sticking_bank(joints, params, 1.0 / stream.sample_rate_hz)),
       stick_duration_s_(params.stick_duration_s),
       stick_fraction_(params.stick_fraction),
+      stick_release_s_(params.stick_release_s),
+      stick_velocity_(params.stick_velocity),
       stick_memory_s_(params.stick_memory_s),
-      stick_remaining_s_(Eigen::VectorXd::Zero(joints)),
+      stick_phase_(static_cast<std::size_t>(joints), StickPhase::kNone),
+      stick_elapsed_s_(Eigen::VectorXd::Zero(joints)),
+      stick_gap_(Eigen::VectorXd::Zero(joints)),
+      reversal_sign_(Eigen::VectorXd::Zero(joints)),
       family_likelihood_(Eigen::Matrix2Xd::Zero(2, joints)),
       stick_weight_(Eigen::VectorXd::Zero(joints)) {}
 
@@ -71,26 +82,68 @@ void SplitKalmanEstimator::start(const Eigen::Ref<const Eigen::VectorXd>& q) {
   if (sticking_) {
     sticking_->start(q);
   }
-  stick_remaining_s_.setZero();
+  std::fill(stick_phase_.begin(), stick_phase_.end(), StickPhase::kNone);
+  stick_elapsed_s_.setZero();
+  stick_gap_.setZero();
+  reversal_sign_.setZero();
   family_likelihood_.setZero();
   stick_weight_.setZero();
 }
 
 void SplitKalmanEstimator::anticipate_sticks(double dt_s) {
-  const double tolerance_s = 0.5 / sample_rate_hz();
   for (Eigen::Index j = 0; j < joints(); ++j) {
-    if (stick_remaining_s_(j) > 0.0) {
-      stick_remaining_s_(j) -= dt_s;
-      if (stick_remaining_s_(j) < tolerance_s) {
-        sticking_->slip(j);
-        stick_remaining_s_(j) = 0.0;
-      }
-    } else if (previous_velocity_(j) * moving_.velocity(j) < 0.0) {
-      // A velocity reversal: assume the joint sticks from now on.
-      sticking_->stick(j, stick_fraction_);
-      stick_remaining_s_(j) = stick_duration_s_;
+    auto& phase = stick_phase_[static_cast<std::size_t>(j)];
+    if (phase != StickPhase::kNone) {
+      stick_elapsed_s_(j) += dt_s;
+      release_stick(j);
+    }
+    if (phase == StickPhase::kNone) {
+      start_stick_at_reversal(j);
     }
   }
+}
+
+// A joint reverses when it slows down within stick_velocity_ of zero (the
+// friction then holds it before the sign change shows: waiting for the sign
+// change comes a few samples late) or, failing that, when its velocity
+// changes sign. Each reversal starts one stick: reversal_sign_ keeps the
+// direction it reversed from.
+void SplitKalmanEstimator::start_stick_at_reversal(Eigen::Index j) {
+  const double v = moving_.velocity(j);
+  const double before = previous_velocity_(j);
+  const bool slowing_to_zero = v * moving_.acceleration(j) < 0.0 && std::abs(v) < stick_velocity_ &&
+                               sign(v) != reversal_sign_(j);
+  const bool crossed_zero = before * v < 0.0 && sign(before) != reversal_sign_(j);
+  if (!slowing_to_zero && !crossed_zero) {
+    return;
+  }
+  reversal_sign_(j) = slowing_to_zero ? sign(v) : sign(before);
+  sticking_->stick(j, stick_fraction_);
+  stick_phase_[static_cast<std::size_t>(j)] = StickPhase::kHolding;
+  stick_elapsed_s_(j) = 0.0;
+  stick_gap_(j) = 1.0;
+}
+
+// After stick_duration_s_ the acceleration returns to the value it had,
+// the gap closing as exp(−t / stick_release_s_): the first step sets it (what
+// the filters learnt meanwhile is dropped), the later ones add to it. After
+// four time constants the rest of the gap closes at once.
+void SplitKalmanEstimator::release_stick(Eigen::Index j) {
+  const double tolerance_s = 0.5 / sample_rate_hz();
+  const double released_s = stick_elapsed_s_(j) - stick_duration_s_;
+  if (released_s < -tolerance_s) {
+    return;  // still holding
+  }
+  const bool done = released_s + tolerance_s >= 4.0 * stick_release_s_;
+  const double gap = done ? 0.0 : std::exp(-std::max(released_s, 0.0) / stick_release_s_);
+  auto& phase = stick_phase_[static_cast<std::size_t>(j)];
+  if (phase == StickPhase::kHolding) {
+    sticking_->slip(j, 1.0 - (1.0 - stick_fraction_) * gap);
+  } else {
+    sticking_->recover(j, (1.0 - stick_fraction_) * (stick_gap_(j) - gap));
+  }
+  stick_gap_(j) = gap;
+  phase = done ? StickPhase::kNone : StickPhase::kReleasing;
 }
 
 void SplitKalmanEstimator::step(double dt_s, const Eigen::Ref<const Eigen::VectorXd>& q,

@@ -4,8 +4,9 @@
 // recent innovations (multiple-model adaptive estimation, Magill 1965;
 // Bar-Shalom, Li and Kirubarajan 2001, §11.6) with a forgetting factor λ:
 //   ℓ_i ← λ ℓ_i + ν_i²/S_i + ln S_i,   w_i ∝ exp(−ℓ_i / 2),   ddq = Σ w_i ddq_i
-// A bank can also be told that a joint sticks (stick()/slip()): every filter
-// then scales that joint's acceleration, and restores it when it slips.
+// A bank can also be told that a joint sticks (stick()/slip()/recover()):
+// every filter then scales that joint's acceleration, and brings it back,
+// at once or along a ramp, when it slips.
 #pragma once
 
 #include <Eigen/Core>
@@ -49,9 +50,14 @@ class AccelerationBank {
   const Eigen::MatrixXd& weights() const { return weights_; }
 
   // Joint j sticks: each filter's acceleration of j is scaled by `fraction`
-  // (its higher derivatives zeroed); slip() restores the acceleration it had.
+  // (its higher derivatives zeroed).
   void stick(Eigen::Index j, double fraction);
-  void slip(Eigen::Index j);
+  // Joint j slips: each filter's acceleration of j becomes `fraction` × the
+  // one it had at stick() (higher derivatives zeroed; 1: all of it back)...
+  void slip(Eigen::Index j, double fraction);
+  // ...and then grows by `increment` × that acceleration per call (the rest
+  // of a release ramp), its other states untouched.
+  void recover(Eigen::Index j, double increment);
 
  private:
   // Likelihoods, weights and blend from the filters' innovations of this sample.

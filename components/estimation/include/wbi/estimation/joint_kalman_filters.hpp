@@ -35,6 +35,9 @@ class JointKalmanFilters {
   // Sets joint j's acceleration (rad/s²) and zeroes its higher derivatives:
   // a jump the filter is told about instead of finding it in the innovations.
   void set_acceleration(Eigen::Index j, double ddq);
+  // Adds `delta` (rad/s²) to joint j's acceleration, its other states untouched:
+  // a known input (a ramp) rather than a jump.
+  void add_acceleration(Eigen::Index j, double delta);
   const IntegratorChain& model() const { return chain_; }
   // Of the last step: per joint the innovation q − q̂⁻ (rad), and its
   // predicted variance S = P⁻_00 + r (rad², the same for every joint).
