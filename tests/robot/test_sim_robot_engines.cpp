@@ -104,4 +104,31 @@ TEST(SimRobotEngines, AThirdEngineRunsInLockstepByRegistrationAlone) {
   EXPECT_EQ(runner.component().report().counter("lockstep_timeouts").value(), 0u);
 }
 
+TEST(SimRobotEngines, WithoutLockstepNorRealTimeItRunsFreeToItsDuration) {
+  wbi::dds::Participant participant("engines_free");
+  wbi::runtime::SystemClock clock;
+  Seen seen;
+  const auto registry = registry_with_toy(seen);
+  wbi::runtime::ComponentRunner runner(registry.create("sim_robot"),
+                                       {"sim", "sim_robot", &participant, &clock});
+  runner.configure(wbi::runtime::Parameters::from_string(
+      "{robot: toy_free, engine: toy, config: toy.cfg, real_time: false, duration_s: 0.5}"));
+  wbi::dds::Subscriber<wbi::msg::SimulationClock> sim_clock(participant, topics::kClock,
+                                                            qos::kStream);
+  ASSERT_TRUE(sim_clock.wait_for_publishers(1, 10s));
+  runner.activate();
+  // No controller answers and nothing paces it: 500 ticks, then it stops at 0.5 s.
+  wbi::dds::Received<wbi::msg::SimulationClock> tick;
+  const auto deadline = std::chrono::steady_clock::now() + 30s;
+  while (std::chrono::steady_clock::now() < deadline &&
+         !(sim_clock.wait_newer(tick, tick.count, 1s) && tick.sample.tick() == 499)) {
+  }
+  EXPECT_EQ(tick.sample.tick(), 499u);
+  EXPECT_EQ(tick.sample.time_ns(), 499'000'000);
+  EXPECT_FALSE(tick.sample.lockstep());
+  runner.deactivate();  // joins the loop: it ended at duration_s
+  EXPECT_EQ(seen.engine->steps(), 500);
+  runner.shutdown();
+}
+
 }  // namespace

@@ -46,6 +46,7 @@ Sides read_sides(const runtime::Parameters& parameters) {
 struct SimulationOptions {
   bool lockstep = false;
   LockstepOptions lockstep_options;
+  bool real_time = true;    // paced at real time (default: unless lockstep)
   double duration_s = 0.0;  // 0: no end
 };
 
@@ -60,6 +61,7 @@ SimulationOptions read_simulation_options(const runtime::Parameters& parameters)
   }
   lockstep.timeout_s = parameters.get<double>("lockstep_timeout_s", 2.0);
   lockstep.start_timeout_s = parameters.get<double>("lockstep_start_timeout_s", 60.0);
+  options.real_time = parameters.get<bool>("real_time", !options.lockstep);
   options.duration_s = parameters.get<double>("duration_s", 0.0);
   return options;
 }
@@ -67,7 +69,7 @@ SimulationOptions read_simulation_options(const runtime::Parameters& parameters)
 // The one robot loop (wbi/robot/robot_driver.hpp). A tick is sense → control →
 // actuate; a real robot's ticks are the runner's cycles (read, update, write),
 // a simulation's are run by step_until_stopped() on the driver's own thread,
-// with its StepClock between sense and control and step() after actuate.
+// with its step clocks between sense and control and step() after actuate.
 class RobotDriver final : public runtime::Component {
  public:
   explicit RobotDriver(BackendFactory factory) : backend_factory_(std::move(factory)) {}
@@ -114,12 +116,16 @@ class RobotDriver final : public runtime::Component {
           participant, robot_, simulation_->step_period(), simulation.lockstep);
       auto& timeouts = report().counter("lockstep_timeouts");  // 0 unless lockstep
       if (simulation.lockstep) {
-        step_clock_ = std::make_unique<LockstepClock>(simulation.lockstep_options, who_, timeouts);
-      } else {
-        step_clock_ = std::make_unique<RealTimeClock>(simulation_->step_period());
+        step_clocks_.push_back(
+            std::make_unique<LockstepClock>(simulation.lockstep_options, who_, timeouts));
       }
-      observer = [clock = step_clock_.get()](const wbi::msg::ActuatorCommand& command) {
-        clock->observe(command);
+      if (simulation.real_time) {
+        step_clocks_.push_back(std::make_unique<RealTimeClock>(simulation_->step_period()));
+      }
+      observer = [this](const wbi::msg::ActuatorCommand& command) {
+        for (const auto& clock : step_clocks_) {
+          clock->observe(command);
+        }
       };
     }
     if (sides.actuators) {
@@ -139,7 +145,9 @@ class RobotDriver final : public runtime::Component {
       }
     }  // else sensors only: read, never power
     if (simulation_) {
-      step_clock_->start();
+      for (const auto& clock : step_clocks_) {
+        clock->start();
+      }
       running_ = true;
       loop_ = std::thread([this] { run_simulation(); });
     }
@@ -155,7 +163,7 @@ class RobotDriver final : public runtime::Component {
   void on_cleanup() override {
     stop_simulation();
     actuators_.reset();  // first: no command callback after this
-    step_clock_.reset();
+    step_clocks_.clear();
     simulation_side_.reset();
     sensors_.reset();
     simulation_ = nullptr;
@@ -258,7 +266,9 @@ class RobotDriver final : public runtime::Component {
       }
       const Time now = simulation_->stamp();
       sense(now, period);
-      step_clock_->wait(seq_);
+      for (const auto& clock : step_clocks_) {
+        clock->wait(seq_);  // none: free running
+      }
       control(now, period);
       actuate(now, period);
       simulation_->step();
@@ -267,8 +277,8 @@ class RobotDriver final : public runtime::Component {
 
   void stop_simulation() {
     running_ = false;
-    if (step_clock_) {
-      step_clock_->stop();
+    for (const auto& clock : step_clocks_) {
+      clock->stop();
     }
     if (loop_.joinable()) {
       loop_.join();
@@ -288,7 +298,7 @@ class RobotDriver final : public runtime::Component {
   actuation::SimulationBackend* simulation_ = nullptr;  // backend_, when it is a simulation
   std::unique_ptr<SensorSide> sensors_;
   std::unique_ptr<SimulationSide> simulation_side_;
-  std::unique_ptr<StepClock> step_clock_;
+  std::vector<std::unique_ptr<StepClock>> step_clocks_;  // waited in order; none: free running
   std::unique_ptr<ActuatorSide> actuators_;
   std::atomic<bool> running_{false};
   std::thread loop_;

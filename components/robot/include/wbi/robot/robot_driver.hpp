@@ -10,7 +10,10 @@
 //   lockstep             a simulation (SimulationBackend) that waits, at [clock],
 //                        for every named controller's command for tick k, then
 //                        steps: deterministic; register_simulation, lockstep: true;
-//   real time            a simulation paced at real time (lockstep: false).
+//   real time            a simulation paced at real time (real_time: true, the
+//                        default without lockstep; with lockstep: both waits);
+//   none                 a simulation free running, as fast as it steps
+//                        (lockstep: false, real_time: false).
 // A simulation is its own clock: its loop runs on the driver's thread while
 // ACTIVE (no rate_hz), stamps are simulation time, and it also publishes its
 // ground truth (wbi/<robot>/ground_truth) and time (wbi/clock).
@@ -44,7 +47,8 @@
 //   floating_base       whether the description says floating base (default: the
 //                       backend's description.floating_base)
 // Simulations only:
-//   lockstep              false (default): paced at real time; true: wait for commands
+//   lockstep              false (default): do not wait for commands; true: wait for them
+//   real_time             pace at real time (default: true without lockstep, false with)
 //   lockstep_controllers  names of the controllers (ActuatorCommand.controller) to wait for
 //   lockstep_timeout_s    longest wait for a tick's commands (default 2 s; then a warning)
 //   lockstep_start_timeout_s  longest wait for the first tick's commands, while the

@@ -2,7 +2,7 @@
 // driver's one loop (wbi/robot/robot_driver.hpp) with a simulation backend made
 // by the engine the deploy file names, on the simulation's own clock:
 //   read → publish sensors, ground truth, wbi/clock (tick k) → [lockstep: wait
-//   for every controller's command for tick k | real time: wait for the wall
+//   for every controller's command for tick k] → [real time: wait for the wall
 //   clock] → joint control → write → step.
 //
 // Parameters (the driver's, robot_driver.hpp "Simulations only", and):
@@ -14,7 +14,7 @@
 //                         simulation's YAML, components/sim/README.md), relative to
 //                         the host file
 //   lockstep, lockstep_controllers, lockstep_timeout_s, lockstep_start_timeout_s,
-//   duration_s, watchdog_timeout_s, reference_speed, hold_at_start: robot_driver.hpp
+//   real_time, duration_s, watchdog_timeout_s, reference_speed, hold_at_start: robot_driver.hpp
 //
 // Status (wbi/status): rejected_commands, rejected_parameters, watchdog_trips,
 // limit_clamps, lockstep_timeouts; the last rejection or trip in words.
