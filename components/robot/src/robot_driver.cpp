@@ -112,19 +112,10 @@ class RobotDriver final : public runtime::Component {
     }
     ActuatorSide::CommandObserver observer;
     if (simulation_) {
-      simulation_side_ = std::make_unique<SimulationSide>(
-          participant, robot_, simulation_->step_period(), simulation.lockstep);
-      auto& timeouts = report().counter("lockstep_timeouts");  // 0 unless lockstep
-      if (simulation.lockstep) {
-        step_clocks_.push_back(
-            std::make_unique<LockstepClock>(simulation.lockstep_options, who_, timeouts));
-      }
-      if (simulation.real_time) {
-        step_clocks_.push_back(std::make_unique<RealTimeClock>(simulation_->step_period()));
-      }
+      make_simulation_parts(participant, simulation);
       observer = [this](const wbi::msg::ActuatorCommand& command) {
         for (const auto& clock : step_clocks_) {
-          clock->observe(command);
+          clock->observe(command);  // lockstep bookkeeping
         }
       };
     }
@@ -204,6 +195,20 @@ class RobotDriver final : public runtime::Component {
     }
     if (!backend_) {
       throw std::runtime_error("the backend factory of '" + context.type + "' made no backend");
+    }
+  }
+
+  // A simulation's own topics, and its clocks, waited in this order.
+  void make_simulation_parts(dds::Participant& participant, const SimulationOptions& options) {
+    simulation_side_ = std::make_unique<SimulationSide>(
+        participant, robot_, simulation_->step_period(), options.lockstep);
+    auto& timeouts = report().counter("lockstep_timeouts");  // 0 unless lockstep
+    if (options.lockstep) {
+      step_clocks_.push_back(
+          std::make_unique<LockstepClock>(options.lockstep_options, who_, timeouts));
+    }
+    if (options.real_time) {
+      step_clocks_.push_back(std::make_unique<RealTimeClock>(simulation_->step_period()));
     }
   }
 
