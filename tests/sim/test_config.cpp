@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 
@@ -91,6 +92,36 @@ TEST(SimConfig, HumanoidFileMatchesTheUrdfBoxes) {
     EXPECT_EQ(a[i].friction, b[i].friction);
   }
   EXPECT_EQ(from_file.ground_truth().contact_links, from_urdf.ground_truth().contact_links);
+}
+
+// The real robots' files configure the own plant: their sole boxes become contact
+// points, placed on the ground, and their sensors exist.
+TEST(SimConfig, RealRobotFilesConfigureThePlant) {
+  struct Robot {
+    const char* file;
+    const char* urdf;
+    std::size_t points, fts;
+  };
+  for (const Robot& robot : {Robot{"icub3.yaml", "iCubGenova09/model.urdf", 16, 8},
+                             Robot{"talos.yaml", "talos/talos_reduced.urdf", 8, 4}}) {
+    const auto shared = wbi::test::shared_models_dir();
+    if (!shared || !std::filesystem::exists(*shared / robot.urdf)) {
+      GTEST_SKIP() << wbi::test::kSharedMissing << " (expected ../shared/models/" << robot.urdf
+                   << ")";
+    }
+    SimBackend sim(robot_config::load_robot_config(
+        (wbi::test::source_dir() / "deploy" / "robots" / robot.file).string()));
+    sim.configure();
+    const auto& points = sim.ground_truth().contact_points;
+    ASSERT_EQ(points.size(), robot.points) << robot.file;
+    double z_min = 1.0;
+    for (const auto& cp : points) {
+      z_min = std::min(z_min, cp.p_W.z());
+    }
+    EXPECT_NEAR(z_min, 0.0, 1e-12) << robot.file;
+    EXPECT_EQ(sim.description().ft_names.size(), robot.fts) << robot.file;
+    EXPECT_EQ(sim.description().n_joints(), 32) << robot.file;
+  }
 }
 
 TEST(SimConfig, UnknownNamesAreErrors) {
