@@ -193,6 +193,15 @@ TEST(RobotConfigErrors, UnknownKey) {
   expect_error(humanoid("mujoco: {time_step: 0.001}\n"), 2, "mujoco.time_step", "unknown key");
 }
 
+TEST(RobotConfigErrors, KeyGivenTwiceOrNotAName) {
+  expect_error(humanoid("ground: {height: 0}\nplace_on_ground: true\nground: {height: 1}\n"), 2,
+               "ground", "given twice");
+  expect_error(humanoid("joints:\n  l_knee: {armature: 0.1}\n  l_knee: {armature: 0.2}\n"), 3,
+               "joints.l_knee", "given twice");
+  expect_error(humanoid("initial_joint_positions: {[l_knee]: 0.3}\n"), 2, "initial_joint_positions",
+               "a key must be a plain name");
+}
+
 TEST(RobotConfigErrors, WrongType) {
   expect_error(humanoid("wbi: {step: fast}\n"), 2, "wbi.step", "expected a number, got 'fast'");
   expect_error(humanoid("place_on_ground: maybe\n"), 2, "place_on_ground",

@@ -117,7 +117,7 @@ class Parser {
         r_.fail(init, "initial_joint_positions", "expected a map joint: position");
       }
       for (const auto& kv : init) {
-        const auto name = kv.first.as<std::string>();
+        const auto name = r_.key_of(init, kv.first, "initial_joint_positions");
         const std::string key = "initial_joint_positions." + name;
         check_joint(kv.first, key, name);
         c_.initial_joint_positions[name] = r_.as<double>(kv.second, key);
@@ -223,7 +223,7 @@ class Parser {
       out.emplace_back("", joint_values(d, "joints.default"));
     }
     for (const auto& kv : n) {
-      const auto name = kv.first.as<std::string>();
+      const auto name = r_.key_of(n, kv.first, "joints");
       if (name == "default") {
         continue;
       }
@@ -433,7 +433,12 @@ RobotConfig parse_robot_config(std::string_view yaml_text, const std::string& co
   if (!root.IsDefined() || root.IsNull()) {
     throw std::invalid_argument(context + ": <root>: empty document (expected at least 'urdf')");
   }
-  return Parser(root, context).parse();
+  try {
+    return Parser(root, context).parse();
+  } catch (const YAML::Exception& e) {  // a shape the checks above did not foresee
+    throw std::invalid_argument(context + ":" + std::to_string(e.mark.line + 1) +
+                                ": yaml: " + e.msg);
+  }
 }
 
 RobotConfig load_robot_config(const std::string& path) {

@@ -26,14 +26,30 @@ class YamlReader {
     return path.empty() ? key : path + "." + key;
   }
 
-  // `node` is a map whose keys are all in `allowed`.
+  // The key of a map entry: a string, and not given twice in `map`.
+  std::string key_of(const YAML::Node& map, const YAML::Node& key, const std::string& path) const {
+    if (!key.IsScalar()) {
+      fail(key, path.empty() ? "<root>" : path, "a key must be a plain name");
+    }
+    const std::string name = key.Scalar();
+    int count = 0;
+    for (const auto& kv : map) {
+      count += kv.first.IsScalar() && kv.first.Scalar() == name ? 1 : 0;
+    }
+    if (count > 1) {
+      fail(key, join(path, name), "given twice");
+    }
+    return name;
+  }
+
+  // `node` is a map whose keys are all in `allowed`, each once.
   void check_keys(const YAML::Node& node, const std::string& path,
                   std::initializer_list<const char*> allowed) const {
     if (!node.IsMap()) {
       fail(node, path.empty() ? "<root>" : path, "expected a map");
     }
     for (const auto& kv : node) {
-      const auto key = kv.first.as<std::string>();
+      const auto key = key_of(node, kv.first, path);
       bool ok = false;
       std::string list;
       for (const char* a : allowed) {
