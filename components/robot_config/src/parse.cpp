@@ -65,14 +65,13 @@ class Parser {
     }
     path = std::filesystem::absolute(path).lexically_normal();
     if (!std::filesystem::is_regular_file(path)) {
-      const bool shared = written.find("shared/models") != std::string::npos;
-      r_.fail(node, "urdf",
-              written + " not found (" +
-                  (shared ? std::string("the real robots' URDFs are expected in ../shared/models "
-                                        "beside the repository: ") +
-                                path.string()
-                          : path.string()) +
-                  ")");
+      // The expected path as written, and where it led when it was relative.
+      std::string where = path.string() == written ? "" : path.string();
+      if (written.find("shared/models") != std::string::npos) {
+        where = "the real robots' URDFs are expected in ../shared/models beside the repository" +
+                (where.empty() ? "" : ": " + where);
+      }
+      r_.fail(node, "urdf", written + " not found" + (where.empty() ? "" : " (" + where + ")"));
     }
     c_.urdf = path.string();
     r_.get(root_, "", "fixed_base", c_.fixed_base);
