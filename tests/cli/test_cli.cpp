@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -32,7 +33,8 @@ bool contains(const std::string& text, const std::string& part) {
 TEST(Cli, HelpListsEveryVerb) {
   const auto run = wbi_cli({"--help"});
   EXPECT_EQ(run.code, 0);
-  for (const char* verb : {"launch", "record", "play", "bag", "topic", "model", "estimate"}) {
+  for (const char* verb :
+       {"launch", "record", "play", "bag", "topic", "model", "robot", "estimate"}) {
     EXPECT_TRUE(contains(run.output, std::string("\n  ") + verb + " ")) << verb << "\n"
                                                                         << run.output;
   }
@@ -57,11 +59,29 @@ TEST(Cli, UnknownVerbFailsWithMessage) {
 }
 
 TEST(Cli, EveryVerbHasHelp) {
-  for (const char* verb : {"topic", "model", "estimate", "bag", "launch"}) {
+  for (const char* verb : {"topic", "model", "robot", "estimate", "bag", "launch"}) {
     const auto run = wbi_cli({verb, "--help"});
     EXPECT_EQ(run.code, 0) << verb << ": " << run.output;
     EXPECT_TRUE(contains(run.output, "usage: wbi")) << run.output;
   }
+}
+
+// `wbi robot check`: a valid file is summarised; an error is the parser's one line, exit 1.
+TEST(Cli, RobotCheck) {
+  const auto file = wbi::test::source_dir() / "deploy" / "robots" / "humanoid.yaml";
+  const auto ok = wbi_cli({"robot", "check", file.string()});
+  EXPECT_EQ(ok.code, 0) << ok.output;
+  EXPECT_TRUE(contains(ok.output, "humanoid.yaml: valid")) << ok.output;
+  EXPECT_TRUE(contains(ok.output, "force_torque: 2")) << ok.output;
+  const auto bad = wbi::test::binary_dir() / "tests" / "cli_bad_robot.yaml";
+  std::ofstream(bad) << "urdf: " << wbi::test::project_model("humanoid.urdf").string()
+                     << "\nimus: [{name: imu, frame: imu_fram}]\n";
+  const auto run = wbi_cli({"robot", "check", bad.string()});
+  EXPECT_EQ(run.code, 1);
+  EXPECT_TRUE(contains(run.output,
+                       "cli_bad_robot.yaml:2: imus[0].frame: unknown link or frame "
+                       "'imu_fram'"))
+      << run.output;
 }
 
 TEST(Cli, UnknownOptionIsNamed) {

@@ -11,6 +11,7 @@ int run_launch(Args args);
 int run_model(Args args);
 int run_play(Args args);
 int run_record(Args args);
+int run_robot(Args args);
 int run_topic(Args args);
 
 }  // namespace wbi::cli
