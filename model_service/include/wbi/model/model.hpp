@@ -104,6 +104,10 @@ struct Model {
   int body_id(const std::string& body) const;
   bool has_joint(const std::string& joint) const;
   bool has_frame(const std::string& frame) const;
+
+  // Links whose inertia was replaced by the nearest physical one at load time
+  // (LoadOptions::repair_inertia), in tree order; empty otherwise.
+  std::vector<std::string> repaired_inertia_links;
 };
 
 }  // namespace wbi::model
