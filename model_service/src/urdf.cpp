@@ -265,11 +265,14 @@ struct Builder {
     return movable && (options.joints.empty() || kept.count(j.name) > 0);
   }
 
-  void add_link(const urdf::Link& link, int body, const Placement& X_BL) {
+  void add_link(const urdf::Link& link, int body, const Placement& X_BL, int parent_frame) {
+    const int frame = static_cast<int>(model.frame_name.size());
     model.frame_name.push_back(link.name);
     model.frame_body.push_back(body);
     model.frame_R_BF.push_back(X_BL.R);
     model.frame_p_BF.push_back(X_BL.p);
+    model.frame_parent.push_back(parent_frame);
+    model.frame_inertia.emplace_back();
     if (link.inertial && link.inertial->mass > 0.0) {
       const urdf::Inertial& in = *link.inertial;
       const Placement X_BI = X_BL * to_placement(in.origin);
@@ -279,7 +282,9 @@ struct Builder {
         I = repaired;
         model.repaired_inertia_links.push_back(link.name);
       }
-      acc[body] += SpatialInertia::from_com(in.mass, X_BI.p, X_BI.R * I * X_BI.R.transpose());
+      model.frame_inertia.back() =
+          SpatialInertia::from_com(in.mass, X_BI.p, X_BI.R * I * X_BI.R.transpose());
+      acc[body] += model.frame_inertia.back();
     }
     // children in file order
     std::vector<const urdf::Joint*> joints;
@@ -294,7 +299,7 @@ struct Builder {
       const Placement X_BJ = X_BL * to_placement(j->parent_to_joint_origin_transform);
       if (moves(*j)) {
         const int b = new_body(*j, body, X_BJ);
-        add_link(*child, b, Placement{});
+        add_link(*child, b, Placement{}, frame);
       } else {
         Placement X_JC;
         if (j->type != urdf::Joint::FIXED) {  // locked movable joint
@@ -308,7 +313,7 @@ struct Builder {
           model.locked_joint_name.push_back(j->name);
           model.locked_joint_position.push_back(q);
         }
-        add_link(*child, body, X_BJ * X_JC);
+        add_link(*child, body, X_BJ * X_JC, frame);
       }
     }
   }
@@ -402,7 +407,7 @@ Model load_urdf_string(const std::string& xml, const LoadOptions& options,
   m.body_joint_type.push_back(JointType::kRevolute);
   m.body_joint_axis.push_back(Vector3d::UnitZ());
   b.acc.emplace_back();
-  b.add_link(*root, 0, Placement{});
+  b.add_link(*root, 0, Placement{}, -1);
 
   m.n_bodies = static_cast<int>(m.parent.size());
   m.n_joints = m.n_bodies - 1;

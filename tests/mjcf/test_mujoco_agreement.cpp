@@ -37,14 +37,30 @@ struct Robot {
   std::string label;
   std::filesystem::path urdf;  // empty when ../shared is missing
   bool fixed_base = false;
+  std::vector<std::string> welded;  // e.g. the child links of F/T sensors' fixed joints
+  std::vector<std::string> frames;  // sites (IMU, F/T), and spheres for contacts
 };
 
 std::vector<Robot> robots() {
-  std::vector<Robot> out{{"arm7", wbi::test::project_model("arm7.urdf"), true},
-                         {"humanoid", wbi::test::project_model("humanoid.urdf"), false}};
+  std::vector<Robot> out{{"arm7", wbi::test::project_model("arm7.urdf"), true, {}, {}},
+                         {"humanoid",
+                          wbi::test::project_model("humanoid.urdf"),
+                          false,
+                          {"l_foot", "r_foot"},
+                          {"imu_frame", "l_foot", "r_foot", "l_sole", "r_sole"}}};
   const auto shared = wbi::test::shared_models_dir();
-  out.push_back({"iCub 3", shared ? *shared / "iCubGenova09/model.urdf" : "", false});
-  out.push_back({"TALOS", shared ? *shared / "talos/talos_reduced.urdf" : "", false});
+  out.push_back({"iCub 3",
+                 shared ? *shared / "iCubGenova09/model.urdf" : "",
+                 false,
+                 {"l_hip_3", "r_hip_3", "l_foot_front", "l_foot_rear", "r_foot_front",
+                  "r_foot_rear", "l_shoulder_3", "r_shoulder_3"},
+                 {"imu_frame", "l_hip_3", "l_foot_front", "r_foot_rear", "l_sole", "r_sole"}});
+  out.push_back({"TALOS",
+                 shared ? *shared / "talos/talos_reduced.urdf" : "",
+                 false,
+                 {"wrist_left_ft_link", "wrist_right_ft_link", "gripper_left_motor_single_link",
+                  "gripper_right_motor_single_link"},
+                 {"imu_link", "wrist_left_ft_link", "left_sole_link", "right_sole_link"}});
   return out;
 }
 
@@ -88,7 +104,7 @@ ModelPtr load_mjcf(const std::string& xml, std::string& messages) {
 }
 
 struct Errors {
-  double mass = 0, M = 0, gravity = 0, bias = 0;
+  double mass = 0, M = 0, gravity = 0, bias = 0, site = 0;
 };
 
 // Loads the written model in MuJoCo and compares it with wbi's at kStates states.
@@ -159,7 +175,22 @@ Errors compare(const wm::Model& model, const wj::MjcfOptions& options, const std
     mj_forward(m.get(), d.get());
     wj::mujoco_force_to_wbi(model, index, q, bias_mj, h);
     errors.bias = std::max(errors.bias, rel_error(h, wm::bias_forces(model, data, q, nu, g)));
+
+    // every site where wbi puts its frame (the frame's pose composed with the site's)
+    wm::forward_kinematics(model, data, q);
+    for (const wj::Site& site : options.sites) {
+      const int id = mj_name2id(m.get(), mjOBJ_SITE, site.name.c_str());
+      const Eigen::Matrix4d X = wm::frame_pose(model, data, model.frame_id(site.frame));
+      const Eigen::Vector3d p = X.topRightCorner<3, 1>() + X.topLeftCorner<3, 3>() * site.position;
+      const Eigen::Matrix3d R = X.topLeftCorner<3, 3>() * site.rotation;
+      const Eigen::Map<const Eigen::Vector3d> p_mj(d->site_xpos + 3 * id);
+      const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> R_mj(d->site_xmat +
+                                                                                9 * id);
+      errors.site = std::max(
+          {errors.site, (p_mj - p).cwiseAbs().maxCoeff(), (R_mj - R).cwiseAbs().maxCoeff()});
+    }
   }
+  EXPECT_LE(errors.site, 1e-12) << "site poses";
   EXPECT_LE(errors.M, kTol) << "M";
   EXPECT_LE(errors.gravity, kTol) << "bias at zero velocity (gravity)";
   EXPECT_LE(errors.bias, kTol) << "bias at nonzero velocity";
@@ -170,7 +201,7 @@ Errors compare(const wm::Model& model, const wj::MjcfOptions& options, const std
   mju_user_warning = nullptr;
   std::cout << "[ measured ] " << what << ": mass " << errors.mass << ", M " << errors.M
             << ", gravity " << errors.gravity << ", bias (nonzero velocity) " << errors.bias
-            << "\n";
+            << ", site poses " << errors.site << " m|rad\n";
   return errors;
 }
 
@@ -206,6 +237,46 @@ TEST_P(MujocoAgreement, MassMatrixAndBiasForcesMatchTheModelLibrary) {
   options.damping.assign(static_cast<std::size_t>(model.n_joints), 0.3);
   options.frictionloss.assign(static_cast<std::size_t>(model.n_joints), 0.2);
   compare(model, options, robot.label + ", armature, damping, friction loss");
+  options.inertia_form = wj::InertiaForm::kFull;
+  compare(model, options, robot.label + ", fullinertia");
+}
+
+// Welded links (bodies of their own), sites on sensor frames, contact geometry and
+// a ground: the dynamics are the same, the sites sit on wbi's frames, and MuJoCo
+// has one body more per welded link.
+TEST_P(MujocoAgreement, WeldedLinksSitesAndContactsKeepTheDynamics) {
+  const Robot robot = robots()[static_cast<std::size_t>(GetParam())];
+  if (robot.urdf.empty()) {
+    GTEST_SKIP() << wbi::test::kSharedMissing;
+  }
+  const wm::Model model = load(robot);
+  wj::MjcfOptions options;
+  options.welded_links = robot.welded;
+  options.ground.enabled = true;
+  options.ground.height = -2.0;  // below every random configuration: no contact
+  const Eigen::Matrix3d tilt =
+      Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  for (const std::string& frame : robot.frames) {
+    options.sites.push_back({frame + "_site", frame, Eigen::Vector3d(0.01, -0.02, 0.03), tilt});
+    wj::ContactGeometry box;
+    box.link = frame;
+    box.size = {0.1, 0.05, 0.01};
+    box.position = {0.0, 0.0, -0.005};
+    options.contacts.push_back(box);
+  }
+  options.armature = some_armature(model);
+  compare(model, options, robot.label + ", welded links, sites, contacts");
+
+  std::string messages;
+  const ModelPtr m = load_mjcf(wj::write_mjcf(model, options), messages);
+  ASSERT_TRUE(m) << messages;
+  // MuJoCo's world body, the model's bodies (a fixed root named "world" is MuJoCo's
+  // world body, its mass on a body "world_inertial"), one per welded link
+  const bool massless_world_root = model.body_name[0] == "world" && model.body_mass[0] <= 0.0;
+  EXPECT_EQ(m->nbody, 1 + model.n_bodies + static_cast<int>(robot.welded.size()) -
+                          (massless_world_root ? 1 : 0));
+  EXPECT_EQ(m->ngeom, static_cast<int>(robot.frames.size()) + 1);
+  EXPECT_EQ(m->nsite, static_cast<int>(robot.frames.size()));
 }
 
 std::string robot_name(const ::testing::TestParamInfo<int>& param) {

@@ -143,14 +143,65 @@ const char* integrator_name(Integrator integrator) {
   return "Euler";
 }
 
+struct Pose {
+  Vector3d p = Vector3d::Zero();
+  Matrix3d R = Matrix3d::Identity();
+};
+
+// a⁻¹ b: the pose b (given in the same frame as a) seen from a
+Pose relative(const Pose& a, const Pose& b) {
+  return {a.R.transpose() * (b.p - a.p), a.R.transpose() * b.R};
+}
+
+// An MJCF <body> is a "group" of frames of one model body, named by its head
+// frame: the body's first link (the one its joint moves), or a welded link
+// (MjcfOptions::welded_links), which takes the links lumped below it.
 class Writer {
  public:
   Writer(const wm::Model& model, const MjcfOptions& options)
-      : model_(model), options_(options), children_(static_cast<std::size_t>(model.n_bodies)) {
-    for (int i = 1; i < model.n_bodies; ++i) {
-      children_[static_cast<std::size_t>(model.parent[static_cast<std::size_t>(i)])].push_back(i);
-    }
+      : model_(model),
+        options_(options),
+        body_head_(static_cast<std::size_t>(model.n_bodies), -1),
+        split_(static_cast<std::size_t>(model.n_bodies), false),
+        group_(static_cast<std::size_t>(model.n_frames()), -1),
+        children_(static_cast<std::size_t>(model.n_frames())) {
     floating_ = options.floating_base.value_or(model.floating_base);
+    if (model.frame_parent.size() != static_cast<std::size_t>(model.n_frames()) ||
+        model.frame_inertia.size() != static_cast<std::size_t>(model.n_frames())) {
+      fail("the model has no frame_parent/frame_inertia (build it with wbi::model's loader)");
+    }
+    for (int f = 0; f < model.n_frames(); ++f) {
+      const int b = model.frame_body[uz(f)];
+      const int parent = model.frame_parent[uz(f)];
+      if (parent < 0 || model.frame_body[uz(parent)] != b) {
+        body_head_[uz(b)] = f;
+      }
+    }
+    std::vector<bool> welded(uz(model.n_frames()), false);
+    for (const std::string& link : options.welded_links) {
+      if (!model.has_frame(link)) {
+        fail("welded_links: unknown link '" + link + "'");
+      }
+      const int f = model.frame_id(link);
+      if (body_head_[uz(model.frame_body[uz(f)])] == f) {
+        fail("welded_links: link '" + link +
+             "' is already a body of its own (a joint moves it, "
+             "or it is the root)");
+      }
+      if (welded[uz(f)]) {
+        fail("welded_links: link '" + link + "' is listed twice");
+      }
+      welded[uz(f)] = true;
+      split_[uz(model.frame_body[uz(f)])] = true;
+    }
+    // frames come parent first (depth-first), so a parent's group is known
+    for (int f = 0; f < model.n_frames(); ++f) {
+      const bool head = body_head_[uz(model.frame_body[uz(f)])] == f || welded[uz(f)];
+      group_[uz(f)] = head ? f : group_[uz(model.frame_parent[uz(f)])];
+      if (head && model.frame_parent[uz(f)] >= 0) {
+        children_[uz(group_[uz(model.frame_parent[uz(f)])])].push_back(f);
+      }
+    }
     check_options();
   }
 
@@ -173,12 +224,14 @@ class Writer {
            << attr("friction", nums({options_.ground.friction, 0.005, 0.0001}))
            << " contype=\"0\" conaffinity=\"1\" condim=\"3\"/>\n";
     }
-    write_body(0, 2);
+    write_group(body_head_[0], 2);
     out_ << "  </worldbody>\n</mujoco>\n";
     return out_.str();
   }
 
  private:
+  static std::size_t uz(int i) { return static_cast<std::size_t>(i); }
+
   void check_options() const {
     if (!(options_.timestep > 0.0) || !std::isfinite(options_.timestep)) {
       fail("timestep must be > 0, got " + num(options_.timestep));
@@ -233,39 +286,62 @@ class Writer {
     return g.name.empty() ? g.link + "_contact_" + std::to_string(c) : g.name;
   }
 
-  // Placement in its body of something given in a frame's coordinates.
-  void in_body(int frame, const Vector3d& p, const Matrix3d& R, Vector3d& p_B,
-               Matrix3d& R_B) const {
-    const auto f = static_cast<std::size_t>(frame);
-    p_B = model_.frame_p_BF[f] + model_.frame_R_BF[f] * p;
-    R_B = model_.frame_R_BF[f] * R;
+  Pose frame_pose(int f) const { return {model_.frame_p_BF[uz(f)], model_.frame_R_BF[uz(f)]}; }
+
+  // Something given in frame f's coordinates, seen from the head of f's group.
+  Pose in_group(int f, const Vector3d& p, const Matrix3d& R) const {
+    const Pose X_BF = frame_pose(f);
+    const Pose X_BX{X_BF.p + X_BF.R * p, X_BF.R * R};
+    return relative(frame_pose(group_[uz(f)]), X_BX);
   }
 
-  void write_inertial(int body, bool moving, const std::string& pad) {
-    const auto b = static_cast<std::size_t>(body);
-    const double mass = model_.body_mass[b];
-    if (mass <= 0.0 && !moving) {
-      return;  // a massless static body: MuJoCo's default is no mass
-    }
-    const Principal p = principal(model_.body_inertia_c[b]);
+  void write_inertial(const std::string& name, double mass, const Vector3d& com,
+                      const Matrix3d& I_c, const std::string& pad) {
+    const Principal p = principal(I_c);
+    check_body_inertia(name, false, mass, p.moments);
+    out_ << pad << "<inertial" << attr("pos", vec3(com));
     if (options_.inertia_form == InertiaForm::kFull) {
-      check_body_inertia(model_.body_name[b], moving, mass, p.moments);
-      const Matrix3d& I = model_.body_inertia_c[b];
-      out_ << pad << "<inertial" << attr("pos", vec3(model_.body_com[b])) << attr("mass", num(mass))
-           << attr("fullinertia", nums({I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2)}))
-           << "/>\n";
+      out_ << attr("mass", num(mass))
+           << attr("fullinertia",
+                   nums({I_c(0, 0), I_c(1, 1), I_c(2, 2), I_c(0, 1), I_c(0, 2), I_c(1, 2)}));
+    } else {
+      out_ << attr("quat", quat(p.axes)) << attr("mass", num(mass))
+           << attr("diaginertia", vec3(p.moments));
+    }
+    out_ << "/>\n";
+  }
+
+  // The inertial of group h: the model's body inertia when the body is not split,
+  // else the sum of the group's links, in the head's frame.
+  void write_group_inertial(int h, const std::string& name, const std::string& pad) {
+    const int b = model_.frame_body[uz(h)];
+    if (!split_[uz(b)]) {
+      if (model_.body_mass[uz(b)] > 0.0) {
+        write_inertial(name, model_.body_mass[uz(b)], model_.body_com[uz(b)],
+                       model_.body_inertia_c[uz(b)], pad);
+      }
       return;
     }
-    check_body_inertia(model_.body_name[b], moving, mass, p.moments);
-    out_ << pad << "<inertial" << attr("pos", vec3(model_.body_com[b]))
-         << attr("quat", quat(p.axes)) << attr("mass", num(mass))
-         << attr("diaginertia", vec3(p.moments)) << "/>\n";
+    wm::SpatialInertia I;  // about the body origin, body axes
+    for (int f = 0; f < model_.n_frames(); ++f) {
+      if (group_[uz(f)] == h) {
+        I += model_.frame_inertia[uz(f)];
+      }
+    }
+    if (!(I.m > 0.0)) {
+      return;
+    }
+    const Vector3d c = I.h / I.m;
+    const Matrix3d I_c = I.I - I.m * (c.squaredNorm() * Matrix3d::Identity() - c * c.transpose());
+    const Pose X_BH = frame_pose(h);
+    write_inertial(name, I.m, X_BH.R.transpose() * (c - X_BH.p), X_BH.R.transpose() * I_c * X_BH.R,
+                   pad);
   }
 
   void write_joint(int body, const std::string& pad) {
-    const auto b = static_cast<std::size_t>(body);
+    const auto b = uz(body);
     const int k = model_.body_joint[b];
-    const auto uk = static_cast<std::size_t>(k);
+    const auto uk = uz(k);
     const bool prismatic = model_.joint_type[uk] == wm::JointType::kPrismatic;
     const double lo = model_.joint_lower[uk];
     const double hi = model_.joint_upper[uk];
@@ -283,16 +359,14 @@ class Writer {
          << attr("frictionloss", num(value_or_zero(options_.frictionloss, k))) << "/>\n";
   }
 
-  void write_geoms(int body, const std::string& pad) {
+  void write_geoms(int h, const std::string& pad) {
     for (std::size_t c = 0; c < options_.contacts.size(); ++c) {
       const ContactGeometry& g = options_.contacts[c];
       const int frame = model_.frame_id(g.link);
-      if (model_.frame_body[static_cast<std::size_t>(frame)] != body) {
+      if (group_[uz(frame)] != h) {
         continue;
       }
-      Vector3d p;
-      Matrix3d R;
-      in_body(frame, g.position, g.rotation, p, R);
+      const Pose X = in_group(frame, g.position, g.rotation);
       out_ << pad << "<geom" << attr("name", geom_name(c));
       switch (g.shape) {
         case ContactShape::kBox:
@@ -305,73 +379,87 @@ class Writer {
           out_ << attr("type", "capsule") << attr("size", nums({g.radius, 0.5 * g.length}));
           break;
       }
-      out_ << attr("pos", vec3(p)) << attr("quat", quat(R))
+      out_ << attr("pos", vec3(X.p)) << attr("quat", quat(X.R))
            << attr("friction", nums({g.friction, 0.005, 0.0001}))
            << " contype=\"1\" conaffinity=\"0\" condim=\"3\"/>\n";
     }
   }
 
-  void write_sites(int body, const std::string& pad) {
+  void write_sites(int h, const std::string& pad) {
     for (const Site& s : options_.sites) {
       const int frame = model_.frame_id(s.frame);
-      if (model_.frame_body[static_cast<std::size_t>(frame)] != body) {
+      if (group_[uz(frame)] != h) {
         continue;
       }
-      Vector3d p;
-      Matrix3d R;
-      in_body(frame, s.position, s.rotation, p, R);
-      out_ << pad << "<site" << attr("name", s.name) << attr("pos", vec3(p))
-           << attr("quat", quat(R)) << " size=\"0.005\"/>\n";
+      const Pose X = in_group(frame, s.position, s.rotation);
+      out_ << pad << "<site" << attr("name", s.name) << attr("pos", vec3(X.p))
+           << attr("quat", quat(X.R)) << " size=\"0.005\"/>\n";
     }
   }
 
-  void write_body(int body, int depth) {
-    const auto b = static_cast<std::size_t>(body);
-    const std::string pad(static_cast<std::size_t>(2 * depth), ' ');
+  void write_contents(int h, int depth, const std::string& pad) {
+    write_geoms(h, pad);
+    write_sites(h, pad);
+    for (const int child : children_[uz(h)]) {
+      write_group(child, depth);
+    }
+  }
+
+  void write_group(int h, int depth) {
+    const int b = model_.frame_body[uz(h)];
+    const bool body_head = body_head_[uz(b)] == h;
+    const std::string pad(uz(2 * depth), ' ');
     const std::string inner = pad + "  ";
-    if (body == 0 && !floating_ && model_.body_name[0] == "world") {
+    const std::string& name = model_.frame_name[uz(h)];
+    if (b == 0 && body_head && !floating_ && name == "world") {
       // A fixed root named "world" (the URDF convention for a fixed base) is
       // MuJoCo's world body itself: the names would clash, and it does not move.
       // The world body cannot carry an inertial: the root's lumped mass (static,
       // no part of the dynamics, but of the total mass) goes on a welded body.
       if (model_.body_mass[0] > 0.0) {
         out_ << pad << "<body name=\"world_inertial\">\n";
-        write_inertial(0, false, inner);
+        write_group_inertial(h, name, inner);
         out_ << pad << "</body>\n";
       }
-      write_geoms(0, pad);
-      write_sites(0, pad);
-      for (const int child : children_[b]) {
-        write_body(child, depth);
-      }
+      write_contents(h, depth, pad);
       return;
     }
-    out_ << pad << "<body" << attr("name", model_.body_name[b]);
-    if (body > 0) {  // the body frame is the joint frame at q = 0
-      out_ << attr("pos", vec3(model_.joint_p_PJ[b])) << attr("quat", quat(model_.joint_R_PJ[b]));
-    } else {
+    out_ << pad << "<body" << attr("name", name);
+    if (b == 0 && body_head) {
       out_ << attr("pos", "0 0 0");
+    } else {
+      // seen from the head of the group of the link it hangs from
+      const int parent_group = group_[uz(model_.frame_parent[uz(h)])];
+      const Pose X = body_head ? Pose{model_.joint_p_PJ[uz(b)], model_.joint_R_PJ[uz(b)]}
+                               : frame_pose(h);  // joint frame at q = 0 / welded link
+      const Pose X_P = relative(frame_pose(parent_group), X);
+      out_ << attr("pos", vec3(X_P.p)) << attr("quat", quat(X_P.R));
     }
     out_ << ">\n";
-    const bool moving = body > 0 || floating_;
-    if (body == 0 && floating_) {
-      out_ << inner << "<joint" << attr("name", options_.free_joint_name) << " type=\"free\""
-           << " limited=\"false\" armature=\"0\" damping=\"0\" frictionloss=\"0\"/>\n";
-    } else if (body > 0) {
-      write_joint(body, inner);
+    if (body_head) {
+      const bool moving = b > 0 || floating_;
+      if (moving) {  // MuJoCo's check applies to the body and what is welded to it
+        const Principal p = principal(model_.body_inertia_c[uz(b)]);
+        check_body_inertia(model_.body_name[uz(b)], true, model_.body_mass[uz(b)], p.moments);
+      }
+      if (b == 0 && floating_) {
+        out_ << inner << "<joint" << attr("name", options_.free_joint_name) << " type=\"free\""
+             << " limited=\"false\" armature=\"0\" damping=\"0\" frictionloss=\"0\"/>\n";
+      } else if (b > 0) {
+        write_joint(b, inner);
+      }
     }
-    write_inertial(body, moving, inner);
-    write_geoms(body, inner);
-    write_sites(body, inner);
-    for (const int child : children_[b]) {
-      write_body(child, depth + 1);
-    }
+    write_group_inertial(h, name, inner);
+    write_contents(h, depth + 1, inner);
     out_ << pad << "</body>\n";
   }
 
   const wm::Model& model_;
   const MjcfOptions& options_;
-  std::vector<std::vector<int>> children_;
+  std::vector<int> body_head_;              // per body: its first link's frame
+  std::vector<bool> split_;                 // per body: has welded links
+  std::vector<int> group_;                  // per frame: the head frame of its MJCF body
+  std::vector<std::vector<int>> children_;  // per head frame: child heads, in frame order
   bool floating_ = true;
   std::ostringstream out_;
 };

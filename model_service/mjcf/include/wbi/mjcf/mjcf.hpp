@@ -71,6 +71,13 @@ struct MjcfOptions {
   std::vector<double> damping;
   std::vector<double> frictionloss;
 
+  // Links lumped into a body by a fixed joint that MuJoCo should keep as bodies of
+  // their own, welded to their parent (no joint), each with the links lumped below
+  // it; e.g. the child link of an F/T sensor's fixed joint, so that a MuJoCo
+  // force/torque sensor at a site on it measures the wrench across that joint.
+  // The dynamics are unchanged (M and h agree as without).
+  std::vector<std::string> welded_links;
+
   std::vector<ContactGeometry> contacts;
   std::vector<Site> sites;
   Ground ground;
