@@ -284,6 +284,100 @@ std::string robot_name(const ::testing::TestParamInfo<int>& param) {
   return kNames[param.param];
 }
 
+// F/T across a lumped fixed joint, by the welded_links design: on a fixed-base iCub 3
+// at rest, MuJoCo's force/torque sensors at sites on the welded child links of the
+// F/T sensor joints read the weight of everything below the joint (mass and CoM
+// from wbi's model) — the wrench the parent exerts on the child, about the site, in
+// site axes — and an IMU site on the root reads the proper acceleration +g.
+TEST(MujocoSensors, ForceTorqueAcrossWeldedLinksAndImuAtRest) {
+  const auto shared = wbi::test::shared_models_dir();
+  if (!shared) {
+    GTEST_SKIP() << wbi::test::kSharedMissing;
+  }
+  wm::LoadOptions load;
+  load.fixed_base = true;
+  const wm::Model model = wm::load_urdf_file((*shared / "iCubGenova09/model.urdf").string(), load);
+  const std::vector<std::string> sensed{"l_hip_3", "r_foot_front", "l_foot_rear", "r_shoulder_3"};
+  wj::MjcfOptions options;
+  options.welded_links = sensed;
+  const Eigen::Matrix3d tilt =
+      Eigen::AngleAxisd(0.4, Eigen::Vector3d(-1, 2, 0.5).normalized()).toRotationMatrix();
+  for (const std::string& link : sensed) {
+    options.sites.push_back({link + "_ft", link, Eigen::Vector3d(0.01, 0.02, -0.03), tilt,
+                             wj::SiteSensor::kForceTorque});
+  }
+  options.sites.push_back(
+      {"imu", "root_link", Eigen::Vector3d::Zero(), tilt, wj::SiteSensor::kImu});
+  std::string messages;
+  const ModelPtr m = load_mjcf(wj::write_mjcf(model, options), messages);
+  ASSERT_TRUE(m) << messages;
+  EXPECT_EQ(messages, "");
+  const DataPtr d(mj_makeData(m.get()));
+  wj::MujocoIndex index;
+  for (const std::string& joint : model.joint_name) {
+    const int id = mj_name2id(m.get(), mjOBJ_JOINT, joint.c_str());
+    index.qpos.push_back(m->jnt_qposadr[id]);
+    index.dof.push_back(m->jnt_dofadr[id]);
+  }
+  auto sensor = [&](const std::string& name) {
+    const int id = mj_name2id(m.get(), mjOBJ_SENSOR, name.c_str());
+    EXPECT_GE(id, 0) << name;
+    return Eigen::Vector3d(Eigen::Map<const Eigen::Vector3d>(d->sensordata + m->sensor_adr[id]));
+  };
+  wm::Data data(model);
+  std::mt19937 rng(3);
+  const Eigen::Vector3d g(0.0, 0.0, -9.81);
+  double max_error = 0.0;
+  for (int s = 0; s < 5; ++s) {
+    const Eigen::VectorXd q = wm::random_configuration(model, rng);
+    Eigen::Map<Eigen::VectorXd> qpos(d->qpos, m->nq);
+    wj::wbi_q_to_mujoco_qpos(model, index, q, qpos);
+    mju_zero(d->qvel, m->nv);
+    mju_zero(d->qfrc_applied, m->nv);
+    mj_forward(m.get(), d.get());
+    // held at rest: the joints' torques balance gravity, so qacc = 0
+    mju_copy(d->qfrc_applied, d->qfrc_bias, m->nv);
+    mj_forward(m.get(), d.get());
+    wm::forward_kinematics(model, data, q);
+    for (const wj::Site& site : options.sites) {
+      const int link = model.frame_id(site.frame);
+      const Eigen::Matrix4d X = wm::frame_pose(model, data, link);
+      const Eigen::Matrix3d R = X.topLeftCorner<3, 3>() * site.rotation;
+      const Eigen::Vector3d p = X.topRightCorner<3, 1>() + X.topLeftCorner<3, 3>() * site.position;
+      if (site.sensor == wj::SiteSensor::kImu) {
+        max_error = std::max(max_error, (sensor("imu_accelerometer") - R.transpose() * -g).norm());
+        continue;
+      }
+      // everything below the link: the frames whose parent chain reaches it
+      double mass = 0.0;
+      Eigen::Vector3d moment = Eigen::Vector3d::Zero();  // Σ m_i c_i, world
+      for (int f = 0; f < model.n_frames(); ++f) {
+        int a = f;
+        while (a >= 0 && a != link) {
+          a = model.frame_parent[static_cast<std::size_t>(a)];
+        }
+        const wm::SpatialInertia& I = model.frame_inertia[static_cast<std::size_t>(f)];
+        if (a != link || I.m <= 0.0) {
+          continue;
+        }
+        const Eigen::Matrix4d X_WF = wm::frame_pose(model, data, f);
+        const auto uf = static_cast<std::size_t>(f);
+        const Eigen::Matrix3d R_WB = X_WF.topLeftCorner<3, 3>() * model.frame_R_BF[uf].transpose();
+        const Eigen::Vector3d p_WB = X_WF.topRightCorner<3, 1>() - R_WB * model.frame_p_BF[uf];
+        mass += I.m;
+        moment += I.m * (p_WB + R_WB * (I.h / I.m));
+      }
+      const Eigen::Vector3d force = -mass * g;  // the parent holds the subtree up
+      const Eigen::Vector3d torque = (moment / mass - p).cross(force);
+      max_error =
+          std::max({max_error, (sensor(site.name + "_force") - R.transpose() * force).norm(),
+                    (sensor(site.name + "_torque") - R.transpose() * torque).norm()});
+    }
+  }
+  std::cout << "[ measured ] F/T and IMU at rest, max error " << max_error << " (N, N m, m/s^2)\n";
+  EXPECT_LE(max_error, 1e-9);
+}
+
 INSTANTIATE_TEST_SUITE_P(Robots, MujocoAgreement, ::testing::Range(0, 4), robot_name);
 
 #else

@@ -225,7 +225,9 @@ class Writer {
            << " contype=\"0\" conaffinity=\"1\" condim=\"3\"/>\n";
     }
     write_group(body_head_[0], 2);
-    out_ << "  </worldbody>\n</mujoco>\n";
+    out_ << "  </worldbody>\n";
+    write_sensors();
+    out_ << "</mujoco>\n";
     return out_.str();
   }
 
@@ -394,6 +396,26 @@ class Writer {
       const Pose X = in_group(frame, s.position, s.rotation);
       out_ << pad << "<site" << attr("name", s.name) << attr("pos", vec3(X.p))
            << attr("quat", quat(X.R)) << " size=\"0.005\"/>\n";
+    }
+  }
+
+  void write_sensors() {
+    std::ostringstream sensors;
+    for (const Site& s : options_.sites) {
+      const std::string site = attr("site", s.name);
+      if (s.sensor == SiteSensor::kForceTorque) {
+        sensors << "    <force" << attr("name", s.name + "_force") << site << "/>\n"
+                << "    <torque" << attr("name", s.name + "_torque") << site << "/>\n";
+      } else if (s.sensor == SiteSensor::kImu) {
+        sensors << "    <framequat" << attr("name", s.name + "_quat") << " objtype=\"site\""
+                << attr("objname", s.name) << "/>\n"
+                << "    <gyro" << attr("name", s.name + "_gyro") << site << "/>\n"
+                << "    <accelerometer" << attr("name", s.name + "_accelerometer") << site
+                << "/>\n";
+      }
+    }
+    if (!sensors.str().empty()) {
+      out_ << "  <sensor>\n" << sensors.str() << "  </sensor>\n";
     }
   }
 

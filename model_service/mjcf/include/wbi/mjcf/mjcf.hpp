@@ -36,12 +36,21 @@ struct ContactGeometry {
   double friction = 1.0;                                   // sliding friction coefficient
 };
 
+// MuJoCo sensors written at a site, named after it (sensordata by mj_name2id(mjOBJ_SENSOR)):
+//   kForceTorque  "<site>_force", "<site>_torque": the wrench the parent body exerts on
+//                 the site's body, about the site, in site axes (MuJoCo force/torque);
+//                 put the site on a welded link to read across that fixed joint
+//   kImu          "<site>_quat" (framequat, w x y z), "<site>_gyro" (site axes),
+//                 "<site>_accelerometer" (proper acceleration, site axes: +g up at rest)
+enum class SiteSensor { kNone, kForceTorque, kImu };
+
 // A named point on a frame (MJCF <site>), e.g. where an IMU or F/T sensor reads.
 struct Site {
   std::string name;                                        // MJCF site name
   std::string frame;                                       // a frame of the model
   Eigen::Vector3d position = Eigen::Vector3d::Zero();      // in the frame
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // in the frame
+  SiteSensor sensor = SiteSensor::kNone;
 };
 
 struct Ground {
