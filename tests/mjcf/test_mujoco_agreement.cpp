@@ -104,7 +104,7 @@ ModelPtr load_mjcf(const std::string& xml, std::string& messages) {
 }
 
 struct Errors {
-  double mass = 0, M = 0, gravity = 0, bias = 0, site = 0;
+  double mass = 0, M = 0, gravity = 0, bias = 0, site = 0, acceleration = 0;
 };
 
 // Loads the written model in MuJoCo and compares it with wbi's at kStates states.
@@ -176,6 +176,24 @@ Errors compare(const wm::Model& model, const wj::MjcfOptions& options, const std
     wj::mujoco_force_to_wbi(model, index, q, bias_mj, h);
     errors.bias = std::max(errors.bias, rel_error(h, wm::bias_forces(model, data, q, nu, g)));
 
+    // forward dynamics under generalized forces (base wrench included): qacc = T ν̇,
+    // with no Ṫν term. Only without armature, damping and friction loss, which wbi's
+    // ABA does not model (yet) and MuJoCo adds as passive and constraint forces.
+    if (options.armature.empty() && options.damping.empty() && options.frictionloss.empty()) {
+      Eigen::VectorXd tau(nv), dnu(nv);
+      for (Eigen::Index k = 0; k < nv; ++k) {
+        tau[k] = 20.0 * unit(rng);
+      }
+      Eigen::Map<Eigen::VectorXd> applied(d->qfrc_applied, m->nv);
+      wj::wbi_force_to_mujoco(model, index, q, tau, applied);
+      mj_forward(m.get(), d.get());
+      wj::mujoco_qvel_to_wbi_nu(model, index, q, Eigen::Map<const Eigen::VectorXd>(d->qacc, m->nv),
+                                dnu);
+      errors.acceleration = std::max(
+          errors.acceleration, rel_error(dnu, wm::forward_dynamics(model, data, q, nu, tau, g)));
+      applied.setZero();
+    }
+
     // every site where wbi puts its frame (the frame's pose composed with the site's)
     wm::forward_kinematics(model, data, q);
     for (const wj::Site& site : options.sites) {
@@ -194,6 +212,7 @@ Errors compare(const wm::Model& model, const wj::MjcfOptions& options, const std
   EXPECT_LE(errors.M, kTol) << "M";
   EXPECT_LE(errors.gravity, kTol) << "bias at zero velocity (gravity)";
   EXPECT_LE(errors.bias, kTol) << "bias at nonzero velocity";
+  EXPECT_LE(errors.acceleration, kTol) << "forward dynamics";
   for (int w = 0; w < mjNWARNING; ++w) {
     EXPECT_EQ(d->warning[w].number, 0) << "MuJoCo warning " << w;
   }
@@ -201,7 +220,8 @@ Errors compare(const wm::Model& model, const wj::MjcfOptions& options, const std
   mju_user_warning = nullptr;
   std::cout << "[ measured ] " << what << ": mass " << errors.mass << ", M " << errors.M
             << ", gravity " << errors.gravity << ", bias (nonzero velocity) " << errors.bias
-            << ", site poses " << errors.site << " m|rad\n";
+            << ", forward dynamics " << errors.acceleration << ", site poses " << errors.site
+            << " m|rad\n";
   return errors;
 }
 
