@@ -272,6 +272,7 @@ struct Builder {
     model.frame_R_BF.push_back(X_BL.R);
     model.frame_p_BF.push_back(X_BL.p);
     model.frame_parent.push_back(parent_frame);
+    model.frame_joint.push_back(link.parent_joint ? link.parent_joint->name : std::string());
     model.frame_inertia.emplace_back();
     if (link.inertial && link.inertial->mass > 0.0) {
       const urdf::Inertial& in = *link.inertial;

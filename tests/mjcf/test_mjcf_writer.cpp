@@ -259,6 +259,30 @@ TEST(MjcfWriter, InertiasMuJoCoWouldRejectAreNamed) {
   EXPECT_NE(message.find("MJCF: body 'c' moves but has mass 0"), std::string::npos) << message;
 }
 
+// The per-link data the loader keeps for splitting bodies again.
+TEST(ModelFrames, ParentJointAndInertiaOfEveryLink) {
+  const wm::Model model = humanoid();
+  const int foot = model.frame_id("l_foot");
+  EXPECT_EQ(model.frame_joint[static_cast<std::size_t>(foot)], "l_foot_ft_sensor");
+  EXPECT_EQ(
+      model
+          .frame_name[static_cast<std::size_t>(model.frame_parent[static_cast<std::size_t>(foot)])],
+      "l_ankle_2");
+  EXPECT_EQ(model.frame_joint[0], "");
+  EXPECT_EQ(model.frame_parent[0], -1);
+  for (int b = 0; b < model.n_bodies; ++b) {
+    wm::SpatialInertia sum;
+    for (int f = 0; f < model.n_frames(); ++f) {
+      if (model.frame_body[static_cast<std::size_t>(f)] == b) {
+        sum += model.frame_inertia[static_cast<std::size_t>(f)];
+      }
+    }
+    EXPECT_EQ(sum.m, model.body_inertia[b].m);
+    EXPECT_EQ(sum.h, model.body_inertia[b].h);
+    EXPECT_EQ(sum.I, model.body_inertia[b].I);
+  }
+}
+
 // -------------------------------------------------- LoadOptions::repair_inertia
 
 TEST(RepairInertia, NearestPhysicalInertiaKeepsAxesMassAndCom) {
