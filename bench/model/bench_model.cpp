@@ -1,6 +1,7 @@
 // Benchmarks of the model library: ns per call of each algorithm at random
 // states, on iCub 3 (../shared/models/iCubGenova09, free-floating, 38 velocities)
-// and on models/humanoid.urdf. Every call includes its own forward kinematics;
+// and on models/humanoid.urdf; M, RNEA and ABA also on iCub 3 with armature.
+// Every call includes its own forward kinematics;
 // FrameJacobian includes the kinematics of the frame's support only, and
 // FrameJacobianAfterKinematics times the Jacobian alone after a full FK.
 #include <benchmark/benchmark.h>
@@ -29,18 +30,27 @@ struct Fixture {
 
 std::filesystem::path source_dir() { return std::filesystem::path(WBI_SOURCE_DIR); }
 
+// "icub3", "humanoid", or "icub3_armature": iCub 3 with an armature of 0.05 on every joint.
 const Fixture* fixture(const std::string& which) {
-  static std::unique_ptr<Fixture> icub, humanoid;
-  std::unique_ptr<Fixture>& f = which == "icub3" ? icub : humanoid;
+  static std::unique_ptr<Fixture> icub, icub_armature, humanoid;
+  std::unique_ptr<Fixture>& f = which == "icub3"            ? icub
+                                : which == "icub3_armature" ? icub_armature
+                                                            : humanoid;
   if (!f) {
-    const auto path = which == "icub3"
+    const auto path = which.starts_with("icub3")
                           ? source_dir().parent_path() / "shared/models/iCubGenova09/model.urdf"
                           : source_dir() / "models/humanoid.urdf";
     if (!std::filesystem::exists(path)) {
       return nullptr;
     }
     f = std::make_unique<Fixture>();
-    f->model = wm::load_urdf_file(path.string());
+    wm::LoadOptions options;
+    if (which == "icub3_armature") {
+      for (const std::string& joint : wm::load_urdf_file(path.string()).joint_name) {
+        options.armature[joint] = 0.05;
+      }
+    }
+    f->model = wm::load_urdf_file(path.string(), options);
     f->data = std::make_unique<wm::Data>(f->model);
     std::mt19937 rng(1);
     std::uniform_real_distribution<double> d(-1.0, 1.0);
@@ -179,5 +189,9 @@ void BM_ComJacobian(benchmark::State& s, const std::string& m) {
 
 WBI_BENCH_ALL(icub3);
 WBI_BENCH_ALL(humanoid);
+// Armature enters these three (and no other algorithm).
+BENCHMARK_CAPTURE(BM_MassMatrix, icub3_armature, "icub3_armature");
+BENCHMARK_CAPTURE(BM_InverseDynamics, icub3_armature, "icub3_armature");
+BENCHMARK_CAPTURE(BM_ForwardDynamics, icub3_armature, "icub3_armature");
 
 BENCHMARK_MAIN();

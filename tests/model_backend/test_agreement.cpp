@@ -167,7 +167,9 @@ TEST_F(Agreement, WithArmature) {
     paths.push_back(*dir / "iCubGenova09/model.urdf");
     paths.push_back(*dir / "talos/talos_reduced.urdf");
   } else {
-    std::cout << wbi::test::kSharedMissing << ": iCub 3 and TALOS not compared with armature\n";
+    std::cout << wbi::test::kSharedMissing << " (expected "
+              << (wbi::test::source_dir().parent_path() / "shared/models").string()
+              << "): iCub 3 and TALOS not compared with armature\n";
   }
   for (const auto& path : paths) {
     compare_file(path, with_armature(path));

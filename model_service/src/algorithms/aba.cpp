@@ -19,18 +19,17 @@ const Eigen::VectorXd& forward_dynamics(const Model& model, Data& data, const Co
   }
   forward_kinematics(model, data, q);
   detail::world_inertias(model, data);
+  detail::articulated_inertias(model, data);  // IA_i = I_i
   Vector6d a_g;
   a_g << -gravity, Vector3d::Zero();
   const Vector3d& p_B = data.p_WB[0];
   data.v[0] = model.floating_base ? detail::base_motion(p_B, nu.head<6>()) : Vector6d::Zero();
-  data.IA[0] = data.I_W[0].matrix();
   data.pA[0] = cross_force(data.v[0], data.I_W[0] * data.v[0]);
-  // pass 1, out: v_i = v_λ + S q̇,  c_i = v_i × S q̇,  IA_i = I_i,  pA_i = v_i ×* I_i v_i
+  // pass 1, out: v_i = v_λ + S q̇,  c_i = v_i × S q̇,  pA_i = v_i ×* I_i v_i
   for (int i = 1; i < model.n_bodies; ++i) {
     const Vector6d vJ = data.S[i] * nu[model.body_v_index[i]];
     data.v[i] = data.v[model.parent[i]] + vJ;
     data.c[i] = cross_motion(data.v[i], vJ);
-    data.IA[i] = data.I_W[i].matrix();
     data.pA[i] = cross_force(data.v[i], data.I_W[i] * data.v[i]);
   }
   // external wrenches (force, moment about p_F) → world-origin forces, subtracted from pA
@@ -43,8 +42,8 @@ const Eigen::VectorXd& forward_dynamics(const Model& model, Data& data, const Co
   // pass 2, in: U = IA S, D = Sᵀ U + armature, u = τ − Sᵀ pA;  Ia = IA − U Uᵀ/D;
   // IA_λ += Ia, pA_λ += pA + Ia c + U u/D. The armature (model.hpp) is inertia of the joint
   // coordinate alone: it enters D, so it is in q̈ and in what the parent sees through Ia,
-  // but not in IA itself (D > 0 here, so adding an armature of 0 changes no bit).
-
+  // but not in IA itself. x + 0 is x for every x but −0, and D ≤ 0 is rejected anyway,
+  // so an armature of 0 changes no bit.
   for (int i = model.n_bodies - 1; i > 0; --i) {
     const int lambda = model.parent[i];
     data.U[i].noalias() = data.IA[i] * data.S[i];

@@ -23,6 +23,12 @@ void world_inertias(const Model& model, Data& data) {
   }
 }
 
+void articulated_inertias(const Model& model, Data& data) {
+  for (int i = 0; i < model.n_bodies; ++i) {
+    data.IA[i] = data.I_W[i].matrix();
+  }
+}
+
 void composite_inertias(const Model& model, Data& data) {
   // I_C[i] = I_W[i] + Σ_children I_C[c], leaves to root
   for (int i = 0; i < model.n_bodies; ++i) {
