@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <random>
 #include <string>
@@ -160,14 +161,8 @@ Errors compare(const wm::Model& model, const wj::MjcfOptions& options, const std
     mj_forward(m.get(), d.get());
     mj_fullM(m.get(), M_mj.data(), d->qM);  // symmetric: row- or column-major alike
     wj::mujoco_mass_matrix_to_wbi(model, index, q, M_mj, M);
-    // wbi's M plus the armature on the joint diagonal (what Model::joint_armature
-    // will add inside the model library once it carries armature)
-    Eigen::MatrixXd expected = wm::mass_matrix(model, data, q);
-    for (std::size_t k = 0; k < options.armature.size(); ++k) {
-      expected(model.base_nv + static_cast<Eigen::Index>(k),
-               model.base_nv + static_cast<Eigen::Index>(k)) += options.armature[k];
-    }
-    errors.M = std::max(errors.M, rel_error(M, expected));
+    // the armature is the model's (Model::joint_armature), written by the MJCF
+    errors.M = std::max(errors.M, rel_error(M, wm::mass_matrix(model, data, q)));
     wj::mujoco_force_to_wbi(model, index, q, bias_mj, h);
     errors.gravity = std::max(errors.gravity, rel_error(h, wm::gravity_forces(model, data, q, g)));
 
@@ -177,9 +172,9 @@ Errors compare(const wm::Model& model, const wj::MjcfOptions& options, const std
     errors.bias = std::max(errors.bias, rel_error(h, wm::bias_forces(model, data, q, nu, g)));
 
     // forward dynamics under generalized forces (base wrench included): qacc = T ν̇,
-    // with no Ṫν term. Only without armature, damping and friction loss, which wbi's
-    // ABA does not model (yet) and MuJoCo adds as passive and constraint forces.
-    if (options.armature.empty() && options.damping.empty() && options.frictionloss.empty()) {
+    // with no Ṫν term (armature included). Only without damping and friction loss,
+    // which wbi's ABA does not model and MuJoCo adds as passive and constraint forces.
+    if (options.damping.empty() && options.frictionloss.empty()) {
       Eigen::VectorXd tau(nv), dnu(nv);
       for (Eigen::Index k = 0; k < nv; ++k) {
         tau[k] = 20.0 * unit(rng);
@@ -225,18 +220,20 @@ Errors compare(const wm::Model& model, const wj::MjcfOptions& options, const std
   return errors;
 }
 
-wm::Model load(const Robot& robot) {
+wm::Model load(const Robot& robot, const std::map<std::string, double>& armature = {}) {
   wm::LoadOptions load;
   load.fixed_base = robot.fixed_base;
   load.repair_inertia = true;
+  load.armature = armature;
   return wm::load_urdf_file(robot.urdf.string(), load);
 }
 
-// Armature of the order of real actuators: 0.01 … 0.5 kg m².
-std::vector<double> some_armature(const wm::Model& model) {
-  std::vector<double> armature;
+// Armature of the order of real actuators: 0.01 … 0.5 kg m², by joint name.
+std::map<std::string, double> some_armature(const wm::Model& model) {
+  std::map<std::string, double> armature;
   for (int k = 0; k < model.n_joints; ++k) {
-    armature.push_back(0.01 + 0.49 * static_cast<double>(k % 7) / 6.0);
+    armature[model.joint_name[static_cast<std::size_t>(k)]] =
+        0.01 + 0.49 * static_cast<double>(k % 7) / 6.0;
   }
   return armature;
 }
@@ -252,13 +249,15 @@ TEST_P(MujocoAgreement, MassMatrixAndBiasForcesMatchTheModelLibrary) {
   const wm::Model model = load(robot);
   wj::MjcfOptions options;
   compare(model, options, robot.label + ", no armature");
-  options.armature = some_armature(model);
+  // the model's armature, written by the MJCF: forward dynamics agree too
+  const wm::Model armed = load(robot, some_armature(model));
+  compare(armed, options, robot.label + ", armature");
   // damping and friction loss enter neither M nor the bias forces
   options.damping.assign(static_cast<std::size_t>(model.n_joints), 0.3);
   options.frictionloss.assign(static_cast<std::size_t>(model.n_joints), 0.2);
-  compare(model, options, robot.label + ", armature, damping, friction loss");
+  compare(armed, options, robot.label + ", armature, damping, friction loss");
   options.inertia_form = wj::InertiaForm::kFull;
-  compare(model, options, robot.label + ", fullinertia");
+  compare(armed, options, robot.label + ", fullinertia");
 }
 
 // Welded links (bodies of their own), sites on sensor frames, contact geometry and
@@ -269,7 +268,7 @@ TEST_P(MujocoAgreement, WeldedLinksSitesAndContactsKeepTheDynamics) {
   if (robot.urdf.empty()) {
     GTEST_SKIP() << wbi::test::kSharedMissing;
   }
-  const wm::Model model = load(robot);
+  const wm::Model model = load(robot, some_armature(load(robot)));
   wj::MjcfOptions options;
   options.welded_links = robot.welded;
   options.ground.enabled = true;
@@ -284,7 +283,6 @@ TEST_P(MujocoAgreement, WeldedLinksSitesAndContactsKeepTheDynamics) {
     box.position = {0.0, 0.0, -0.005};
     options.contacts.push_back(box);
   }
-  options.armature = some_armature(model);
   compare(model, options, robot.label + ", welded links, sites, contacts");
 
   std::string messages;

@@ -1,9 +1,13 @@
 // Armature through the proxy: the local model (DdsInterfaceOptions::armature)
-// and the remote model (the model_service component's `armature` parameter,
-// here in this process, answering over DDS request/reply) agree over a joint
+// and the remote model (the model_service component's `armature` parameter, or
+// the joints of its `robot_config` file, here in this process, answering over
+// DDS request/reply) agree over a joint
 // subset, and both really carry the armature: M grows by it on the diagonal of
 // the controlled joints and inverse dynamics by armature · q̈.
 #include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
 
 #include <wbi/model_service/component.hpp>
 #include <wbi/runtime/runner.hpp>
@@ -18,20 +22,29 @@ const std::map<std::string, double> kArmature{
     {"joint_1", 0.31}, {"joint_2", 0.27},  {"joint_3", 0.12}, {"joint_4", 0.09},
     {"joint_5", 0.05}, {"joint_6", 0.021}, {"joint_7", 0.013}};
 
-TEST(ModelArmature, LocalAndRemoteModelsAgree) {
-  const std::string robot = "arm_armature";
+// kArmature as a YAML block map: "joint: value" (the service's armature
+// parameter) or "joint: {armature: value}" (a robot config's joints).
+std::string armature_yaml(bool robot_config_joints) {
+  std::string yaml;
+  for (const auto& [joint, value] : kArmature) {
+    const std::string number = std::to_string(value);
+    yaml += "  " + joint + ": " + (robot_config_joints ? "{armature: " + number + "}" : number) + "\n";
+  }
+  return yaml;
+}
+
+// The model service (with `service_parameters`) and a local model with
+// kArmature agree, and both carry it.
+void expect_local_and_remote_agree(const std::string& robot,
+                                   const std::string& service_parameters) {
   ArmPeer peer(robot);
   wbi::dds::Participant service_side("service");
   wbi::runtime::SystemClock clock;
   wbi::runtime::ComponentRunner service(
       std::make_unique<wbi::model_service::ModelServiceComponent>(),
       wbi::runtime::ComponentContext{"model", "model_service", &service_side, &clock});
-  std::string parameters =
-      "urdf: " + project_model("arm7.urdf").string() + "\nrobot: " + robot + "\narmature:\n";
-  for (const auto& [joint, value] : kArmature) {
-    parameters += "  " + joint + ": " + std::to_string(value) + "\n";
-  }
-  service.configure(wbi::runtime::Parameters::from_string(parameters));
+  service.configure(
+      wbi::runtime::Parameters::from_string(service_parameters + "robot: " + robot + "\n"));
   service.activate();
 
   const wbi::IdList joints{"joint_4", "joint_2", "joint_6"};
@@ -95,6 +108,54 @@ TEST(ModelArmature, LocalAndRemoteModelsAgree) {
 
   service.deactivate();
   service.shutdown();
+}
+
+TEST(ModelArmature, LocalAndRemoteModelsAgree) {
+  expect_local_and_remote_agree(
+      "arm_armature", "urdf: " + project_model("arm7.urdf").string() + "\narmature:\n" +
+                          armature_yaml(false));
+}
+
+// robot_config: the simulation's file gives the service its URDF and armature.
+TEST(ModelArmature, RobotConfigGivesTheServiceItsArmature) {
+  const auto file = std::filesystem::path(testing::TempDir()) / "model_armature_robot.yaml";
+  {
+    std::ofstream out(file);
+    out << "urdf: " << project_model("arm7.urdf").string() << "\nfixed_base: true\njoints:\n"
+        << armature_yaml(true);
+  }
+  expect_local_and_remote_agree("arm_armature_config", "robot_config: " + file.string() + "\n");
+  std::filesystem::remove(file);
+}
+
+TEST(ModelArmature, BadRobotConfigFailsConfigureNamingTheFileAndKey) {
+  wbi::dds::Participant service_side("service");
+  wbi::runtime::SystemClock clock;
+  const auto file = std::filesystem::path(testing::TempDir()) / "model_armature_bad.yaml";
+  {
+    std::ofstream out(file);
+    out << "urdf: " << project_model("arm7.urdf").string() << "\njoints: {joint_2: {armture: 1}}\n";
+  }
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"robot_config: " + file.string(),
+       {"robot_config", "model_armature_bad.yaml:2", "armture", "unknown key"}},
+      {"robot_config: /nonexistent/robot.yaml", {"robot_config", "/nonexistent/robot.yaml"}},
+      {"robot_config: " + file.string() + "\nurdf: " + project_model("arm7.urdf").string(),
+       {"urdf", "not both"}},
+  };
+  for (const auto& [yaml, words] : cases) {
+    wbi::runtime::ComponentRunner service(
+        std::make_unique<wbi::model_service::ModelServiceComponent>(),
+        wbi::runtime::ComponentContext{"model", "model_service", &service_side, &clock});
+    EXPECT_THROW(service.configure(wbi::runtime::Parameters::from_string(yaml)),
+                 wbi::runtime::TransitionError)
+        << yaml;
+    for (const std::string& word : words) {
+      EXPECT_NE(service.last_error().find(word), std::string::npos)
+          << yaml << ": " << service.last_error();
+    }
+  }
+  std::filesystem::remove(file);
 }
 
 TEST(ModelArmature, BadArmatureFailsConfigureNamingTheParameterAndJoint) {

@@ -6,6 +6,7 @@
 
 #include <wbi/dds/topics.hpp>
 #include <wbi/model/backend.hpp>
+#include <wbi/robot_config/robot_config.hpp>
 
 namespace wbi::model_service {
 
@@ -29,14 +30,36 @@ ModelServiceComponent::~ModelServiceComponent() { release(); }
 
 void ModelServiceComponent::on_configure(const runtime::Parameters& parameters,
                                          const runtime::ComponentContext& context) {
-  const std::string urdf = resolve(parameters.require<std::string>("urdf"), parameters);
+  // The robot: a URDF, or a robot config file (deploy/robots/*.yaml) whose URDF,
+  // base and joint armature are the simulation's, so that the served model is
+  // the simulated one.
+  std::string urdf;
   model::LoadOptions options;
+  if (parameters.has("robot_config")) {
+    if (parameters.has("urdf")) {
+      throw runtime::ParameterError(parameters.where("urdf") +
+                                    ": give urdf or robot_config, not both (the robot "
+                                    "config names its URDF)");
+    }
+    try {
+      const robot_config::RobotConfig config = robot_config::load_robot_config(
+          resolve(parameters.require<std::string>("robot_config"), parameters));
+      urdf = config.urdf;
+      options.fixed_base = config.fixed_base;
+      options.armature = robot_config::armature_by_joint(config);
+    } catch (const std::invalid_argument& error) {  // already "file:line: key: what"
+      throw runtime::ParameterError(parameters.where("robot_config") + ": " + error.what());
+    }
+  } else {
+    urdf = resolve(parameters.require<std::string>("urdf"), parameters);
+  }
   options.joints = parameters.get<std::vector<std::string>>("joints", {});
-  options.fixed_base = parameters.get<bool>("fixed_base", false);
-  // Armature by joint name. A robot config file (a later `robot_config` parameter,
-  // joints: {name: {armature: x}}) is meant to fill the same map, this
-  // parameter overriding it joint by joint.
-  options.armature = parameters.get<std::map<std::string, double>>("armature", {});
+  options.fixed_base = parameters.get<bool>("fixed_base", options.fixed_base);
+  // Armature by joint name; over the robot config's joint by joint.
+  for (const auto& [joint, value] :
+       parameters.get<std::map<std::string, double>>("armature", {})) {
+    options.armature[joint] = value;
+  }
   const bool worker_thread = parameters.get<bool>("worker_thread", false);
   const std::string robot = parameters.get<std::string>("robot", "");
   const std::string backend = parameters.get<std::string>("backend", "wbi");

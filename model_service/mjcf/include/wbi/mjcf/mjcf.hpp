@@ -73,7 +73,8 @@ struct MjcfOptions {
   std::optional<bool> floating_base;
   std::string free_joint_name = "floating_base";
 
-  // Per joint, in the model's joint order (ν order without the base); empty: all 0.
+  // Per joint, in the model's joint order (ν order without the base); empty: all 0,
+  // except armature, which is then the model's own (Model::joint_armature).
   // armature adds to the diagonal of M (rotor inertia reflected through the gear);
   // damping is viscous [N·m·s/rad]; frictionloss is dry (Coulomb) friction [N·m].
   std::vector<double> armature;

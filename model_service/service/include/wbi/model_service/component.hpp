@@ -5,14 +5,18 @@
 // reply; bad requests get an error reply naming the problem.
 //
 // Parameters
-//   urdf           string, required: URDF file; a relative path is looked up
-//                  beside the host file first, then from the working directory
+//   urdf           string: URDF file; a relative path is looked up beside the
+//                  host file first, then from the working directory
+//   robot_config   string, instead of urdf: a robot config file
+//                  (components/robot_config): its URDF, fixed_base and every
+//                  joint's armature, as the simulation of that file has them
 //   robot          string, default the URDF's robot name: the name in topics
 //                  and requests
 //   joints         list of strings, default all movable joints: a reduced
 //                  model (the other joints locked at 0)
 //   fixed_base     bool, default false
-//   armature       map joint: value, default none: the rotor inertia reflected
+//   armature       map joint: value, default none (or the robot config's, which
+//                  this overrides joint by joint): the rotor inertia reflected
 //                  through the gear ratio [kg·m² or kg] (wbi/model/model.hpp);
 //                  an unknown or fixed joint, a negative or non-finite value fail
 //                  configure naming `armature` and the joint
