@@ -351,6 +351,22 @@ Model load_urdf_string(const std::string& xml, const LoadOptions& options,
       throw std::invalid_argument("URDF '" + source + "': unknown locked joint '" + j + "'");
     }
   }
+  for (const auto& [j, a] : options.armature) {
+    const auto joint = urdf->getJoint(j);
+    if (!joint) {
+      throw std::invalid_argument("URDF '" + source + "': armature for unknown joint '" + j + "'");
+    }
+    if (joint->type == urdf::Joint::FIXED) {
+      throw std::invalid_argument("URDF '" + source + "': armature for joint '" + j +
+                                  "', which is fixed");
+    }
+    if (!std::isfinite(a) || a < 0.0) {
+      std::ostringstream value;
+      value << a;
+      throw std::invalid_argument("URDF '" + source + "': armature of joint '" + j + "' is " +
+                                  value.str() + ", expected a finite value >= 0");
+    }
+  }
 
   const urdf::LinkConstSharedPtr root = urdf->getRoot();
   const bool massless_root = !root->inertial || root->inertial->mass <= 0.0;
@@ -451,6 +467,8 @@ Model load_urdf_string(const std::string& xml, const LoadOptions& options,
       mimic.offset = j.mimic->offset;
     }
     m.joint_mimic.push_back(mimic);
+    const auto armature = options.armature.find(name);
+    m.joint_armature.push_back(armature == options.armature.end() ? 0.0 : armature->second);
   }
   return m;
 }

@@ -214,3 +214,39 @@ TEST(Cli, BadInput) {
         std::string::npos);
   }
 }
+
+TEST(Cli, Armature) {
+  const std::string pendulum = wbi::test::project_model("double_pendulum.urdf").string();
+  const json info = json::parse(run({"info", pendulum, "--armature", "joint2=0.25", "--json"}));
+  EXPECT_EQ(info["joints"][0]["armature"].get<double>(), 0.0);
+  EXPECT_EQ(info["joints"][1]["armature"].get<double>(), 0.25);
+  const std::string text = run({"info", pendulum, "--armature", "joint1=0.5,joint2=0.25"});
+  EXPECT_NE(text.find("armature 0.5"), std::string::npos) << text;
+  EXPECT_NE(text.find("armature 0.25"), std::string::npos) << text;
+  EXPECT_NE(run({"info", "--help"}).find("--armature"), std::string::npos);
+  // eval: M gains exactly the armature on the diagonal
+  const std::string state = write_state(json{{"q", {0.1, 0.2}}});
+  const Eigen::MatrixXd M0 =
+      matrix(json::parse(run({"eval", pendulum, "--state", state}))["mass_matrix"]);
+  const Eigen::MatrixXd M =
+      matrix(json::parse(run({"eval", pendulum, "--state", state, "--armature",
+                              "joint1=0.5,joint2=0.25"}))["mass_matrix"]);
+  Eigen::MatrixXd expected = M0;
+  expected(0, 0) += 0.5;
+  expected(1, 1) += 0.25;
+  EXPECT_EQ(M, expected);
+  // bad lists: usage errors naming the entry; bad values: the loader's error naming the joint
+  auto error_of = [&](const std::string& list) -> std::string {
+    try {
+      run({"info", pendulum, "--armature", list});
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  EXPECT_NE(error_of("joint1").find("'joint1' is not JOINT=VALUE"), std::string::npos);
+  EXPECT_NE(error_of("joint1=heavy").find("'joint1' is not a number"), std::string::npos);
+  EXPECT_NE(error_of("joint1=1,joint1=2").find("given twice"), std::string::npos);
+  EXPECT_NE(error_of("elbow=1").find("unknown joint 'elbow'"), std::string::npos);
+  EXPECT_NE(error_of("joint2=-1").find("armature of joint 'joint2' is -1"), std::string::npos);
+}

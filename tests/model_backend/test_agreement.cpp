@@ -1,7 +1,8 @@
 // The "dart" backend agrees with the "wbi" backend to 1e-9 relative
 // (max |a − b| ≤ 1e-9 · max(1, max |b|)) on every quantity of the interface, at
 // random states: the project's models and every model of ../shared/models,
-// floating and fixed base, a reduced model with locked joints, external wrenches.
+// floating and fixed base, a reduced model with locked joints, external wrenches,
+// and armature (DART has none: the backend carries it, dart_backend.cpp).
 #include <gtest/gtest.h>
 
 #include <iostream>
@@ -80,7 +81,8 @@ void compare(wm::ModelBackend& wbi_backend, wm::ModelBackend& dart, const std::s
 
 void compare_file(const std::filesystem::path& path, const wm::LoadOptions& options) {
   const std::string what = path.string() + (options.fixed_base ? " (fixed base)" : "") +
-                           (options.joints.empty() ? "" : " (reduced)");
+                           (options.joints.empty() ? "" : " (reduced)") +
+                           (options.armature.empty() ? "" : " (armature)");
   auto wbi_backend = wm::make_model_backend("wbi", path.string(), options);
   std::unique_ptr<wm::ModelBackend> dart;
   try {
@@ -146,6 +148,41 @@ TEST_F(Agreement, SharedModelsFixedBase) {
     fixed.fixed_base = true;
     compare_file(path, fixed);
   }
+}
+
+// Armature on two joints in three (0.02 … 0.3), the others none.
+wm::LoadOptions with_armature(const std::filesystem::path& path, wm::LoadOptions options = {}) {
+  const wm::Model full = wm::load_urdf_file(path.string());
+  for (int k = 0; k < full.n_joints; ++k) {
+    if (k % 3 != 2) {
+      options.armature[full.joint_name[static_cast<std::size_t>(k)]] = 0.02 + 0.01 * (k % 29);
+    }
+  }
+  return options;
+}
+
+TEST_F(Agreement, WithArmature) {
+  std::vector<std::filesystem::path> paths = wbi::test::project_models();
+  if (const auto dir = wbi::test::shared_models_dir()) {
+    paths.push_back(*dir / "iCubGenova09/model.urdf");
+    paths.push_back(*dir / "talos/talos_reduced.urdf");
+  } else {
+    std::cout << wbi::test::kSharedMissing << ": iCub 3 and TALOS not compared with armature\n";
+  }
+  for (const auto& path : paths) {
+    compare_file(path, with_armature(path));
+    wm::LoadOptions fixed;
+    fixed.fixed_base = true;
+    compare_file(path, with_armature(path, fixed));
+  }
+  // reduced: armature of kept and of locked joints given
+  const auto humanoid = wbi::test::project_model("humanoid.urdf");
+  wm::LoadOptions reduced = with_armature(humanoid);
+  const wm::Model full = wm::load_urdf_file(humanoid.string());
+  for (int k = full.n_joints - 1; k >= 0; k -= 2) {
+    reduced.joints.push_back(full.joint_name[static_cast<std::size_t>(k)]);
+  }
+  compare_file(humanoid, reduced);
 }
 
 TEST(Backends, UnknownNameIsNamed) {

@@ -25,8 +25,16 @@ struct Operation {
 };
 
 // Allocations of each operation on its second call at a new state.
-void expect_no_allocation(const std::string& backend_name, const std::string& urdf) {
-  auto backend = wm::make_model_backend(backend_name, urdf);
+// With `armature`, every joint gets 0.1 (the backends' armature terms on the path).
+void expect_no_allocation(const std::string& backend_name, const std::string& urdf,
+                          bool armature = false) {
+  wm::LoadOptions options;
+  if (armature) {
+    for (const std::string& joint : wm::load_urdf_file(urdf).joint_name) {
+      options.armature[joint] = 0.1;
+    }
+  }
+  auto backend = wm::make_model_backend(backend_name, urdf, options);
   const wm::Model& model = backend->model();
   std::mt19937 rng(7);
   auto a = wbi::test::random_state(model, rng);
@@ -72,6 +80,7 @@ void expect_no_allocation(const std::string& backend_name, const std::string& ur
 TEST(NoMalloc, WbiBackend) {
   expect_no_allocation("wbi", wbi::test::project_model("humanoid.urdf").string());
   expect_no_allocation("wbi", wbi::test::project_model("arm7.urdf").string());
+  expect_no_allocation("wbi", wbi::test::project_model("humanoid.urdf").string(), true);
 }
 
 TEST(NoMalloc, DartBackend) {
@@ -80,6 +89,7 @@ TEST(NoMalloc, DartBackend) {
   }
   expect_no_allocation("dart", wbi::test::project_model("humanoid.urdf").string());
   expect_no_allocation("dart", wbi::test::project_model("arm7.urdf").string());
+  expect_no_allocation("dart", wbi::test::project_model("humanoid.urdf").string(), true);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <functional>
+#include <map>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -215,6 +216,31 @@ TEST(Params, IllTypedValueNamesFileLineAndKey) {
   EXPECT_THROW((void)Parameters::from_string("v: [1, x]").get<std::vector<double>>("v", {}),
                ParameterError);
   EXPECT_THROW((void)Parameters::from_string("s: [1]").get<std::string>("s", ""), ParameterError);
+}
+
+TEST(Params, MapOfNamesToNumbers) {
+  using NumberMap = std::map<std::string, double>;
+  const auto p = Parameters::from_string("armature: {a: 0.5, b: 2e-3}\nempty: {}\n");
+  EXPECT_EQ(p.get<NumberMap>("armature", {}), (NumberMap{{"a", 0.5}, {"b", 2e-3}}));
+  EXPECT_EQ(p.get<NumberMap>("empty", {{"x", 1.0}}), NumberMap{});
+  EXPECT_EQ(p.get<NumberMap>("absent", {{"x", 1.0}}), (NumberMap{{"x", 1.0}}));
+  try {
+    (void)Parameters::from_string("gain: 1\narmature:\n  a: 0.1\n  b: heavy\n", "component 'm'")
+        .get<NumberMap>("armature", {});
+    FAIL();
+  } catch (const ParameterError& error) {
+    EXPECT_STREQ(error.what(),
+                 "<string>:2: component 'm': parameter 'armature', entry 'b' (line 4) must be a "
+                 "number, got 'heavy'");
+  }
+  try {
+    (void)Parameters::from_string("armature: [1, 2]").get<NumberMap>("armature", {});
+    FAIL();
+  } catch (const ParameterError& error) {
+    EXPECT_NE(std::string(error.what()).find("must be a map of names to numbers, got a list"),
+              std::string::npos)
+        << error.what();
+  }
 }
 
 TEST(Params, UnknownAndMissingKeys) {

@@ -1,6 +1,7 @@
 // SimConfig from YAML, and configuration errors that name what is wrong.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -96,6 +97,13 @@ TEST(SimConfig, YamlErrorsNameTheKey) {
   expect_error([] { parse_sim_config("pushes: [{link: a, forse: [1, 2, 3]}]\n"); },
                {"pushes[0].forse"});
   expect_error([] { parse_sim_config("a: [1,\n"); }, {"YAML error", "line"});
+  expect_error([] { parse_sim_config("armature: [0.1]\n"); }, {"armature", "map joint"});
+  expect_error([] { parse_sim_config("armature: {j1: heavy}\n"); },
+               {"armature.j1", "expected a number"});
+  expect_error([] { parse_sim_config("armature: {j1: -0.1}\n"); }, {"armature.j1", ">= 0"});
+  expect_error([] { parse_sim_config("armature: {j1: .nan}\n"); }, {"armature.j1", "finite"});
+  EXPECT_EQ(parse_sim_config("armature: {j1: 0.5, j2: 0}\n").armature,
+            (std::map<std::string, double>{{"j1", 0.5}, {"j2", 0.0}}));
   expect_error([] { load_sim_config_file("/nonexistent/sim.yaml"); }, {"/nonexistent/sim.yaml"});
 }
 
@@ -122,6 +130,12 @@ TEST(SimConfig, UnknownNamesAreErrors) {
   c = humanoid_config();
   c.contact.links = {"l_foot", "left_foot"};
   expect_error([&] { configure(c); }, {"contact.links", "left_foot"});
+  c = humanoid_config();
+  c.armature["l_kne"] = 0.1;
+  expect_error([&] { configure(c); }, {"armature", "unknown joint", "l_kne"});
+  c = humanoid_config();
+  c.armature["l_foot_ft_sensor"] = 0.1;
+  expect_error([&] { configure(c); }, {"armature", "l_foot_ft_sensor", "fixed"});
   c = humanoid_config();
   c.urdf = "/nonexistent/robot.urdf";
   expect_error([&] { configure(c); }, {"/nonexistent/robot.urdf"});

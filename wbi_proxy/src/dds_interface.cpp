@@ -153,7 +153,7 @@ class DdsInterface final : public WholeBodyInterface {
       remote_->bind(controlled_, locked_positions());
     } else {
       model_ = std::make_unique<LocalModel>(options_.urdf, controlled_, locked_positions(),
-                                            options_.local_model_backend);
+                                            options_.local_model_backend, options_.armature);
     }
     prepare_messages();
     initialized_ = true;

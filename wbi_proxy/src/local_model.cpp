@@ -12,10 +12,12 @@ namespace {
 
 std::unique_ptr<wbi::model::ModelBackend> load(
     const std::string& urdf, const IdList& joints,
-    const std::map<std::string, double>& locked_positions, const std::string& backend) {
+    const std::map<std::string, double>& locked_positions, const std::string& backend,
+    const std::map<std::string, double>& armature) {
   wbi::model::LoadOptions options;
   options.joints = joints;
   options.locked_positions = locked_positions;
+  options.armature = armature;
   try {
     return wbi::model::make_model_backend(backend, urdf, options);
   } catch (const std::exception& e) {
@@ -27,8 +29,8 @@ std::unique_ptr<wbi::model::ModelBackend> load(
 
 LocalModel::LocalModel(const std::string& urdf, const IdList& joints,
                        const std::map<std::string, double>& locked_positions,
-                       const std::string& backend)
-    : backend_(load(urdf, joints, locked_positions, backend)),
+                       const std::string& backend, const std::map<std::string, double>& armature)
+    : backend_(load(urdf, joints, locked_positions, backend, armature)),
       model_(backend_->model()),
       q_(Eigen::VectorXd::Zero(model_.nq)),
       nu_(Eigen::VectorXd::Zero(model_.nv)),

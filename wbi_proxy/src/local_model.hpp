@@ -20,10 +20,12 @@ namespace wbi::proxy {
 class LocalModel final : public wbi::Model {
  public:
   // Throws Error naming the file, joint or backend when the model does not load.
-  // backend: "wbi" or "dart" (wbi::model::model_backend_names()).
+  // backend: "wbi" or "dart" (wbi::model::model_backend_names()); armature by
+  // joint name (wbi::model::LoadOptions::armature).
   LocalModel(const std::string& urdf, const IdList& joints,
              const std::map<std::string, double>& locked_positions,
-             const std::string& backend = "wbi");
+             const std::string& backend = "wbi",
+             const std::map<std::string, double>& armature = {});
 
   int dofs() const override { return model_.n_joints; }
   const IdList& joint_list() const override { return model_.joint_name; }

@@ -42,6 +42,7 @@ const char* const kModelHelp =
     "  bench  median ns per call of the main algorithms at random states\n"
     "\n"
     "eval and bench take --backend wbi|dart: the dynamics library that computes (default wbi).\n"
+    "All three take --armature JOINT=VALUE,...: per-joint rotor inertia (default 0).\n"
     "\n"
     "Run `wbi model SUBVERB --help` for the options of each.\n";
 
@@ -62,11 +63,50 @@ std::vector<std::string> split_list(const std::string& text) {
   return out;
 }
 
+// "a=0.1,b=2e-3" → {a: 0.1, b: 0.002}; the values are checked by the loader.
+std::map<std::string, double> parse_armature(const std::string& text) {
+  std::map<std::string, double> out;
+  std::string item;
+  std::istringstream in(text);
+  while (std::getline(in, item, ',')) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw UsageError("--armature: '" + item + "' is not JOINT=VALUE");
+    }
+    const std::string value = item.substr(eq + 1);
+    std::size_t used = 0;
+    double number = 0.0;
+    try {
+      number = std::stod(value, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (value.empty() || used != value.size()) {
+      throw UsageError("--armature: the value of '" + item.substr(0, eq) + "' is not a number: '" +
+                       value + "'");
+    }
+    if (!out.emplace(item.substr(0, eq), number).second) {
+      throw UsageError("--armature: joint '" + item.substr(0, eq) + "' given twice");
+    }
+  }
+  if (out.empty()) {
+    throw UsageError("--armature: no JOINT=VALUE given");
+  }
+  return out;
+}
+
+const char* const kArmatureHelp =
+    "rotor inertia reflected through the gear ratio, per joint: JOINT=VALUE,... [kg m^2 or kg] "
+    "(added to the diagonal of M, MuJoCo's convention; default 0)";
+
 wm::LoadOptions load_options(const Options& opts) {
   wm::LoadOptions options;
   options.fixed_base = opts.has("fixed-base");
   if (const auto joints = opts.get_optional("joints")) {
     options.joints = split_list(*joints);
+  }
+  if (const auto armature = opts.get_optional("armature")) {
+    options.armature = parse_armature(*armature);
   }
   return options;
 }
@@ -129,9 +169,11 @@ std::string type_name(const wm::Model& m, int k) {
 // ---------------------------------------------------------------- info
 
 int run_info(Args args) {
-  Options opts("wbi model info URDF [--fixed-base] [--joints a,b,...] [--json]",
-               "Print the model built from a URDF: base kind, joints in order with their limits,\n"
-               "bodies after lumping fixed joints, frames (every link) and the total mass.");
+  Options opts(
+      "wbi model info URDF [--fixed-base] [--joints a,b,...] [--armature j=v,...] [--json]",
+      "Print the model built from a URDF: base kind, joints in order with their limits\n"
+      "and armature, bodies after lumping fixed joints, frames (every link) and the total "
+      "mass.");
   opts.positional("URDF", "the robot description (.urdf)")
       .flag("fixed-base",
             "fix the root link to the world (default: free-floating, unless the root is a massless "
@@ -139,6 +181,7 @@ int run_info(Args args) {
       .option("joints", "LIST",
               "reduced model: keep only these joints (comma-separated, in this order); lock the "
               "rest at 0")
+      .option("armature", "LIST", kArmatureHelp)
       .flag("json", "print JSON instead of text");
   if (!opts.parse(args)) {
     return kExitOk;
@@ -165,6 +208,7 @@ int run_info(Args args) {
     j["upper"] = limit(m.joint_upper[uk]);
     j["velocity"] = limit(m.joint_velocity_limit[uk]);
     j["effort"] = limit(m.joint_effort_limit[uk]);
+    j["armature"] = m.joint_armature[uk];
     if (!m.joint_mimic[uk].joint.empty()) {
       j["mimic"] = {{"joint", m.joint_mimic[uk].joint},
                     {"multiplier", m.joint_mimic[uk].multiplier},
@@ -227,7 +271,8 @@ int run_info(Args args) {
     std::cout << "  " << std::setw(3) << k << "  " << std::left << std::setw(28) << m.joint_name[uk]
               << std::setw(11) << type_name(m, k) << std::right << " [" << fmt(m.joint_lower[uk])
               << ", " << fmt(m.joint_upper[uk]) << "]  vel " << fmt(m.joint_velocity_limit[uk])
-              << "  effort " << fmt(m.joint_effort_limit[uk]);
+              << "  effort " << fmt(m.joint_effort_limit[uk]) << "  armature "
+              << fmt(m.joint_armature[uk]);
     if (!m.joint_mimic[uk].joint.empty()) {
       std::cout << "  (mimics " << m.joint_mimic[uk].joint << ", treated as independent)";
     }
@@ -298,7 +343,7 @@ Eigen::VectorXd numbers(const json& state, const std::string& key, std::size_t s
 
 int run_eval(Args args) {
   Options opts(
-      "wbi model eval URDF --state FILE|- [--fixed-base] [--joints a,b,...]",
+      "wbi model eval URDF --state FILE|- [--fixed-base] [--joints a,b,...] [--armature j=v,...]",
       "Evaluate the model at a state read as JSON and print the results as JSON.\n"
       "State keys (all optional): q, dq (in the order of 'joints' when given, else the model's),\n"
       "base_position [3], base_quaternion [w,x,y,z], base_velocity [6: linear, angular, world "
@@ -314,6 +359,7 @@ int run_eval(Args args) {
       .option("joints", "LIST",
               "reduced model: keep only these joints (comma-separated, in this order); lock the "
               "rest at 0")
+      .option("armature", "LIST", kArmatureHelp)
       .option("backend", "NAME", kBackendHelp, "wbi");
   if (!opts.parse(args)) {
     return kExitOk;
@@ -491,7 +537,7 @@ double median_ns(int states, int batch, Call call) {
 
 int run_bench(Args args) {
   Options opts(
-      "wbi model bench URDF [--backend wbi|dart] [--fixed-base] [--json]",
+      "wbi model bench URDF [--backend wbi|dart] [--fixed-base] [--armature j=v,...] [--json]",
       "Time the main operations of a model backend on a URDF: median ns per call over\n"
       "batches of calls cycling through random states. forward_kinematics_ns is the pose\n"
       "of the Jacobian frame from q (wbi: all bodies; dart: the frame's ancestors, lazily).\n"
@@ -500,6 +546,7 @@ int run_bench(Args args) {
       .flag("fixed-base", "fix the root link to the world")
       .option("joints", "LIST",
               "reduced model: keep only these joints (comma-separated, in this order)")
+      .option("armature", "LIST", kArmatureHelp)
       .option("states", "N", "number of random states", "101")
       .option("batch", "N", "calls per batch", "200")
       .option("backend", "NAME", kBackendHelp, "wbi")

@@ -90,6 +90,10 @@ template <>
 const char* kind<std::vector<std::string>>() {
   return "a list of strings";
 }
+template <>
+const char* kind<std::map<std::string, double>>() {
+  return "a map of names to numbers";
+}
 
 std::string shown(const YAML::Node& node) {
   if (node.IsScalar()) {
@@ -106,8 +110,10 @@ std::string shown(const YAML::Node& node) {
 
 template <class T>
 bool convert(const YAML::Node& node, T& out) {
-  if constexpr (std::is_same_v<T, std::vector<double>> ||
-                std::is_same_v<T, std::vector<std::string>>) {
+  if constexpr (std::is_same_v<T, std::map<std::string, double>>) {
+    return false;  // a map is read entry by entry in get()
+  } else if constexpr (std::is_same_v<T, std::vector<double>> ||
+                       std::is_same_v<T, std::vector<std::string>>) {
     if (!node.IsSequence()) {
       return false;
     }
@@ -159,6 +165,21 @@ T Parameters::get(const std::string& key, const T& fallback) const {
   }
   const YAML::Node value = impl_->node[key];
   T out{};
+  if constexpr (std::is_same_v<T, std::map<std::string, double>>) {
+    if (value.IsMap()) {  // each entry checked, so that a bad one is named at its line
+      for (const auto& entry : value) {
+        double number = 0.0;
+        if (!convert(entry.second, number)) {
+          throw ParameterError(where(key) + ": parameter '" + key + "', entry '" +
+                               entry.first.Scalar() + "' (line " +
+                               std::to_string(entry.first.Mark().line + 1) +
+                               ") must be a number, got " + shown(entry.second));
+        }
+        out[entry.first.Scalar()] = number;
+      }
+      return out;
+    }
+  }
   if (!convert(value, out)) {
     throw ParameterError(where(key) + ": parameter '" + key + "' must be " + kind<T>() + ", got " +
                          shown(value));
@@ -203,6 +224,8 @@ WBI_PARAMETER_TYPE(double)
 WBI_PARAMETER_TYPE(std::string)
 WBI_PARAMETER_TYPE(std::vector<double>)
 WBI_PARAMETER_TYPE(std::vector<std::string>)
+using NumberMap = std::map<std::string, double>;  // the macro cannot take the comma
+WBI_PARAMETER_TYPE(NumberMap)
 
 #undef WBI_PARAMETER_TYPE
 

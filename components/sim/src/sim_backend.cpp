@@ -177,7 +177,12 @@ actuation::BackendDescription SimBackend::on_configure() {
   Impl& s = *impl;
   model::LoadOptions options;
   options.fixed_base = c.fixed_base;
-  s.model = model::load_urdf_file(c.urdf, options);
+  options.armature = c.armature;
+  try {
+    s.model = model::load_urdf_file(c.urdf, options);
+  } catch (const std::invalid_argument& error) {  // an armature entry: name the key
+    throw std::invalid_argument(where + ": armature: " + error.what());
+  }
   const urdf::ModelInterfaceSharedPtr urdf_model = urdf::parseURDFFile(c.urdf);
   if (!urdf_model) {
     throw std::runtime_error(c.urdf + ": urdfdom could not parse the file");

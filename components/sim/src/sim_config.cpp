@@ -1,6 +1,7 @@
 // YAML → SimConfig, with errors that name the key (README.md lists every key).
 #include "wbi/sim/sim_config.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
@@ -111,6 +112,7 @@ SimConfig sim_config_from_yaml(const YAML::Node& root, const std::string& contex
                 "initial_base_position",
                 "initial_base_orientation",
                 "place_on_ground",
+                "armature",
                 "joint_damping",
                 "joint_friction",
                 "friction_velocity",
@@ -146,6 +148,24 @@ SimConfig sim_config_from_yaml(const YAML::Node& root, const std::string& contex
   r.get_vec<3>(root, "", "initial_base_position", c.initial_base_position);
   r.get_vec<4>(root, "", "initial_base_orientation", c.initial_base_orientation);
   r.get(root, "", "place_on_ground", c.place_on_ground);
+  if (const auto armature = root["armature"]) {
+    if (!armature.IsMap()) {
+      r.fail("armature", "expected a map joint: armature");
+    }
+    for (const auto& kv : armature) {
+      const auto name = kv.first.as<std::string>();
+      double value = 0.0;
+      try {
+        value = kv.second.as<double>();
+      } catch (const YAML::Exception&) {
+        r.fail("armature." + name, "expected a number");
+      }
+      if (!std::isfinite(value) || value < 0.0) {
+        r.fail("armature." + name, "must be finite and >= 0");
+      }
+      c.armature[name] = value;
+    }
+  }
   r.get(root, "", "joint_damping", c.joint_damping);
   r.get(root, "", "joint_friction", c.joint_friction);
   r.get_positive(root, "", "friction_velocity", c.friction_velocity, false);

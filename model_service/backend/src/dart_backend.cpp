@@ -112,6 +112,7 @@ class DartBackend final : public ModelBackend {
       }
       dof_of_joint_.push_back(static_cast<int>(joint->getDof(0)->getIndexInSkeleton()));
     }
+    set_armature();
     for (int f = 0; f < model_.n_frames(); ++f) {
       const std::string& name = model_.frame_name[static_cast<std::size_t>(f)];
       dd::BodyNode* node = skeleton_->getBodyNode(name);
@@ -154,6 +155,10 @@ class DartBackend final : public ModelBackend {
         M_(j, i) = M_(i, j);
       }
     }
+    for (int k : armed_) {  // DART's M has no armature (see set_armature)
+      const int v = model_.base_nv + k;
+      M_(v, v) += model_.joint_armature[static_cast<std::size_t>(k)];
+    }
     return M_;
   }
 
@@ -184,6 +189,10 @@ class DartBackend final : public ModelBackend {
     set_velocity(nu);
     set_gravity(gravity);
     dart_vector(tau, out_d_);  // τ_D = T⁻ᵀ τ = T τ
+    for (int k : armed_) {     // cancels the force of the damping that carries the armature
+      const int d = dof_of_joint_[static_cast<std::size_t>(k)];
+      out_d_[d] += model_.joint_armature[static_cast<std::size_t>(k)] * v_d_[d];
+    }
     for (int i = 0; i < nd_; ++i) {
       dofs_[static_cast<std::size_t>(i)]->setForce(out_d_[i]);
     }
@@ -372,7 +381,35 @@ class DartBackend final : public ModelBackend {
       out_d_[i] = dofs_[static_cast<std::size_t>(i)]->getForce();
     }
     mixed_force(out_d_, vec_);
+    if (dnu != nullptr) {
+      for (int k : armed_) {  // τ_k += armature_k q̈_k (not in DART's inverse dynamics)
+        const int v = model_.base_nv + k;
+        vec_[v] += model_.joint_armature[static_cast<std::size_t>(k)] * (*dnu)[v];
+      }
+    }
     return vec_;
+  }
+
+  // DART 6.12 has no armature (rotor inertia). Its forward dynamics, however,
+  // integrates joint damping d implicitly over the skeleton's time step h: the
+  // joint's projected articulated inertia becomes Sᵀ I^A S + h d and its force
+  // τ − d q̇ (GenericJoint::updateInvProjArtInertiaImplicitDynamic,
+  // updateTotalForceDynamic). With h = 1 and d = armature, and d q̇ added back to
+  // τ, that is exactly wbi's ABA with armature (aba.cpp). M and inverse dynamics
+  // ignore damping: the armature is added to their results. Joints without
+  // armature are left alone, so a model without it computes as before.
+  void set_armature() {
+    for (int k = 0; k < model_.n_joints; ++k) {
+      const double a = model_.joint_armature[static_cast<std::size_t>(k)];
+      if (a != 0.0) {
+        armed_.push_back(k);
+        dofs_[static_cast<std::size_t>(dof_of_joint_[static_cast<std::size_t>(k)])]
+            ->setDampingCoefficient(a);
+      }
+    }
+    if (!armed_.empty()) {
+      skeleton_->setTimeStep(1.0);  // the backend never steps the skeleton in time
+    }
   }
 
   // Wrench (force, moment about the frame origin, world axes) on the frame's body.
@@ -436,6 +473,7 @@ class DartBackend final : public ModelBackend {
   int nd_ = 0;                                       // DART dofs (= nv)
   std::vector<dd::DegreeOfFreedom*> dofs_;           // DART dof i
   std::vector<int> dof_of_joint_;                    // wbi joint k → DART dof index
+  std::vector<int> armed_;                           // joints with a non-zero armature
   std::vector<dd::BodyNode*> frame_node_;            // wbi frame → DART body (null: the world)
   std::vector<const dd::BodyNode*> bodies_;          // every DART body
   Eigen::Matrix3d R_ = Eigen::Matrix3d::Identity();  // base orientation of the last q

@@ -1,6 +1,8 @@
 #include "wbi/model_service/component.hpp"
 
 #include <filesystem>
+#include <map>
+#include <string_view>
 
 #include <wbi/dds/topics.hpp>
 #include <wbi/model/backend.hpp>
@@ -31,6 +33,10 @@ void ModelServiceComponent::on_configure(const runtime::Parameters& parameters,
   model::LoadOptions options;
   options.joints = parameters.get<std::vector<std::string>>("joints", {});
   options.fixed_base = parameters.get<bool>("fixed_base", false);
+  // Armature by joint name. A robot config file (a later `robot_config` parameter,
+  // joints: {name: {armature: x}}) is meant to fill the same map, this
+  // parameter overriding it joint by joint.
+  options.armature = parameters.get<std::map<std::string, double>>("armature", {});
   const bool worker_thread = parameters.get<bool>("worker_thread", false);
   const std::string robot = parameters.get<std::string>("robot", "");
   const std::string backend = parameters.get<std::string>("backend", "wbi");
@@ -44,7 +50,10 @@ void ModelServiceComponent::on_configure(const runtime::Parameters& parameters,
   try {
     model_ = model::make_model_backend(backend, urdf, options);
   } catch (const std::exception& error) {
-    throw runtime::ParameterError(parameters.where("urdf") +
+    // The loader names the armature when an entry of it is wrong (unknown or fixed
+    // joint, negative or not finite): point at that parameter rather than at urdf.
+    const bool armature = std::string_view(error.what()).find("armature") != std::string::npos;
+    throw runtime::ParameterError(parameters.where(armature ? "armature" : "urdf") +
                                   ": cannot load the model: " + error.what());
   }
   robot_ = robot.empty() ? model_->model().name : robot;

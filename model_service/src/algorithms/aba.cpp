@@ -40,12 +40,15 @@ const Eigen::VectorXd& forward_dynamics(const Model& model, Data& data, const Co
     data.pA[b].head<3>() -= w.wrench.head<3>();
     data.pA[b].tail<3>() -= w.wrench.tail<3>() + p_F.cross(w.wrench.head<3>());
   }
-  // pass 2, in: U = IA S, D = Sᵀ U, u = τ − Sᵀ pA;  Ia = IA − U Uᵀ/D;  IA_λ += Ia, pA_λ += pA + Ia
-  // c + U u/D
+  // pass 2, in: U = IA S, D = Sᵀ U + armature, u = τ − Sᵀ pA;  Ia = IA − U Uᵀ/D;
+  // IA_λ += Ia, pA_λ += pA + Ia c + U u/D. The armature (model.hpp) is inertia of the joint
+  // coordinate alone: it enters D, so it is in q̈ and in what the parent sees through Ia,
+  // but not in IA itself (D > 0 here, so adding an armature of 0 changes no bit).
+
   for (int i = model.n_bodies - 1; i > 0; --i) {
     const int lambda = model.parent[i];
     data.U[i].noalias() = data.IA[i] * data.S[i];
-    data.D[i] = data.S[i].dot(data.U[i]);
+    data.D[i] = data.S[i].dot(data.U[i]) + model.joint_armature[model.body_joint[i]];
     if (!(data.D[i] > 0.0)) {
       detail::throw_singular(model, i);
     }

@@ -49,6 +49,13 @@ const Eigen::MatrixXd& mass_matrix(const Model& model, Data& data, const ConstVe
     M.topLeftCorner<6, 6>() = 0.5 * (M_BB + M_BB.transpose());  // exactly symmetric
     M.block(nb, 0, model.n_joints, 6) = M.block(0, nb, 6, model.n_joints).transpose();
   }
+  // armature: reflected rotor inertia on the diagonal of the joint block only (model.hpp);
+  // skipped where zero so that a model without armature gives today's M bit for bit
+  for (int k = 0; k < model.n_joints; ++k) {
+    if (model.joint_armature[k] != 0.0) {
+      M(nb + k, nb + k) += model.joint_armature[k];
+    }
+  }
   return M;
 }
 

@@ -54,6 +54,12 @@ const Eigen::VectorXd& inverse_dynamics(const Model& model, Data& data, const Co
   if (model.floating_base) {
     data.tau.head<6>() = detail::base_force(data.p_WB[0], data.f[0]);
   }
+  // armature: τ_k += armature_k q̈_k, no velocity term (model.hpp); skipped where zero
+  for (int k = 0; k < model.n_joints; ++k) {
+    if (model.joint_armature[k] != 0.0) {
+      data.tau[model.base_nv + k] += model.joint_armature[k] * dnu[model.base_nv + k];
+    }
+  }
   return data.tau;
 }
 

@@ -27,6 +27,10 @@ struct DdsInterfaceOptions {
   // Local model: the dynamics library that computes, "wbi" or "dart" (when built;
   // wbi/model/backend.hpp). The controller does not change.
   std::string local_model_backend = "wbi";
+  // Local model: armature by joint name (the rotor inertia reflected through the
+  // gear ratio, wbi/model/model.hpp), as the robot's model service is given it.
+  // A remote model has the service's own.
+  std::map<std::string, double> armature;
 
   // Positions of the robot's joints outside the controlled list, for the model.
   // A joint not listed here is locked where init() measures it.

@@ -83,6 +83,14 @@ struct Model {
   std::vector<double> joint_velocity_limit;  // [rad/s or m/s]; +inf when none
   std::vector<double> joint_effort_limit;    // [N·m or N]; +inf when none
   std::vector<MimicInfo> joint_mimic;
+  // Armature [kg·m² or kg]: the rotor inertia reflected through the gear ratio
+  // (I_rotor · ratio²), set by LoadOptions::armature, default 0. Convention (MuJoCo's):
+  // the rotor is pure extra inertia about the joint axis, so armature_k adds to M(k, k)
+  // only — to the joint block of M (CRBA), to the joint's D = Sᵀ I^A S + armature (ABA)
+  // and τ_k += armature_k q̈_k (RNEA). It has no velocity terms (h, C unchanged), does
+  // not enter G, and is not part of the centroidal momentum (h_G, A_G are those of the
+  // rigid bodies; the base rows of M do not see it). Kinetic energy is ½ νᵀ M ν with it.
+  std::vector<double> joint_armature;
 
   // Joints of the URDF that are movable but locked in this (reduced) model.
   std::vector<std::string> locked_joint_name;

@@ -11,12 +11,15 @@
 // - Reduced model: `joints` lists the joints to keep, in the order wanted for q
 //   and ν; every other movable joint is locked at `locked_positions[name]`
 //   (default 0) and lumped like a fixed joint.
+// - Armature (Model::joint_armature) by joint name from `armature`, default 0;
+//   an entry for a joint locked in a reduced model is accepted and has no effect.
 // - Joint order of a full model: depth-first from the root, children in the
 //   order their joints appear in the file.
 // Errors: std::runtime_error naming the file and what is wrong (missing or
 // empty file, XML error with line, several roots or a loop, zero axis, negative
 // mass, non-physical inertia (see LoadOptions::strict_inertia), unsupported joint type);
-// std::invalid_argument for unknown joint names in the options.
+// std::invalid_argument for unknown joint names in the options, and for an
+// armature on a fixed joint or that is negative or not finite.
 #pragma once
 
 #include <map>
@@ -31,6 +34,7 @@ struct LoadOptions {
   bool fixed_base = false;
   std::vector<std::string> joints;                 // empty: all movable joints
   std::map<std::string, double> locked_positions;  // for joints not kept
+  std::map<std::string, double> armature;          // by joint name, ≥ 0 [kg·m² or kg]
   // Inertia checks. Always: mass ≥ 0, finite values, ixx, iyy, izz ≥ 0.
   // strict_inertia also requires a positive semi-definite inertia satisfying the
   // triangle inequality; it is off by default because published models break it

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <set>
 #include <stdexcept>
@@ -40,7 +41,8 @@ class Parameters {
   Parameters& operator=(const Parameters&);
 
   // Supported T: bool, int, std::int64_t, double, std::string,
-  // std::vector<double>, std::vector<std::string>.
+  // std::vector<double>, std::vector<std::string>, std::map<std::string, double>
+  // (a YAML map of names to numbers; a bad entry is named with its own line).
   template <class T>
   T get(const std::string& key, const T& fallback) const;
   template <class T>

@@ -104,6 +104,9 @@ struct SimConfig {
   // Shift the initial base height so that the lowest contact point touches z = 0.
   bool place_on_ground = false;
 
+  // Armature by joint name [kg·m² or kg]: rotor inertia reflected through the gear
+  // ratio, added to the diagonal of M (wbi::model::LoadOptions::armature). Default none.
+  std::map<std::string, double> armature;
   bool joint_damping = true;        // viscous damping from URDF <dynamics damping>
   bool joint_friction = true;       // Coulomb friction from URDF <dynamics friction>
   double friction_velocity = 0.01;  // smoothing: τ_f = −F_c tanh(q̇ / v_f) [rad/s]

@@ -12,6 +12,10 @@
 //   joints         list of strings, default all movable joints: a reduced
 //                  model (the other joints locked at 0)
 //   fixed_base     bool, default false
+//   armature       map joint: value, default none: the rotor inertia reflected
+//                  through the gear ratio [kg·m² or kg] (wbi/model/model.hpp);
+//                  an unknown or fixed joint, a negative or non-finite value fail
+//                  configure naming `armature` and the joint
 //   backend        string, default "wbi": the dynamics library that computes,
 //                  "wbi" or "dart" (when built; wbi/model/backend.hpp)
 //   worker_thread  bool, default false: compute on the service's worker thread
