@@ -219,6 +219,36 @@ void check_inertial(const urdf::Link& link, bool strict, const Error& err) {
   }
 }
 
+// Inertia repair (LoadOptions::repair_inertia). A rotational inertia about the CoM
+// is physical iff it is the inertia of some mass distribution: with principal
+// moments λ_k, the second moments of mass along the principal axes,
+// σ_k = (λ1 + λ2 + λ3)/2 − λ_k = ∫ x_k² dm, are all ≥ 0 (σ_k ≥ 0 is the triangle
+// inequality λ_i + λ_j ≥ λ_k, and implies λ_k ≥ 0). The repair keeps the principal
+// axes and raises each negative σ_k to kRepairFloor · Σσ (a flat but not
+// infinitely thin body), which is the nearest valid inertia in the σ coordinates
+// and strictly inside the valid set, so that MuJoCo's check (A + B ≥ C, no
+// tolerance) also passes after rounding. Values σ_k ≥ −kRepairTolerance · Σσ
+// count as valid (round-off of a body on the boundary, e.g. a thin plate).
+constexpr double kRepairFloor = 1e-9;
+constexpr double kRepairTolerance = 1e-12;
+
+// Returns true and writes the repaired inertia when I is not physical.
+bool repair_inertia(const Matrix3d& I, Matrix3d& repaired) {
+  const Eigen::SelfAdjointEigenSolver<Matrix3d> eig(I);
+  const Vector3d lambda = eig.eigenvalues();
+  const double s = 0.5 * lambda.sum();
+  Vector3d sigma = Vector3d::Constant(s) - lambda;
+  if (!(s > 0.0) || sigma.minCoeff() >= -kRepairTolerance * s) {
+    return false;  // zero (massless or point mass) or physical
+  }
+  sigma = sigma.cwiseMax(kRepairFloor * s);
+  const Vector3d moments = Vector3d::Constant(sigma.sum()) - sigma;  // λ'_k = Σσ' − σ'_k
+  const Matrix3d V = eig.eigenvectors();
+  repaired = V * moments.asDiagonal() * V.transpose();
+  repaired = 0.5 * (repaired + repaired.transpose()).eval();
+  return true;
+}
+
 struct Builder {
   const urdf::ModelInterface& urdf;
   const std::map<std::string, RawJoint>& raw;
@@ -235,17 +265,26 @@ struct Builder {
     return movable && (options.joints.empty() || kept.count(j.name) > 0);
   }
 
-  void add_link(const urdf::Link& link, int body, const Placement& X_BL) {
+  void add_link(const urdf::Link& link, int body, const Placement& X_BL, int parent_frame) {
+    const int frame = static_cast<int>(model.frame_name.size());
     model.frame_name.push_back(link.name);
     model.frame_body.push_back(body);
     model.frame_R_BF.push_back(X_BL.R);
     model.frame_p_BF.push_back(X_BL.p);
+    model.frame_parent.push_back(parent_frame);
+    model.frame_inertia.emplace_back();
     if (link.inertial && link.inertial->mass > 0.0) {
       const urdf::Inertial& in = *link.inertial;
       const Placement X_BI = X_BL * to_placement(in.origin);
       Matrix3d I;
       I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
-      acc[body] += SpatialInertia::from_com(in.mass, X_BI.p, X_BI.R * I * X_BI.R.transpose());
+      if (Matrix3d repaired; options.repair_inertia && repair_inertia(I, repaired)) {
+        I = repaired;
+        model.repaired_inertia_links.push_back(link.name);
+      }
+      model.frame_inertia.back() =
+          SpatialInertia::from_com(in.mass, X_BI.p, X_BI.R * I * X_BI.R.transpose());
+      acc[body] += model.frame_inertia.back();
     }
     // children in file order
     std::vector<const urdf::Joint*> joints;
@@ -260,7 +299,7 @@ struct Builder {
       const Placement X_BJ = X_BL * to_placement(j->parent_to_joint_origin_transform);
       if (moves(*j)) {
         const int b = new_body(*j, body, X_BJ);
-        add_link(*child, b, Placement{});
+        add_link(*child, b, Placement{}, frame);
       } else {
         Placement X_JC;
         if (j->type != urdf::Joint::FIXED) {  // locked movable joint
@@ -274,7 +313,7 @@ struct Builder {
           model.locked_joint_name.push_back(j->name);
           model.locked_joint_position.push_back(q);
         }
-        add_link(*child, body, X_BJ * X_JC);
+        add_link(*child, body, X_BJ * X_JC, frame);
       }
     }
   }
@@ -323,7 +362,7 @@ Model load_urdf_string(const std::string& xml, const LoadOptions& options,
     err.fail("urdfdom could not build the model (see its message above)");
   }
   for (const auto& [name, link] : urdf->links_) {
-    check_inertial(*link, options.strict_inertia, err);
+    check_inertial(*link, options.strict_inertia && !options.repair_inertia, err);
   }
   for (const auto& [name, joint] : urdf->joints_) {
     if (joint->type == urdf::Joint::FLOATING || joint->type == urdf::Joint::PLANAR ||
@@ -384,7 +423,7 @@ Model load_urdf_string(const std::string& xml, const LoadOptions& options,
   m.body_joint_type.push_back(JointType::kRevolute);
   m.body_joint_axis.push_back(Vector3d::UnitZ());
   b.acc.emplace_back();
-  b.add_link(*root, 0, Placement{});
+  b.add_link(*root, 0, Placement{}, -1);
 
   m.n_bodies = static_cast<int>(m.parent.size());
   m.n_joints = m.n_bodies - 1;

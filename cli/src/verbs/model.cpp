@@ -1,5 +1,6 @@
-// `wbi model info|eval|bench`: inspect a URDF, evaluate the model at a state
-// given as JSON, and time the algorithms. The work is in wbi::model.
+// `wbi model info|eval|bench|mjcf`: inspect a URDF, evaluate the model at a state
+// given as JSON, time the algorithms, write it as MJCF. The work is in wbi::model
+// and wbi::mjcf.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <wbi/mjcf/mjcf.hpp>
 #include <wbi/model/algorithms.hpp>
 #include <wbi/model/backend.hpp>
 
@@ -32,7 +34,7 @@ namespace {
 namespace wm = wbi::model;
 using nlohmann::json;
 
-const char* const kModelUsage = "wbi model {info|eval|bench} URDF [options]";
+const char* const kModelUsage = "wbi model {info|eval|bench|mjcf} URDF [options]";
 const char* const kModelHelp =
     "Inspect and evaluate robot models (rigid-body model library).\n"
     "\n"
@@ -40,6 +42,7 @@ const char* const kModelHelp =
     "  info   joints with limits, frames, bodies after lumping, total mass, base kind\n"
     "  eval   evaluate M, h, G, CoM, centroidal momentum and frame quantities at a JSON state\n"
     "  bench  median ns per call of the main algorithms at random states\n"
+    "  mjcf   write the model as MJCF, MuJoCo's XML, the same multibody to the last bit\n"
     "\n"
     "eval and bench take --backend wbi|dart: the dynamics library that computes (default wbi).\n"
     "All three take --armature JOINT=VALUE,...: per-joint rotor inertia (default 0).\n"
@@ -47,18 +50,19 @@ const char* const kModelHelp =
     "Run `wbi model SUBVERB --help` for the options of each.\n";
 
 // "a,b,c" → {"a","b","c"}
-std::vector<std::string> split_list(const std::string& text) {
+std::vector<std::string> split_list(const std::string& text, const std::string& option = "joints",
+                                    const std::string& what = "joint") {
   std::vector<std::string> out;
   std::string item;
   std::istringstream in(text);
   while (std::getline(in, item, ',')) {
     if (item.empty()) {
-      throw UsageError("--joints: empty joint name in '" + text + "'");
+      throw UsageError("--" + option + ": empty " + what + " name in '" + text + "'");
     }
     out.push_back(item);
   }
   if (out.empty()) {
-    throw UsageError("--joints: no joint names given");
+    throw UsageError("--" + option + ": no " + what + " names given");
   }
   return out;
 }
@@ -637,11 +641,95 @@ int run_bench(Args args) {
   return kExitOk;
 }
 
+// ---------------------------------------------------------------- mjcf
+
+int run_mjcf(Args raw_args) {
+  Options opts(
+      "wbi model mjcf URDF -o FILE|- [--fixed-base] [--joints a,b,...] [--welded a,b,...]",
+      "Write the model as MJCF (MuJoCo's XML) that MuJoCo loads as the same multibody as\n"
+      "wbi's model library: the bodies after lumping fixed joints, joints with axes and\n"
+      "limits, inertias written to the last bit, and a free joint on the root link's frame\n"
+      "when the base floats. Non-physical link inertias (MuJoCo rejects them) are replaced\n"
+      "by the nearest physical ones, as LoadOptions::repair_inertia does in wbi's model,\n"
+      "and each such link is named on stderr. See model_service/mjcf/README.md.");
+  opts.positional("URDF", "the robot description (.urdf)")
+      .option("output", "FILE", "where to write the MJCF (also -o FILE); '-' for standard output")
+      .flag("fixed-base", "fix the root link to the world")
+      .option("joints", "LIST",
+              "reduced model: keep only these joints (comma-separated); lock the rest at 0")
+      .option("welded", "LIST",
+              "links lumped by fixed joints to keep as MuJoCo bodies of their own, welded to "
+              "their parent (comma-separated; e.g. the child links of F/T sensors)")
+      .option("timestep", "SECONDS", "MuJoCo's integration step", "0.001")
+      .option("integrator", "NAME", "MuJoCo's integrator: euler, rk4 or implicit", "euler");
+  std::vector<std::string> args(raw_args.begin(), raw_args.end());
+  for (auto& arg : args) {
+    if (arg == "-o") {
+      arg = "--output";
+    }
+  }
+  if (!opts.parse(args)) {
+    return kExitOk;
+  }
+  if (!opts.has("output")) {
+    throw UsageError("missing -o FILE (-o - writes to standard output)");
+  }
+  wbi::mjcf::MjcfOptions options;
+  options.timestep = opts.get_double("timestep");
+  if (!(options.timestep > 0.0)) {
+    throw UsageError("--timestep must be > 0");
+  }
+  const std::string integrator = opts.get("integrator");
+  if (integrator == "euler") {
+    options.integrator = wbi::mjcf::Integrator::kEuler;
+  } else if (integrator == "rk4") {
+    options.integrator = wbi::mjcf::Integrator::kRK4;
+  } else if (integrator == "implicit") {
+    options.integrator = wbi::mjcf::Integrator::kImplicit;
+  } else {
+    throw UsageError("--integrator: unknown '" + integrator + "' (euler, rk4 or implicit)");
+  }
+  if (const auto welded = opts.get_optional("welded")) {
+    options.welded_links = split_list(*welded, "welded", "link");
+  }
+  wm::LoadOptions load = load_options(opts);
+  load.repair_inertia = true;
+  wm::Model m;
+  std::string xml;
+  try {
+    m = wm::load_urdf_file(opts.get("URDF"), load);
+    xml = wbi::mjcf::write_mjcf(m, options);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
+  for (const std::string& link : m.repaired_inertia_links) {
+    std::cerr << "wbi model mjcf: link '" << link
+              << "': non-physical inertia replaced by the nearest physical one (the same as "
+                 "wbi's model with LoadOptions::repair_inertia)\n";
+  }
+  const std::string output = opts.get("output");
+  if (output == "-") {
+    std::cout << xml;
+    return kExitOk;
+  }
+  std::ofstream out(output, std::ios::binary);
+  out << xml;
+  out.close();
+  if (!out) {
+    throw std::runtime_error("cannot write '" + output + "'");
+  }
+  std::cout << "wrote " << output << ": " << m.name << ", " << m.n_joints << " joints, "
+            << m.n_bodies + static_cast<int>(options.welded_links.size()) << " bodies, "
+            << (m.floating_base ? "free-floating" : "fixed base") << ", total mass " << m.total_mass
+            << " kg\n";
+  return kExitOk;
+}
+
 }  // namespace
 
 int run_model(Args args) {
   if (args.empty()) {
-    throw UsageError("missing sub-verb: info, eval or bench");
+    throw UsageError("missing sub-verb: info, eval, bench or mjcf");
   }
   const std::string& sub = args[0];
   if (sub == "--help" || sub == "-h") {
@@ -658,7 +746,10 @@ int run_model(Args args) {
   if (sub == "bench") {
     return run_bench(rest);
   }
-  throw UsageError("unknown sub-verb '" + sub + "' (expected info, eval or bench)");
+  if (sub == "mjcf") {
+    return run_mjcf(rest);
+  }
+  throw UsageError("unknown sub-verb '" + sub + "' (expected info, eval, bench or mjcf)");
 }
 
 }  // namespace wbi::cli

@@ -112,6 +112,16 @@ struct Model {
   int body_id(const std::string& body) const;
   bool has_joint(const std::string& joint) const;
   bool has_frame(const std::string& frame) const;
+
+  // Links whose inertia was replaced by the nearest physical one at load time
+  // (LoadOptions::repair_inertia), in tree order; empty otherwise.
+  std::vector<std::string> repaired_inertia_links;
+
+  // ---- per frame (size n_frames), for splitting a body again (MJCF export) ----
+  std::vector<int> frame_parent;  // frame of the URDF parent link, −1 for the root link
+  // The link's own inertia (zero when massless), about its body's origin in body axes;
+  // the frames of body i sum to body_inertia[i] (up to rounding).
+  std::vector<SpatialInertia> frame_inertia;
 };
 
 }  // namespace wbi::model

@@ -40,6 +40,15 @@ struct LoadOptions {
   // triangle inequality; it is off by default because published models break it
   // (GRiD's Atlas feet are indefinite, TALOS grippers break the triangle inequality).
   bool strict_inertia = false;
+  // Replace every non-physical link inertia (indefinite, or breaking the triangle
+  // inequality λ_i + λ_j ≥ λ_k of the principal moments) by the nearest physical one,
+  // and list those links in Model::repaired_inertia_links. The principal axes are kept
+  // and each negative second moment of mass σ_k = (Σλ)/2 − λ_k is raised to 1e-9 Σσ
+  // (README "Inertia repair"). Off by default: the model is the URDF's, bit for bit.
+  // MuJoCo rejects such inertias, so an MJCF export and the model it is compared or
+  // run against must both be loaded with it (wbi model mjcf does). Takes precedence
+  // over strict_inertia.
+  bool repair_inertia = false;
 };
 
 Model load_urdf_file(const std::string& path, const LoadOptions& options = {});
