@@ -69,7 +69,7 @@ LoopResult run_loop(const Configuration& configuration, const std::string& robot
   wbi::sim_rig::InProcessRobot rig(
       "estimation_loop",
       "robot: " + robot + "\nconfig: " + source +
-          "/deploy/arm/sim.yaml\nlockstep: true\nlockstep_controllers: [pd]\n",
+          "/deploy/robots/arm.yaml\nlockstep: true\nlockstep_controllers: [pd]\n",
       "robot: " + robot + "\n" + configuration.estimator_parameters);
 
   wbi::DdsInterfaceOptions options;

@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
   const std::string prefix = argv[1];
   const bool friction = !(argc > 2 && std::string(argv[2]) == "--no-friction");
   const std::string urdf = WBI_PROJECT_MODELS_DIR "/humanoid.urdf";
-  wbi::sim::SimConfig config;
+  wbi::robot_config::RobotConfig config;
   config.urdf = urdf;
   config.fixed_base = true;
   wbi::sim::SimBackend sim(config);

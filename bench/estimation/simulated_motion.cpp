@@ -77,12 +77,17 @@ void SampledMotion::evaluate(int j, double t, double& q, double& dq, double& ddq
 
 SampledMotion simulate_humanoid_motion(const std::string& urdf, double duration_s,
                                        bool joint_friction) {
-  sim::SimConfig config;
+  robot_config::RobotConfig config;
   config.urdf = urdf;
   config.fixed_base = true;
-  config.step = kSimStepS;
-  config.substeps = 1;
-  config.joint_friction = joint_friction;
+  config.wbi.step = kSimStepS;
+  config.wbi.substeps = 1;
+  robot_config::complete_from_urdf(config);  // every joint's URDF <dynamics>
+  if (!joint_friction) {
+    for (auto& [name, joint] : config.joints) {
+      joint.friction = 0.0;
+    }
+  }
   sim::SimBackend sim(config);
   sim.configure();
   const auto& description = sim.description();

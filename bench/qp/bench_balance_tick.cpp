@@ -26,7 +26,7 @@ void BM_MomentumBalanceTick(benchmark::State& state) {
   wbi::sim_rig::InProcessRobot rig(
       "bench_balance",
       "robot: " + robot + "\nconfig: " + source +
-          "/deploy/humanoid/sim.yaml\nlockstep: true\nlockstep_controllers: [balance]\n",
+          "/deploy/robots/humanoid.yaml\nlockstep: true\nlockstep_controllers: [balance]\n",
       "robot: " + robot + "\nbase: topic\nmethod: backward-difference\ncutoff: 50\n");
   wbi::DdsInterfaceOptions options;
   options.robot = robot;

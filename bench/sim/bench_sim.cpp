@@ -23,11 +23,11 @@ namespace {
 using namespace wbi;
 
 void BM_HumanoidStanding(benchmark::State& state) {
-  sim::SimConfig c;
+  robot_config::RobotConfig c;
   c.urdf = std::string(WBI_SOURCE_DIR) + "/models/humanoid.urdf";
   c.initial_base_position = Eigen::Vector3d(0.0, 0.0, 0.555);
   c.place_on_ground = true;
-  c.substeps = static_cast<int>(state.range(0));
+  c.wbi.substeps = static_cast<int>(state.range(0));
   c.imus.push_back({"imu", "imu_frame", 0.0, 0.0});
   c.force_torque.push_back({"l_foot_ft", "l_foot_ft_sensor", 0.0, 0.0});
   c.force_torque.push_back({"r_foot_ft", "r_foot_ft_sensor", 0.0, 0.0});
@@ -66,7 +66,7 @@ void BM_HumanoidStanding(benchmark::State& state) {
     ++ticks;
   }
   const double wall = std::chrono::duration<double>(Clock::now() - start).count();
-  const double simulated = static_cast<double>(ticks) * c.step;
+  const double simulated = static_cast<double>(ticks) * c.wbi.step;
   state.counters["rt_factor"] = simulated / wall;
   state.counters["plant_rt_factor"] = simulated / std::chrono::duration<double>(plant).count();
   state.counters["us_per_tick"] = 1e6 * wall / static_cast<double>(ticks);

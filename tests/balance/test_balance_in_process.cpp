@@ -84,8 +84,7 @@ std::string estimator_parameters(const std::string& robot, Base base) {
 
 // The deploy file's simulation, with the URDF path made absolute and an optional push.
 std::string sim_config(const std::string& extra) {
-  const auto dir = wbi::test::source_dir() / "deploy" / "humanoid";
-  std::ifstream in(dir / "sim.yaml");
+  std::ifstream in(wbi::test::source_dir() / "deploy" / "robots" / "humanoid.yaml");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string relative = "../../models/humanoid.urdf";
   text.replace(text.find(relative), relative.size(),

@@ -28,7 +28,7 @@ struct ArmRun {
 
 // One lockstep run of `ticks` control ticks on robot `robot`.
 ArmRun run_arm(const std::string& robot, int ticks) {
-  const auto config = (wbi::test::source_dir() / "deploy" / "arm" / "sim.yaml").string();
+  const auto config = (wbi::test::source_dir() / "deploy" / "robots" / "arm.yaml").string();
   // Backward difference with a 100 Hz low-pass: the kalman method's extrapolation
   // drives this stiff loop unstable (see components/estimation/README.md).
   wbi::sim_rig::InProcessRobot rig(

@@ -23,7 +23,7 @@ using wbi::estimator::LeggedBaseEstimator;
 using wbi::estimator::LeggedBaseOptions;
 using namespace wbi::sim::test;
 using wbi::sim::SimBackend;
-using wbi::sim::SimConfig;
+using wbi::robot_config::RobotConfig;
 
 LeggedBaseOptions humanoid_options() {
   LeggedBaseOptions options;
@@ -47,7 +47,7 @@ struct Errors {
 // (amplitude `roll` rad at 0.5 Hz), errors after the first `settle` seconds.
 Errors stand_and_sway(double seconds, double roll, const LeggedBaseOptions& options,
                       double settle = 0.3) {
-  const SimConfig config = humanoid_config();
+  const RobotConfig config = humanoid_config();
   StiffSim held(config);
   SimBackend& sim = held.sim;
   JointController& ctl = held.ctl;
@@ -72,9 +72,9 @@ Errors stand_and_sway(double seconds, double roll, const LeggedBaseOptions& opti
   Eigen::Matrix<double, 3, 2> forces;
   Eigen::VectorXd truth_q = sim.ground_truth().q;
   Eigen::VectorXd truth_nu = sim.ground_truth().nu;
-  const int steps = static_cast<int>(std::lround(seconds / config.step));
+  const int steps = static_cast<int>(std::lround(seconds / config.wbi.step));
   for (int k = 0; k < steps; ++k) {
-    const double t = k * config.step;
+    const double t = k * config.wbi.step;
     const double s = roll * std::sin(2.0 * M_PI * 0.5 * t) * std::min(1.0, t);  // fade in
     for (int foot = 0; foot < 2; ++foot) {
       const double axis = foot == 0 ? 1.0 : -1.0;  // the right leg's roll axes are mirrored

@@ -37,11 +37,11 @@ std::uint64_t counter(const ComponentStatus& status, const std::string& name) {
   return 0;
 }
 
-// The arm (deploy/arm/sim.yaml) as component "arm" of a wbi_host child process,
+// The arm (deploy/robots/arm.yaml) as component "arm" of a wbi_host child process,
 // real-time, with this process's endpoints on its topics.
 class RemoteArm {
  public:
-  // extra_sim_config: YAML appended to deploy/arm/sim.yaml (e.g. pushes).
+  // extra_sim_config: YAML appended to deploy/robots/arm.yaml (e.g. pushes).
   explicit RemoteArm(const std::string& robot, const std::string& extra_sim_config = "")
       : robot_(robot),
         status_(participant_, topics::kStatus, qos::kStatus),
@@ -105,9 +105,9 @@ class RemoteArm {
   }
 
  private:
-  // deploy/arm/sim.yaml with its URDF path made absolute, then `extra`.
+  // deploy/robots/arm.yaml with its URDF path made absolute, then `extra`.
   static void write_sim_config(const std::filesystem::path& to, const std::string& extra) {
-    std::ifstream in(wbi::test::source_dir() / "deploy" / "arm" / "sim.yaml");
+    std::ifstream in(wbi::test::source_dir() / "deploy" / "robots" / "arm.yaml");
     std::ofstream out(to);
     std::string line;
     while (std::getline(in, line)) {

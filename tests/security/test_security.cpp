@@ -48,7 +48,7 @@ class Security : public ::testing::Test {
         << "  - name: arm\n"
         << "    type: sim_robot\n"
         << "    parameters: {robot: arm, config: "
-        << (wbi::test::source_dir() / "deploy" / "arm" / "sim.yaml").string() << "}\n";
+        << (wbi::test::source_dir() / "deploy" / "robots" / "arm.yaml").string() << "}\n";
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
 

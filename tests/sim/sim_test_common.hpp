@@ -21,8 +21,8 @@ inline std::string model_path(const std::string& file) {
 }
 
 // The humanoid standing on the ground at the zero posture, feet F/T and IMU.
-inline SimConfig humanoid_config() {
-  SimConfig c;
+inline RobotConfig humanoid_config() {
+  RobotConfig c;
   c.urdf = model_path("humanoid.urdf");
   c.initial_base_position = Eigen::Vector3d(0.0, 0.0, 0.555);
   c.place_on_ground = true;
@@ -47,7 +47,7 @@ inline std::vector<PidGains> stiff_gains(const actuation::BackendDescription& d,
 // An active simulation whose joint controller has stiff_gains, and the joint
 // positions it started from (to hold them in position-direct mode).
 struct StiffSim {
-  explicit StiffSim(const SimConfig& config)
+  explicit StiffSim(const RobotConfig& config)
       : sim(config), ctl(activated(sim), stiff(sim.description())), q_j0(initial_joints(sim)) {}
 
   SimBackend sim;
@@ -73,7 +73,7 @@ struct StiffSim {
 // One control tick at the backend's current time.
 inline void tick(SimBackend& sim, JointController& ctl) {
   const auto t = sim.stamp();
-  const auto period = actuation::Duration(static_cast<std::int64_t>(sim.config().step * 1e9 + 0.5));
+  const auto period = actuation::Duration(static_cast<std::int64_t>(sim.config().wbi.step * 1e9 + 0.5));
   sim.read(t, period);
   ctl.update(t, period, sim.readings(), sim.commands());
   sim.write(t, period);

@@ -14,8 +14,8 @@ namespace {
 
 const Eigen::VectorXd kHome = (Eigen::VectorXd(7) << 0.0, 0.4, 0.0, 1.6, 0.0, 1.14, 0.0).finished();
 
-SimConfig arm_config(bool at_home) {
-  SimConfig c;
+RobotConfig arm_config(bool at_home) {
+  RobotConfig c;
   c.urdf = model_path("arm7.urdf");
   if (at_home) {
     for (int j = 0; j < 7; ++j) {
@@ -29,7 +29,7 @@ SimConfig arm_config(bool at_home) {
 // critically damped PD at ω = 40 rad/s, kp = M_jj ω², kd = 2 M_jj ω, and
 // ki = kp ω / 5 (Routh: ki < kd kp / M_jj = 2 ω kp).
 JointControllerConfig arm_control(double watchdog = 0.1) {
-  SimConfig c = arm_config(true);
+  RobotConfig c = arm_config(true);
   const model::Model m = model::load_urdf_file(c.urdf);
   model::Data data(m);
   const Eigen::MatrixXd& M = model::mass_matrix(m, data, kHome);

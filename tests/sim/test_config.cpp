@@ -1,7 +1,9 @@
-// SimConfig from YAML, and configuration errors that name what is wrong.
+// The plant configured by a robot config, and configuration errors that name what is wrong.
 #include <gtest/gtest.h>
 
-#include <map>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 
@@ -26,93 +28,108 @@ void expect_error(F&& f, std::initializer_list<const char*> parts) {
   }
 }
 
-TEST(SimConfig, ParsesEveryKey) {
+// A robot config file drives the plant: its contact geometry, sensors and options.
+TEST(SimConfig, RobotConfigConfiguresThePlant) {
   const std::string yaml = R"(
 urdf: )" + model_path("humanoid.urdf") +
                            R"(
-step: 0.002
-substeps: 4
 gravity: [0, 0, -9.8]
 initial_joint_positions: {l_knee: 0.3, r_knee: 0.3}
 initial_base_position: [0, 0, 0.6]
-initial_base_orientation: [1, 0, 0, 0]
 place_on_ground: true
-joint_damping: false
-joint_friction: true
-friction_velocity: 0.02
-joint_limits: {stiffness: 1000, damping: 10}
-contact:
-  enable: true
-  stiffness: 40000
-  damping: 80
-  friction: 0.6
-  tangential: regularized
-  tangential_stiffness: 20000
-  tangential_damping: 50
-  slip_velocity: 0.002
-  links: [l_foot, r_foot]
-  points: [{link: l_hand, position: [0, 0, -0.02]}]
-encoders: {counts_per_revolution: 4096, position_noise: 0.001, velocity_noise: 0.01, torque_noise: 0.1}
-motor: {voltage: 48, resistance: 0.5, torque_constant: 0.1, back_emf: 0.1}
+ground: {height: 0.1, friction: 0.6}
+contacts:
+  - {link: l_foot, box: {size: [0.2, 0.08, 0.03]}, position: [0.005, 0, -0.02]}
+  - {link: r_foot, box: {size: [0.2, 0.08, 0.03]}, position: [0.005, 0, -0.02], friction: 0.9}
+  - {link: l_hand, sphere: {radius: 0.02}}
+  - {link: r_hand, capsule: {radius: 0.01, length: 0.1}, rpy: [1.5707963267948966, 0, 0]}
+joints: {default: {friction: 0}, l_knee: {damping: 2}}
 imus: [{name: imu, frame: imu_frame, gyro_noise: 0.01, accel_noise: 0.05}]
 force_torque: [{name: l_ft, joint: l_foot_ft_sensor, force_noise: 0.5, torque_noise: 0.05}]
-pushes: [{link: root_link, start: 1.0, duration: 0.2, force: [50, 0, 0], point: [0, 0, 0.1]}]
-seed: 7
+wbi:
+  step: 0.002
+  substeps: 4
+  contact: {enable: true, tangential: regularized}
 )";
-  const SimConfig c = parse_sim_config(yaml);
-  EXPECT_EQ(c.step, 0.002);
-  EXPECT_EQ(c.substeps, 4);
-  EXPECT_EQ(c.initial_joint_positions.at("l_knee"), 0.3);
-  EXPECT_TRUE(c.place_on_ground);
-  EXPECT_FALSE(c.joint_damping);
-  EXPECT_EQ(c.contact.enable, ContactConfig::Enable::kOn);
-  EXPECT_EQ(c.contact.tangential, ContactConfig::Tangential::kRegularized);
-  EXPECT_EQ(c.contact.links.size(), 2u);
-  ASSERT_EQ(c.contact.points.size(), 1u);
-  EXPECT_EQ(c.contact.points[0].position.z(), -0.02);
-  EXPECT_EQ(c.encoders.counts_per_revolution, 4096.0);
-  EXPECT_EQ(c.motor.voltage, 48.0);
-  ASSERT_EQ(c.imus.size(), 1u);
-  ASSERT_EQ(c.force_torque.size(), 1u);
-  ASSERT_EQ(c.pushes.size(), 1u);
-  EXPECT_EQ(c.pushes[0].force.x(), 50.0);
-  EXPECT_EQ(c.seed, 7u);
-  SimBackend sim(c);
+  SimBackend sim(robot_config::parse_robot_config(yaml, "humanoid_test.yaml"));
   sim.configure();
   EXPECT_EQ(sim.description().n_joints(), 30);
-  EXPECT_EQ(sim.ground_truth().contact_points.size(), 9u);  // 2 boxes × 4 corners + 1
+  const auto& points = sim.ground_truth().contact_points;
+  ASSERT_EQ(points.size(), 11u);  // 2 boxes × 4 corners + a sphere + a capsule's 2 ends
+  EXPECT_EQ(points[0].friction, 0.6);
+  EXPECT_EQ(points[4].friction, 0.9);
+  EXPECT_EQ(points[8].radius, 0.02);
+  EXPECT_NEAR(std::abs(points[9].p_F.y() - points[10].p_F.y()), 0.1, 1e-12);  // capsule along y
+  EXPECT_EQ(sim.ground_truth().contact_links.size(), 4u);
+  // placed on the ground: the lowest point (a sole corner; the hands hang higher) at 0.1
+  double z_min = 1.0;
+  for (const auto& cp : points) {
+    z_min = std::min(z_min, cp.p_W.z());
+  }
+  EXPECT_NEAR(z_min, 0.1, 1e-12);
   EXPECT_EQ(sim.description().ft_names[0], "l_ft");
+  EXPECT_EQ(sim.stamp(), Time(0));
+  sim.activate();
+  sim.step();
+  EXPECT_EQ(sim.stamp(), Time(2000000));  // wbi.step
 }
 
-TEST(SimConfig, YamlErrorsNameTheKey) {
-  expect_error([] { parse_sim_config("urdf: x\nstepp: 0.001\n"); }, {"stepp", "unknown key"});
-  expect_error([] { parse_sim_config("contact: {stifness: 3}\n"); },
-               {"contact.stifness", "unknown key"});
-  expect_error([] { parse_sim_config("step: fast\n"); }, {"step", "wrong type"});
-  expect_error([] { parse_sim_config("step: -1\n"); }, {"step", "> 0"});
-  expect_error([] { parse_sim_config("gravity: [0, 0]\n"); }, {"gravity", "3 numbers"});
-  expect_error([] { parse_sim_config("contact: {tangential: sticky}\n"); },
-               {"contact.tangential", "sticky"});
-  expect_error([] { parse_sim_config("imus: [{name: a}]\n"); }, {"imus[0]", "frame"});
-  expect_error([] { parse_sim_config("pushes: [{link: a, forse: [1, 2, 3]}]\n"); },
-               {"pushes[0].forse"});
-  expect_error([] { parse_sim_config("a: [1,\n"); }, {"YAML error", "line"});
-  expect_error([] { parse_sim_config("armature: [0.1]\n"); }, {"armature", "map joint"});
-  expect_error([] { parse_sim_config("armature: {j1: heavy}\n"); },
-               {"armature.j1", "expected a number"});
-  expect_error([] { parse_sim_config("armature: {j1: -0.1}\n"); }, {"armature.j1", ">= 0"});
-  expect_error([] { parse_sim_config("armature: {j1: .nan}\n"); }, {"armature.j1", "finite"});
-  EXPECT_EQ(parse_sim_config("armature: {j1: 0.5, j2: 0}\n").armature,
-            (std::map<std::string, double>{{"j1", 0.5}, {"j2", 0.0}}));
-  expect_error([] { load_sim_config_file("/nonexistent/sim.yaml"); }, {"/nonexistent/sim.yaml"});
+// The project's humanoid.yaml lists its URDF's <collision> boxes: the same contact
+// points, in the same order, as a configuration without contacts (the URDF's).
+TEST(SimConfig, HumanoidFileMatchesTheUrdfBoxes) {
+  SimBackend from_file(robot_config::load_robot_config(
+      (wbi::test::source_dir() / "deploy" / "robots" / "humanoid.yaml").string()));
+  SimBackend from_urdf(humanoid_config());
+  from_file.configure();
+  from_urdf.configure();
+  const auto& a = from_file.ground_truth().contact_points;
+  const auto& b = from_urdf.ground_truth().contact_points;
+  ASSERT_EQ(a.size(), 8u);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].p_F, b[i].p_F);
+    EXPECT_EQ(a[i].link, b[i].link);
+    EXPECT_EQ(a[i].friction, b[i].friction);
+  }
+  EXPECT_EQ(from_file.ground_truth().contact_links, from_urdf.ground_truth().contact_links);
+}
+
+// The real robots' files configure the own plant: their sole boxes become contact
+// points, placed on the ground, and their sensors exist.
+TEST(SimConfig, RealRobotFilesConfigureThePlant) {
+  struct Robot {
+    const char* file;
+    const char* urdf;
+    std::size_t points, fts;
+  };
+  for (const Robot& robot : {Robot{"icub3.yaml", "iCubGenova09/model.urdf", 16, 8},
+                             Robot{"talos.yaml", "talos/talos_reduced.urdf", 8, 4}}) {
+    const auto shared = wbi::test::shared_models_dir();
+    if (!shared || !std::filesystem::exists(*shared / robot.urdf)) {
+      GTEST_SKIP() << wbi::test::kSharedMissing << " (expected ../shared/models/" << robot.urdf
+                   << ")";
+    }
+    SimBackend sim(robot_config::load_robot_config(
+        (wbi::test::source_dir() / "deploy" / "robots" / robot.file).string()));
+    sim.configure();
+    const auto& points = sim.ground_truth().contact_points;
+    ASSERT_EQ(points.size(), robot.points) << robot.file;
+    double z_min = 1.0;
+    for (const auto& cp : points) {
+      z_min = std::min(z_min, cp.p_W.z());
+    }
+    EXPECT_NEAR(z_min, 0.0, 1e-12) << robot.file;
+    EXPECT_EQ(sim.description().ft_names.size(), robot.fts) << robot.file;
+    EXPECT_EQ(sim.description().n_joints(), 32) << robot.file;
+  }
 }
 
 TEST(SimConfig, UnknownNamesAreErrors) {
-  auto configure = [](SimConfig c) {
+  auto configure = [](RobotConfig c) {
     SimBackend sim(std::move(c));
     sim.configure();
   };
-  SimConfig c = humanoid_config();
+  RobotConfig c = humanoid_config();
   c.initial_joint_positions["l_kne"] = 0.1;
   expect_error([&] { configure(c); }, {"initial_joint_positions", "l_kne"});
   c = humanoid_config();
@@ -128,14 +145,16 @@ TEST(SimConfig, UnknownNamesAreErrors) {
   c.pushes.push_back({"torso", 0.0, 0.1, Eigen::Vector3d::UnitX(), Eigen::Vector3d::Zero()});
   expect_error([&] { configure(c); }, {"pushes", "torso"});
   c = humanoid_config();
-  c.contact.links = {"l_foot", "left_foot"};
-  expect_error([&] { configure(c); }, {"contact.links", "left_foot"});
+  c.contacts.emplace_back();
+  c.contacts.back().link = "left_foot";
+  c.contacts.back().size = Eigen::Vector3d::Ones();
+  expect_error([&] { configure(c); }, {"contact", "left_foot"});
   c = humanoid_config();
-  c.armature["l_kne"] = 0.1;
-  expect_error([&] { configure(c); }, {"armature", "unknown joint", "l_kne"});
+  c.joints["l_kne"].armature = 0.1;
+  expect_error([&] { configure(c); }, {"joints", "unknown joint", "l_kne"});
   c = humanoid_config();
-  c.armature["l_foot_ft_sensor"] = 0.1;
-  expect_error([&] { configure(c); }, {"armature", "l_foot_ft_sensor", "fixed"});
+  c.joints["l_foot_ft_sensor"].armature = 0.1;
+  expect_error([&] { configure(c); }, {"joints", "l_foot_ft_sensor", "fixed"});
   c = humanoid_config();
   c.urdf = "/nonexistent/robot.urdf";
   expect_error([&] { configure(c); }, {"/nonexistent/robot.urdf"});
@@ -187,9 +206,9 @@ TEST(SimConfig, LifecycleTransitions) {
 // A push on the floating robot in zero gravity, no contact: the momentum changes by the
 // impulse, m Δċ = F T, whatever the joints do (internal forces).
 TEST(SimPlant, PushChangesMomentumByTheImpulse) {
-  SimConfig c = humanoid_config();
+  RobotConfig c = humanoid_config();
   c.gravity.setZero();
-  c.contact.enable = ContactConfig::Enable::kOff;
+  c.wbi.contact.enable = robot_config::ContactModel::Enable::kOff;
   c.place_on_ground = false;
   c.pushes.push_back(
       {"root_link", 0.1, 0.2, Eigen::Vector3d(10.0, -5.0, 2.0), Eigen::Vector3d(0.0, 0.05, 0.1)});
@@ -213,10 +232,13 @@ TEST(SimPlant, PushChangesMomentumByTheImpulse) {
 // reads 0; orientation and gyro are those of the pelvis (the IMU is fixed to it,
 // same axes). (Standing, it reads +g: SimPlant.HumanoidStandsStill.)
 TEST(SimPlant, ImuReadsFreeFallOrientationAndRate) {
-  SimConfig c = humanoid_config();
-  c.contact.enable = ContactConfig::Enable::kOff;
+  RobotConfig c = humanoid_config();
+  c.wbi.contact.enable = robot_config::ContactModel::Enable::kOff;
   c.place_on_ground = false;
-  c.joint_friction = false;
+  robot_config::complete_from_urdf(c);
+  for (auto& [name, joint] : c.joints) {
+    joint.friction = 0.0;
+  }
   const Eigen::Quaterniond quat(Eigen::AngleAxisd(0.5, Eigen::Vector3d(1, 2, 3).normalized()));
   c.initial_base_orientation << quat.w(), quat.x(), quat.y(), quat.z();
   SimBackend sim(c);

@@ -19,7 +19,7 @@ namespace {
 // relative to the swing energy, with no secular drift. With ω = √(m g l/I) ≈ 4.0 rad/s
 // and h = 1e-3 that is ≈ 0.4 %; tolerance 1 % of m g l_c (1 − cos 1) ≈ 4.5 J.
 TEST(SimPlant, PendulumConservesEnergy) {
-  SimConfig c;
+  RobotConfig c;
   c.urdf = model_path("pendulum.urdf");
   c.initial_joint_positions["hinge"] = 1.0;
   SimBackend sim(c);
@@ -58,13 +58,13 @@ struct EnergyRun {
 };
 
 EnergyRun double_pendulum_energy(const std::map<std::string, double>& armature, int substeps) {
-  SimConfig c;
+  RobotConfig c;
   c.urdf = model_path("double_pendulum.urdf");
   c.initial_joint_positions = {{"joint1", 1.0}, {"joint2", -0.5}};
-  c.armature = armature;
-  c.substeps = substeps;
-  c.joint_damping = false;
-  c.joint_friction = false;
+  for (const char* joint : {"joint1", "joint2"}) {  // no damping, no friction
+    c.joints[joint].armature = armature.count(joint) != 0 ? armature.at(joint) : 0.0;
+  }
+  c.wbi.substeps = substeps;
   SimBackend sim(c);
   sim.configure();  // INACTIVE: every joint IDLE (zero torque)
   EnergyRun r;
@@ -84,7 +84,7 @@ TEST(SimPlant, DoublePendulumWithArmatureConservesEnergyToFirstOrder) {
   const EnergyRun fine = double_pendulum_energy(armature, 4);    // h = 0.25 ms
   const EnergyRun none = double_pendulum_energy({}, 2);
   // swing energy: E0 minus the energy hanging at rest
-  SimConfig hanging;
+  RobotConfig hanging;
   hanging.urdf = model_path("double_pendulum.urdf");
   SimBackend rest(hanging);
   rest.configure();
@@ -116,7 +116,7 @@ struct StandResult {
   Eigen::VectorXd position_end;  // encoder readings at the end
 };
 
-StandResult stand(SimConfig c, double seconds) {
+StandResult stand(RobotConfig c, double seconds) {
   StiffSim held(c);
   SimBackend& sim = held.sim;
   JointController& ctl = held.ctl;
@@ -125,9 +125,9 @@ StandResult stand(SimConfig c, double seconds) {
   const Eigen::Vector3d p0 = sim.ground_truth().base_position;
   Eigen::Vector3d p_settled = p0;
   StandResult r;
-  const int steps = static_cast<int>(std::lround(seconds / c.step));
-  const int settle = static_cast<int>(std::lround(0.5 / c.step));
-  const int window = static_cast<int>(std::lround(std::min(1.0, seconds / 4) / c.step));
+  const int steps = static_cast<int>(std::lround(seconds / c.wbi.step));
+  const int settle = static_cast<int>(std::lround(0.5 / c.wbi.step));
+  const int window = static_cast<int>(std::lround(std::min(1.0, seconds / 4) / c.wbi.step));
   Eigen::Vector3d mean_early = Eigen::Vector3d::Zero();
   Eigen::Vector3d mean_late = Eigen::Vector3d::Zero();
   for (int k = 0; k < steps; ++k) {
@@ -185,10 +185,10 @@ StandResult stand(SimConfig c, double seconds) {
 // small inertia) but must not drift: the mean base position over the last second
 // equals the one over [0.5 s, 1.5 s].
 TEST(SimPlant, HumanoidStandsStill) {
-  const SimConfig c = humanoid_config();
+  const RobotConfig c = humanoid_config();
   const StandResult r = stand(c, 5.0);
   const double weight = 33.75 * 9.81;
-  std::cout << "[measured] humanoid 5 s standing (h = " << c.step / c.substeps * 1e3
+  std::cout << "[measured] humanoid 5 s standing (h = " << c.wbi.step / c.wbi.substeps * 1e3
             << " ms): settling in 0.5 s: height " << r.settle_height * 1e3 << " mm, horizontal "
             << r.settle_horizontal * 1e3
             << " mm; drift of the mean base position [0.5, 1.5] s → [4, 5] s: height "
@@ -217,7 +217,7 @@ TEST(SimPlant, HumanoidStandsStill) {
 // A 30 N push on the pelvis for 0.1 s while standing with joint PD: the robot is
 // pushed back, the feet take the load (the F/T sensors see it) and it stays up.
 TEST(SimPlant, HumanoidSurvivesAPush) {
-  SimConfig c = humanoid_config();
+  RobotConfig c = humanoid_config();
   c.pushes.push_back(
       {"root_link", 1.0, 0.1, Eigen::Vector3d(-30.0, 0.0, 0.0), Eigen::Vector3d::Zero()});
   StiffSim held(c);
@@ -249,17 +249,17 @@ TEST(SimPlant, HumanoidSurvivesAPush) {
 
 // Same seed, same commands: bit-identical trajectories and readings, with noise on.
 TEST(SimPlant, SameSeedIsBitIdentical) {
-  SimConfig c = humanoid_config();
-  c.encoders.position_noise = 1e-3;
-  c.encoders.velocity_noise = 1e-2;
+  RobotConfig c = humanoid_config();
+  c.wbi.encoders.position_noise = 1e-3;
+  c.wbi.encoders.velocity_noise = 1e-2;
   c.imus[0].gyro_noise = 1e-2;
-  c.seed = 42;
+  c.wbi.seed = 42;
   const StandResult a = stand(c, 1.0);
   const StandResult b = stand(c, 1.0);
   ASSERT_EQ(a.q_end.size(), b.q_end.size());
   EXPECT_EQ(0, std::memcmp(a.q_end.data(), b.q_end.data(),
                            sizeof(double) * static_cast<std::size_t>(a.q_end.size())));
-  c.seed = 43;
+  c.wbi.seed = 43;
   const StandResult other = stand(c, 1.0);
   EXPECT_NE(0, std::memcmp(a.q_end.data(), other.q_end.data(),
                            sizeof(double) * static_cast<std::size_t>(a.q_end.size())));

@@ -21,8 +21,8 @@ namespace {
 #error "this test must be built with EIGEN_RUNTIME_NO_MALLOC"
 #endif
 
-void run_without_allocation(SimConfig c, ControlMode mode) {
-  c.encoders.position_noise = 1e-4;
+void run_without_allocation(RobotConfig c, ControlMode mode) {
+  c.wbi.encoders.position_noise = 1e-4;
   c.imus[0].gyro_noise = 1e-3;
   c.pushes.push_back({"root_link", 0.01, 0.02, Eigen::Vector3d(5, 0, 0), Eigen::Vector3d::Zero()});
   StiffSim held(c);
@@ -65,8 +65,8 @@ TEST(SimNoMallocDeathTest, EigenCheckIsLive) {
 
 TEST(SimNoMalloc, HumanoidLoopDoesNotAllocate) {
   run_without_allocation(humanoid_config(), ControlMode::kPositionDirect);
-  SimConfig c = humanoid_config();
-  c.contact.tangential = ContactConfig::Tangential::kRegularized;
+  RobotConfig c = humanoid_config();
+  c.wbi.contact.tangential = robot_config::ContactModel::Tangential::kRegularized;
   run_without_allocation(c, ControlMode::kPosition);
   run_without_allocation(humanoid_config(), ControlMode::kTorque);
 }

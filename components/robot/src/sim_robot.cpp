@@ -48,7 +48,7 @@ class SimRobot final : public runtime::Component {
     control.reference_speed = parameters.get<double>("reference_speed", 0.5);
     hold_at_start_ = parameters.get<bool>("hold_at_start", true);
 
-    sim_ = std::make_unique<sim::SimBackend>(sim::load_sim_config_file(config_path.string()));
+    sim_ = std::make_unique<sim::SimBackend>(robot_config::load_robot_config(config_path.string()));
     sim_->configure();
     const auto& description =
         sim_->description();  // its robot name is the URDF's; topics use robot_
@@ -155,7 +155,7 @@ class SimRobot final : public runtime::Component {
 
   void step_until_stopped() {
     const auto period =
-        std::chrono::nanoseconds(static_cast<std::int64_t>(sim_->config().step * 1e9));
+        std::chrono::nanoseconds(static_cast<std::int64_t>(sim_->config().wbi.step * 1e9));
     const auto start = Clock::now();
     for (std::uint64_t tick = 0; running_; ++tick) {
       if (duration_s_ > 0.0 && sim_->time() >= duration_s_) {
@@ -185,7 +185,7 @@ class SimRobot final : public runtime::Component {
     ground_truth_->publish(truth_message_);
     clock_message_.time_ns(sim_->stamp().count());
     clock_message_.tick(tick);
-    clock_message_.step_ns(static_cast<std::int64_t>(sim_->config().step * 1e9));
+    clock_message_.step_ns(static_cast<std::int64_t>(sim_->config().wbi.step * 1e9));
     clock_message_.lockstep(lockstep_);
     clock_->publish(clock_message_);
   }

@@ -150,7 +150,7 @@ struct SimBackend::Impl {
   double encoder_step = 0.0;
 };
 
-SimBackend::SimBackend(SimConfig config) : config_(std::move(config)) {}
+SimBackend::SimBackend(RobotConfig config) : config_(std::move(config)) {}
 SimBackend::~SimBackend() = default;
 
 const model::Model& SimBackend::model() const {
@@ -165,23 +165,25 @@ Time SimBackend::stamp() const {
 }
 
 actuation::BackendDescription SimBackend::on_configure() {
-  const SimConfig& c = config_;
-  const std::string where = "sim config";
+  const RobotConfig& c = config_;
+  const WbiOptions& o = c.wbi;
+  const std::string where = "robot config";
   if (c.urdf.empty()) {
     throw std::invalid_argument(where + ": 'urdf' is required");
   }
-  if (!(c.step > 0.0) || c.substeps < 1) {
-    throw std::invalid_argument(where + ": 'step' must be > 0 and 'substeps' >= 1");
+  if (!(o.step > 0.0) || o.substeps < 1) {
+    throw std::invalid_argument(where + ": 'wbi.step' must be > 0 and 'wbi.substeps' >= 1");
   }
   auto impl = std::make_unique<Impl>();
   Impl& s = *impl;
   model::LoadOptions options;
   options.fixed_base = c.fixed_base;
-  options.armature = c.armature;
+  robot_config::complete_from_urdf(config_);  // every joint's dynamics, URDF boxes if no contacts
+  options.armature = robot_config::armature_by_joint(c);
   try {
     s.model = model::load_urdf_file(c.urdf, options);
-  } catch (const std::invalid_argument& error) {  // an armature entry: name the key
-    throw std::invalid_argument(where + ": armature: " + error.what());
+  } catch (const std::invalid_argument& error) {  // a joints: entry; name the key
+    throw std::invalid_argument(where + ": joints: " + error.what());
   }
   const urdf::ModelInterfaceSharedPtr urdf_model = urdf::parseURDFFile(c.urdf);
   if (!urdf_model) {
@@ -200,7 +202,7 @@ actuation::BackendDescription SimBackend::on_configure() {
     return m.frame_id(link);
   };
 
-  // ---- joints: limits, URDF <dynamics>, motors ----
+  // ---- joints: limits, passive dynamics (robot config), motors ----
   s.damping = Eigen::VectorXd::Zero(n);
   s.friction = Eigen::VectorXd::Zero(n);
   s.lower.resize(n);
@@ -213,19 +215,13 @@ actuation::BackendDescription SimBackend::on_configure() {
     s.lower[j] = m.joint_lower[static_cast<std::size_t>(j)];
     s.upper[j] = m.joint_upper[static_cast<std::size_t>(j)];
     s.effort[j] = m.joint_effort_limit[static_cast<std::size_t>(j)];
-    const auto uj = urdf_model->getJoint(name);
-    if (uj && uj->dynamics) {
-      if (c.joint_damping) {
-        s.damping[j] = uj->dynamics->damping;
-      }
-      if (c.joint_friction) {
-        s.friction[j] = uj->dynamics->friction;
-      }
-    }
+    const robot_config::JointDynamics& dynamics = c.joints.at(name);
+    s.damping[j] = dynamics.damping;
+    s.friction[j] = dynamics.friction;
     const double stall = std::isfinite(s.effort[j]) ? s.effort[j] : 100.0;
-    s.k_t[j] = c.motor.torque_constant > 0.0 ? c.motor.torque_constant
-                                             : stall * c.motor.resistance / c.motor.voltage;
-    s.k_e[j] = c.motor.back_emf > 0.0 ? c.motor.back_emf : s.k_t[j];
+    s.k_t[j] = o.motor.torque_constant > 0.0 ? o.motor.torque_constant
+                                             : stall * o.motor.resistance / o.motor.voltage;
+    s.k_e[j] = o.motor.back_emf > 0.0 ? o.motor.back_emf : s.k_t[j];
   }
   s.cmd_mode.assign(static_cast<std::size_t>(n), OutputMode::kIdle);
   s.cmd_value = Eigen::VectorXd::Zero(n);
@@ -252,17 +248,11 @@ actuation::BackendDescription SimBackend::on_configure() {
   }
 
   // ---- contact points ----
-  s.contacts_on = c.contact.enable == ContactConfig::Enable::kOn ||
-                  (c.contact.enable == ContactConfig::Enable::kAuto && m.floating_base);
+  using robot_config::ContactModel;
+  s.contacts_on = o.contact.enable == ContactModel::Enable::kOn ||
+                  (o.contact.enable == ContactModel::Enable::kAuto && m.floating_base);
   truth_ = GroundTruth{};
   if (s.contacts_on) {
-    std::set<std::string> wanted(c.contact.links.begin(), c.contact.links.end());
-    for (const auto& link : c.contact.links) {
-      if (!urdf_model->getLink(link)) {
-        throw std::invalid_argument(where + ": contact.links: unknown link '" + link + "' in " +
-                                    c.urdf);
-      }
-    }
     auto link_index = [&](const std::string& link) {
       for (std::size_t i = 0; i < truth_.contact_links.size(); ++i) {
         if (truth_.contact_links[i] == link) {
@@ -273,42 +263,43 @@ actuation::BackendDescription SimBackend::on_configure() {
       s.contact_link_frame.push_back(frame_of(link, "contact"));
       return static_cast<int>(truth_.contact_links.size() - 1);
     };
-    // Links in name order (urdfdom's map): deterministic.
-    for (const auto& [link_name, link] : urdf_model->links_) {
-      if (!wanted.empty() && wanted.count(link_name) == 0) {
-        continue;
-      }
-      for (const auto& col : link->collision_array) {
-        if (!col || !col->geometry || col->geometry->type != urdf::Geometry::BOX) {
-          continue;
-        }
-        const auto box = std::dynamic_pointer_cast<urdf::Box>(col->geometry);
-        const Matrix3d R = rotation_of(col->origin.rotation);
-        const Vector3d p = vector_of(col->origin.position);
-        const int li = link_index(link_name);
-        for (int sx : {1, -1}) {
-          for (int sy : {1, -1}) {
-            ContactPoint cp;
-            cp.link = li;
-            cp.frame = s.contact_link_frame[static_cast<std::size_t>(li)];
-            cp.p_F =
-                p + R * Vector3d(0.5 * sx * box->dim.x, 0.5 * sy * box->dim.y, -0.5 * box->dim.z);
-            truth_.contact_points.push_back(cp);
+    // Box: the 4 corners of its −z face; sphere: its centre with its radius;
+    // capsule: its two end spheres.
+    for (const auto& g : c.contacts) {
+      const int li = link_index(g.link);
+      auto add = [&](const Vector3d& p_F, double radius) {
+        ContactPoint cp;
+        cp.link = li;
+        cp.frame = s.contact_link_frame[static_cast<std::size_t>(li)];
+        cp.p_F = p_F;
+        cp.radius = radius;
+        cp.friction = g.friction;
+        truth_.contact_points.push_back(cp);
+      };
+      switch (g.shape) {
+        case robot_config::ContactGeometry::Shape::kBox:
+          for (int sx : {1, -1}) {
+            for (int sy : {1, -1}) {
+              add(g.position + g.rotation * Vector3d(0.5 * sx * g.size.x(), 0.5 * sy * g.size.y(),
+                                                     -0.5 * g.size.z()),
+                  0.0);
+            }
           }
-        }
+          break;
+        case robot_config::ContactGeometry::Shape::kSphere:
+          add(g.position, g.radius);
+          break;
+        case robot_config::ContactGeometry::Shape::kCapsule:
+          for (int sz : {1, -1}) {
+            add(g.position + g.rotation * Vector3d(0.0, 0.0, 0.5 * sz * g.length), g.radius);
+          }
+          break;
       }
-    }
-    for (const auto& pc : c.contact.points) {
-      ContactPoint cp;
-      cp.link = link_index(pc.link);
-      cp.frame = s.contact_link_frame[static_cast<std::size_t>(cp.link)];
-      cp.p_F = pc.position;
-      truth_.contact_points.push_back(cp);
     }
   }
   truth_.contact_wrenches.assign(truth_.contact_links.size(), Vector6d::Zero());
 
-  // place on the ground: lowest contact point at z = 0
+  // place on the ground: lowest contact point on the ground
   if (c.place_on_ground && m.floating_base && !truth_.contact_points.empty()) {
     model::forward_kinematics(m, *s.sense, q);
     double z_min = std::numeric_limits<double>::infinity();
@@ -317,13 +308,13 @@ actuation::BackendDescription SimBackend::on_configure() {
       const auto b = static_cast<std::size_t>(m.frame_body[fi]);
       const Vector3d p =
           s.sense->p_WB[b] + s.sense->R_WB[b] * (m.frame_R_BF[fi] * cp.p_F + m.frame_p_BF[fi]);
-      z_min = std::min(z_min, p.z());
+      z_min = std::min(z_min, p.z() - cp.radius);
     }
-    q[2] -= z_min;
+    q[2] -= z_min - c.ground.height;
   }
 
   // ---- joint-limit springs: automatic stiffness from the mass-matrix diagonal ----
-  const double h = c.step / c.substeps;
+  const double h = o.step / o.substeps;
   // m_eff,j = 1/(M⁻¹)_jj: the inertia a torque on joint j alone meets, all
   // other joints and the base free (the smallest it can be).
   const Eigen::MatrixXd M_inv =
@@ -335,8 +326,8 @@ actuation::BackendDescription SimBackend::on_configure() {
     const double mjj = 1.0 / M_inv(m.base_nv + j, m.base_nv + j);
     s.m_diag[j] = mjj;
     s.k_limit[j] =
-        c.joint_limits.stiffness > 0.0 ? c.joint_limits.stiffness : mjj * (0.5 / h) * (0.5 / h);
-    s.d_limit[j] = c.joint_limits.damping > 0.0 ? c.joint_limits.damping : mjj / h;
+        o.joint_limits.stiffness > 0.0 ? o.joint_limits.stiffness : mjj * (0.5 / h) * (0.5 / h);
+    s.d_limit[j] = o.joint_limits.damping > 0.0 ? o.joint_limits.damping : mjj / h;
   }
 
   // ---- pushes ----
@@ -433,9 +424,9 @@ actuation::BackendDescription SimBackend::on_configure() {
     d.ft_frames.push_back(uj->child_link_name);
   }
 
-  s.noise = Gaussian(c.seed);
+  s.noise = Gaussian(o.seed);
   s.encoder_step =
-      c.encoders.counts_per_revolution > 0.0 ? 2.0 * M_PI / c.encoders.counts_per_revolution : 0.0;
+      o.encoders.counts_per_revolution > 0.0 ? 2.0 * M_PI / o.encoders.counts_per_revolution : 0.0;
 
   // ---- ground truth buffers ----
   truth_.q = q;
@@ -486,7 +477,8 @@ void SimBackend::compute_contacts() {
   Impl& s = *impl_;
   const model::Model& m = s.model;
   model::Data& d = *s.data;
-  const ContactConfig& cc = config_.contact;
+  const robot_config::ContactModel& cc = config_.wbi.contact;
+  const double ground = config_.ground.height;
   model::forward_velocity_kinematics(m, d, truth_.q, truth_.nu);
   for (auto& w : truth_.contact_wrenches) {
     w.setZero();
@@ -494,23 +486,25 @@ void SimBackend::compute_contacts() {
   for (auto& cp : truth_.contact_points) {
     const auto fi = static_cast<std::size_t>(cp.frame);
     const auto b = static_cast<std::size_t>(m.frame_body[fi]);
-    const Vector3d p = d.p_WB[b] + d.R_WB[b] * (m.frame_R_BF[fi] * cp.p_F + m.frame_p_BF[fi]);
+    // the lowest point of the contact (its centre for a point)
+    Vector3d p = d.p_WB[b] + d.R_WB[b] * (m.frame_R_BF[fi] * cp.p_F + m.frame_p_BF[fi]);
+    p.z() -= cp.radius;
     const Vector3d v = d.v[b].head<3>() + d.v[b].tail<3>().cross(p);  // ṗ = v_O + ω × p
     cp.p_W = p;
-    const double depth = -p.z();
+    const double depth = ground - p.z();
     Vector3d f = Vector3d::Zero();
     if (depth > 0.0) {
       // normal: spring-damper, no adhesion
       const double fn = std::max(0.0, cc.stiffness * depth - cc.damping * v.z());
       Eigen::Vector2d ft = Eigen::Vector2d::Zero();
       cp.slipping = false;
-      if (cc.tangential == ContactConfig::Tangential::kSpring) {
+      if (cc.tangential == robot_config::ContactModel::Tangential::kSpring) {
         if (!cp.in_contact) {
           cp.anchor = p.head<2>();
         }
         ft = -cc.tangential_stiffness * (p.head<2>() - cp.anchor) -
              cc.tangential_damping * v.head<2>();
-        const double limit = cc.friction * fn;
+        const double limit = cp.friction * fn;
         const double norm = ft.norm();
         if (norm > limit) {
           // slip: force on the cone, anchor dragged so that the spring alone gives it
@@ -520,7 +514,7 @@ void SimBackend::compute_contacts() {
         }
       } else {
         const Eigen::Vector2d vt = v.head<2>();
-        ft = -cc.friction * fn * vt /
+        ft = -cp.friction * fn * vt /
              std::sqrt(vt.squaredNorm() + cc.slip_velocity * cc.slip_velocity);
       }
       f << ft.x(), ft.y(), fn;
@@ -564,7 +558,7 @@ void SimBackend::substep(double h) {
   compute_contacts();
   // joint torques: actuators, limits, damping and friction
   s.tau.setZero();
-  const SimConfig& c = config_;
+  const WbiOptions& c = config_.wbi;
   for (int j = 0; j < s.n; ++j) {
     const int iv = m.base_nv + j;
     const double qj = truth_.q[m.base_nq + j];
@@ -603,7 +597,7 @@ void SimBackend::substep(double h) {
     s.tau[iv] = act + lim + diss;
   }
   const Eigen::VectorXd& dnu = model::forward_dynamics(
-      m, *s.data, truth_.q, truth_.nu, s.tau, c.gravity,
+      m, *s.data, truth_.q, truth_.nu, s.tau, config_.gravity,
       std::span<const model::ExternalWrench>(s.wrenches.data(), s.n_wrenches));
   // semi-implicit Euler: ν first, then q with the new ν
   truth_.dnu = dnu;
@@ -636,14 +630,15 @@ void SimBackend::step() {
   if (!impl_) {
     throw std::logic_error("SimBackend::step(): configure() first");
   }
-  const double h = config_.step / config_.substeps;
-  for (int k = 0; k < config_.substeps; ++k) {
+  const WbiOptions& o = config_.wbi;
+  const double h = o.step / o.substeps;
+  for (int k = 0; k < o.substeps; ++k) {
     substep(h);
     ++impl_->substep_count;
-    time_ = static_cast<double>(step_count_) * config_.step + static_cast<double>(k + 1) * h;
+    time_ = static_cast<double>(step_count_) * o.step + static_cast<double>(k + 1) * h;
   }
   ++step_count_;
-  time_ = static_cast<double>(step_count_) * config_.step;
+  time_ = static_cast<double>(step_count_) * o.step;
   compute_sensors_after_step();
 }
 
@@ -705,7 +700,7 @@ void SimBackend::compute_sensors_after_step() {
 void SimBackend::on_read(Time /*time*/, Duration /*period*/, actuation::SensorReadings& out) {
   Impl& s = *impl_;
   const model::Model& m = s.model;
-  const EncoderConfig& enc = config_.encoders;
+  const robot_config::EncoderConfig& enc = config_.wbi.encoders;
   const Time stamp_now = stamp();
   for (int j = 0; j < s.n; ++j) {
     const double qj = truth_.q[m.base_nq + j];

@@ -7,7 +7,7 @@
 //
 // Parameters:
 //   robot                 required; the robot's name (topics wbi/<robot>/…)
-//   config                required; the simulation's YAML (components/sim/README.md),
+//   config                required; the robot config file (components/robot_config/README.md),
 //                         relative to the host file
 //   lockstep              false (default): real-time pacing; true: wait for commands
 //   lockstep_controllers  names of the controllers (ActuatorCommand.controller) to wait for

@@ -9,7 +9,8 @@
 // joint damping and friction; external wrenches = ground contacts + pushes.
 // See components/sim/README.md for every model and parameter.
 //
-// Use: construct with a SimConfig, then the RobotBackend lifecycle
+// Use: construct with a RobotConfig (wbi::robot_config; the own plant reads
+// its "wbi:" options), then the RobotBackend lifecycle
 // (configure/activate). Each control period: read(t, h_c) → compute commands →
 // write(t, h_c) → step(). time() is the simulation time (step() adds h_c).
 // step() and read()/write() never allocate.
@@ -25,20 +26,24 @@
 #include "wbi/actuation/robot_backend.hpp"
 #include "wbi/model/data.hpp"
 #include "wbi/model/model.hpp"
-#include "wbi/sim/sim_config.hpp"
+#include "wbi/robot_config/robot_config.hpp"
 
 namespace wbi::sim {
 
 using actuation::Duration;
 using actuation::Time;
+using robot_config::RobotConfig;
+using robot_config::WbiOptions;
 
 // One contact point and its state.
 struct ContactPoint {
   int link = 0;                                   // index into GroundTruth::contact_links
   int frame = 0;                                  // model frame of the link
-  Eigen::Vector3d p_F = Eigen::Vector3d::Zero();  // position in the link frame
+  Eigen::Vector3d p_F = Eigen::Vector3d::Zero();  // position in the link frame (sphere: centre)
+  double radius = 0.0;                            // 0: a point; > 0: a sphere's
+  double friction = 0.0;                          // Coulomb μ
   // state (ground truth)
-  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();      // world position
+  Eigen::Vector3d p_W = Eigen::Vector3d::Zero();      // world position (of the lowest point)
   Eigen::Vector3d force_W = Eigen::Vector3d::Zero();  // ground → robot force, world axes
   Eigen::Vector2d anchor = Eigen::Vector2d::Zero();   // stick anchor (x, y) on the ground
   bool in_contact = false;
@@ -67,15 +72,17 @@ struct GroundTruth {
 
 class SimBackend final : public actuation::RobotBackend {
  public:
-  explicit SimBackend(SimConfig config);
+  explicit SimBackend(RobotConfig config);
   ~SimBackend() override;
 
-  // Advance the plant by one control period (config().step), in `substeps`
+  // Advance the plant by one control period (config().wbi.step), in `substeps`
   // integration steps, with the commands of the last write(). Any state.
   // Needs configure().
   void step();
 
-  const SimConfig& config() const { return config_; }
+  // The robot config, completed from the URDF after configure()
+  // (robot_config::complete_from_urdf).
+  const RobotConfig& config() const { return config_; }
   double time() const { return time_; }
   Time stamp() const;  // time() in ns
   const GroundTruth& ground_truth() const { return truth_; }
@@ -100,7 +107,7 @@ class SimBackend final : public actuation::RobotBackend {
   void compute_contacts();
   void compute_sensors_after_step();
 
-  SimConfig config_;
+  RobotConfig config_;
   std::unique_ptr<Impl> impl_;
   double time_ = 0.0;
   std::int64_t step_count_ = 0;
