@@ -4,14 +4,14 @@
 #include <wbi/controllers/pd_gravity_component.hpp>
 #include <wbi/estimator/estimator_component.hpp>
 #include <wbi/model_service/component.hpp>
-#include <wbi/robot/sim_robot.hpp>
+#include <wbi/sim_robot/sim_robot.hpp>
 
 namespace wbi::host {
 
 void register_components(wbi::runtime::Registry& registry) {
   wbi::model_service::register_components(registry);
   wbi::estimator::register_components(registry);
-  wbi::robot::register_components(registry);
+  wbi::sim_robot::register_components(registry);
   wbi::controllers::register_components(registry);
   wbi::controllers::register_momentum_balance(registry);
 }

@@ -88,8 +88,8 @@ void fill_sensor_sample(const actuation::SensorReadings& readings, std::uint64_t
   }
 }
 
-void fill_ground_truth(const sim::GroundTruth& truth, const std::string& robot, std::uint64_t tick,
-                       std::int64_t stamp_ns, wbi::msg::GroundTruth& out) {
+void fill_ground_truth(const actuation::GroundTruth& truth, const std::string& robot,
+                       std::uint64_t tick, std::int64_t stamp_ns, wbi::msg::GroundTruth& out) {
   out.header().robot(robot);
   out.header().seq(tick);
   out.header().stamp_ns(stamp_ns);

@@ -1,4 +1,4 @@
-// Internal: the backend's readings and the simulation's ground truth as wire
+// Internal: the backend's readings and a simulation's ground truth as wire
 // messages. The fill_* functions reuse the messages' buffers (no allocation
 // once sized by describe/prepare).
 #pragma once
@@ -8,7 +8,7 @@
 #include <wbi/msg/description.h>
 #include <wbi/msg/sensors.h>
 #include <wbi/actuation/robot_backend.hpp>
-#include <wbi/sim/sim_backend.hpp>
+#include <wbi/actuation/simulation_backend.hpp>
 
 namespace wbi::robot {
 
@@ -22,7 +22,7 @@ void prepare_sensor_sample(const actuation::BackendDescription& description,
 void fill_sensor_sample(const actuation::SensorReadings& readings, std::uint64_t tick,
                         std::int64_t stamp_ns, wbi::msg::SensorSample& sample);
 
-void fill_ground_truth(const sim::GroundTruth& truth, const std::string& robot, std::uint64_t tick,
-                       std::int64_t stamp_ns, wbi::msg::GroundTruth& out);
+void fill_ground_truth(const actuation::GroundTruth& truth, const std::string& robot,
+                       std::uint64_t tick, std::int64_t stamp_ns, wbi::msg::GroundTruth& out);
 
 }  // namespace wbi::robot

@@ -1,80 +1,164 @@
 #include "wbi/robot/robot_driver.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <iostream>
+#include <optional>
 #include <stdexcept>
+#include <thread>
 
 #include "actuator_side.hpp"
 #include "sensor_side.hpp"
+#include "simulation_side.hpp"
+#include "step_clock.hpp"
 
 namespace wbi::robot {
 
 namespace {
 
+using actuation::Duration;
+using actuation::Time;
+
+struct Sides {
+  bool sensors = true;
+  bool actuators = true;
+};
+
+Sides read_sides(const runtime::Parameters& parameters) {
+  const auto sides = parameters.get<std::vector<std::string>>("sides", {"sensors", "actuators"});
+  if (sides.empty()) {
+    throw runtime::ParameterError(parameters.where("sides") +
+                                  ": needs at least one of sensors, actuators");
+  }
+  for (const auto& side : sides) {
+    if (side != "sensors" && side != "actuators") {
+      throw runtime::ParameterError(parameters.where("sides") + ": unknown side '" + side +
+                                    "' (sensors, actuators)");
+    }
+  }
+  const auto has = [&](const char* side) {
+    return std::find(sides.begin(), sides.end(), side) != sides.end();
+  };
+  return {has("sensors"), has("actuators")};
+}
+
+// A simulation's clock and run length (robot_driver.hpp, "Simulations only").
+struct SimulationOptions {
+  bool lockstep = false;
+  LockstepOptions lockstep_options;
+  double duration_s = 0.0;  // 0: no end
+};
+
+SimulationOptions read_simulation_options(const runtime::Parameters& parameters) {
+  SimulationOptions options;
+  options.lockstep = parameters.get<bool>("lockstep", false);
+  auto& lockstep = options.lockstep_options;
+  lockstep.controllers = parameters.get<std::vector<std::string>>("lockstep_controllers", {});
+  if (options.lockstep && lockstep.controllers.empty()) {
+    throw runtime::ParameterError(parameters.where("lockstep_controllers") +
+                                  ": lockstep needs the names of the controllers to wait for");
+  }
+  lockstep.timeout_s = parameters.get<double>("lockstep_timeout_s", 2.0);
+  lockstep.start_timeout_s = parameters.get<double>("lockstep_start_timeout_s", 60.0);
+  options.duration_s = parameters.get<double>("duration_s", 0.0);
+  return options;
+}
+
+// The one robot loop (wbi/robot/robot_driver.hpp). A tick is sense → control →
+// actuate; a real robot's ticks are the runner's cycles (read, update, write),
+// a simulation's are run by step_until_stopped() on the driver's own thread,
+// with its StepClock between sense and control and step() after actuate.
 class RobotDriver final : public runtime::Component {
  public:
-  explicit RobotDriver(BackendFactory factory) : factory_(std::move(factory)) {}
+  explicit RobotDriver(BackendFactory factory) : backend_factory_(std::move(factory)) {}
+  explicit RobotDriver(SimulationFactory factory) : simulation_factory_(std::move(factory)) {}
 
   void on_configure(const runtime::Parameters& parameters,
                     const runtime::ComponentContext& context) override {
-    const auto robot = parameters.require<std::string>("robot");
-    const auto sides = parameters.get<std::vector<std::string>>("sides", {"sensors", "actuators"});
-    if (sides.empty()) {
-      throw runtime::ParameterError(parameters.where("sides") +
-                                    ": needs at least one of sensors, actuators");
-    }
-    for (const auto& side : sides) {
-      if (side != "sensors" && side != "actuators") {
-        throw runtime::ParameterError(parameters.where("sides") + ": unknown side '" + side +
-                                      "' (sensors, actuators)");
-      }
-    }
-    const auto has = [&](const char* side) {
-      return std::find(sides.begin(), sides.end(), side) != sides.end();
-    };
+    robot_ = parameters.require<std::string>("robot");
+    who_ = context.type + " '" + robot_ + "'";
+    clock_ = context.clock;
+    const bool simulated = static_cast<bool>(simulation_factory_);
+    const Sides sides = simulated ? Sides{} : read_sides(parameters);
     actuation::JointControllerConfig control;
     control.watchdog_timeout = parameters.get<double>("watchdog_timeout_s", 0.1);
     control.reference_speed = parameters.get<double>("reference_speed", 0.5);
     hold_at_start_ = parameters.get<bool>("hold_at_start", true);
-    const auto urdf = parameters.get<std::string>("urdf", "");  // for the description, if known
-    const bool floating_base = parameters.get<bool>("floating_base", false);
-
-    backend_ = factory_(parameters);
-    if (!backend_) {
-      throw std::runtime_error("the backend factory of '" + context.type + "' made no backend");
+    // The description names the URDF the backend loaded (a model service or a
+    // proxy may load it for frames); a real robot's driver may be told.
+    std::string urdf;
+    std::optional<bool> floating_base;
+    SimulationOptions simulation;
+    if (simulated) {
+      simulation = read_simulation_options(parameters);
+      duration_s_ = simulation.duration_s;
+    } else {
+      urdf = parameters.get<std::string>("urdf", "");
+      if (parameters.has("floating_base")) {
+        floating_base = parameters.get<bool>("floating_base", false);
+      }
     }
+
+    make_backend(parameters, context);
     backend_->configure();
     const auto& description = backend_->description();
     auto& participant = *context.participant;
-    if (has("sensors")) {
-      sensors_ = std::make_unique<SensorSide>(participant, robot, description, urdf, floating_base);
+    if (sides.sensors) {
+      sensors_ = std::make_unique<SensorSide>(participant, robot_, description,
+                                              urdf.empty() ? description.urdf : urdf,
+                                              floating_base.value_or(description.floating_base));
     }
-    if (has("actuators")) {
-      actuators_ =
-          std::make_unique<ActuatorSide>(participant, robot, description, control, report());
+    ActuatorSide::CommandObserver observer;
+    if (simulation_) {
+      simulation_side_ = std::make_unique<SimulationSide>(
+          participant, robot_, simulation_->step_period(), simulation.lockstep);
+      auto& timeouts = report().counter("lockstep_timeouts");  // 0 unless lockstep
+      if (simulation.lockstep) {
+        step_clock_ = std::make_unique<LockstepClock>(simulation.lockstep_options, who_, timeouts);
+      } else {
+        step_clock_ = std::make_unique<RealTimeClock>(simulation_->step_period());
+      }
+      observer = [clock = step_clock_.get()](const wbi::msg::ActuatorCommand& command) {
+        clock->observe(command);
+      };
+    }
+    if (sides.actuators) {
+      actuators_ = std::make_unique<ActuatorSide>(participant, robot_, description, control,
+                                                  report(), std::move(observer));
     }
   }
 
   void on_activate() override {
     seq_ = 0;
-    if (!actuators_) {
-      return;  // sensors only: read, never power
-    }
-    backend_->activate();
-    if (hold_at_start_) {
-      backend_->read(actuation::Time(0), actuation::Duration(0));
-      actuators_->hold(backend_->readings(), backend_->readings().joint_stamp);
+    if (actuators_) {
+      backend_->activate();
+      if (hold_at_start_) {
+        const Time now = simulation_ ? simulation_->stamp() : Time(clock_->now_ns());
+        backend_->read(now, Duration(0));
+        actuators_->hold(backend_->readings(), source_stamp(now));
+      }
+    }  // else sensors only: read, never power
+    if (simulation_) {
+      step_clock_->start();
+      running_ = true;
+      loop_ = std::thread([this] { run_simulation(); });
     }
   }
 
   void on_deactivate() override {
+    stop_simulation();
     if (backend_->state() == actuation::LifecycleState::kActive) {
       backend_->deactivate();
     }
   }
 
   void on_cleanup() override {
+    stop_simulation();
     actuators_.reset();  // first: no command callback after this
+    step_clock_.reset();
+    simulation_side_.reset();
     sensors_.reset();
+    simulation_ = nullptr;
     if (backend_) {
       backend_->shutdown();
       backend_.reset();
@@ -83,43 +167,143 @@ class RobotDriver final : public runtime::Component {
 
   void on_shutdown() override { on_cleanup(); }
 
+  // The runner's cycle: a real robot's tick (a simulation runs its own).
   void read(std::int64_t time_ns, std::int64_t period_ns) override {
-    backend_->read(actuation::Time(time_ns), actuation::Duration(period_ns));
-    if (sensors_) {
-      const auto& readings = backend_->readings();
-      // the source stamp of the joint quantities; the cycle's time if the backend has none
-      const auto stamp = readings.joint_stamp.count() != 0 ? readings.joint_stamp.count() : time_ns;
-      sensors_->publish(readings, seq_++, stamp);
+    if (!simulation_) {
+      sense(Time(time_ns), Duration(period_ns));
     }
   }
-
   void update(std::int64_t time_ns, std::int64_t period_ns) override {
-    if (actuators_) {
-      actuators_->begin_tick(actuation::Time(time_ns));
-      actuators_->update(actuation::Time(time_ns), actuation::Duration(period_ns),
-                         backend_->readings(), backend_->commands());
+    if (!simulation_) {
+      control(Time(time_ns), Duration(period_ns));
     }
   }
-
   void write(std::int64_t time_ns, std::int64_t period_ns) override {
-    if (actuators_) {
-      backend_->write(actuation::Time(time_ns), actuation::Duration(period_ns));
+    if (!simulation_) {
+      actuate(Time(time_ns), Duration(period_ns));
     }
   }
 
  private:
-  BackendFactory factory_;
+  void make_backend(const runtime::Parameters& parameters,
+                    const runtime::ComponentContext& context) {
+    if (simulation_factory_) {
+      auto simulation = simulation_factory_(parameters);
+      simulation_ = simulation.get();
+      backend_ = std::move(simulation);
+    } else {
+      backend_ = backend_factory_(parameters);
+    }
+    if (!backend_) {
+      throw std::runtime_error("the backend factory of '" + context.type + "' made no backend");
+    }
+  }
+
+  // The source stamp of the joint quantities; the tick's time if the backend has none.
+  Time source_stamp(Time now) const {
+    const Time stamp = backend_->readings().joint_stamp;
+    return stamp.count() != 0 ? stamp : now;
+  }
+
+  // Tick seq_ begins: read the backend, publish what it read.
+  void sense(Time now, Duration period) {
+    if (actuators_) {
+      actuators_->begin_tick(now);  // the command callbacks' notion of "now" (watchdog)
+    }
+    backend_->read(now, period);
+    if (sensors_) {
+      sensors_->publish(backend_->readings(), seq_, source_stamp(now).count());
+    }
+    if (simulation_side_) {
+      simulation_side_->publish(simulation_->ground_truth(), seq_, simulation_->stamp());
+    }
+  }
+
+  // The commands staged since the last tick, through the joint controller.
+  void control(Time now, Duration period) {
+    if (actuators_) {
+      actuators_->update(now, period, backend_->readings(), backend_->commands());
+    }
+  }
+
+  void actuate(Time now, Duration period) {
+    if (actuators_) {
+      backend_->write(now, period);
+    }
+    ++seq_;
+  }
+
+  // The simulation's thread: a diverged simulation (its state no longer
+  // finite) throws; that stops the stepping with an error on the status
+  // topic instead of terminating the process.
+  void run_simulation() {
+    try {
+      step_until_stopped();
+    } catch (const std::exception& e) {
+      const std::string what =
+          "simulation stopped at t = " + std::to_string(simulation_->time()) + " s: " + e.what();
+      report().set_error(what);
+      std::cerr << who_ << ": " << what << std::endl;
+    }
+  }
+
+  void step_until_stopped() {
+    const Duration period = simulation_->step_period();
+    while (running_) {
+      if (duration_s_ > 0.0 && simulation_->time() >= duration_s_) {
+        // A line to wait for: a lockstep run's outcome is fixed from here on.
+        std::cout << who_ << ": duration_s " << duration_s_ << " reached: stopped stepping"
+                  << std::endl;
+        break;
+      }
+      const Time now = simulation_->stamp();
+      sense(now, period);
+      step_clock_->wait(seq_);
+      control(now, period);
+      actuate(now, period);
+      simulation_->step();
+    }
+  }
+
+  void stop_simulation() {
+    running_ = false;
+    if (step_clock_) {
+      step_clock_->stop();
+    }
+    if (loop_.joinable()) {
+      loop_.join();
+    }
+  }
+
+  const BackendFactory backend_factory_;
+  const SimulationFactory simulation_factory_;
+  std::string robot_;
+  std::string who_;  // "TYPE 'ROBOT'" in messages
+  runtime::Clock* clock_ = nullptr;
   bool hold_at_start_ = true;
-  std::uint64_t seq_ = 0;
+  double duration_s_ = 0.0;
+  std::uint64_t seq_ = 0;  // the tick: sensor sample, ground truth and clock sequence
+
   std::unique_ptr<actuation::RobotBackend> backend_;
+  actuation::SimulationBackend* simulation_ = nullptr;  // backend_, when it is a simulation
   std::unique_ptr<SensorSide> sensors_;
+  std::unique_ptr<SimulationSide> simulation_side_;
+  std::unique_ptr<StepClock> step_clock_;
   std::unique_ptr<ActuatorSide> actuators_;
+  std::atomic<bool> running_{false};
+  std::thread loop_;
 };
 
 }  // namespace
 
 void register_driver(runtime::Registry& registry, const std::string& type, BackendFactory factory,
                      std::string description) {
+  registry.add(
+      type, [factory] { return std::make_unique<RobotDriver>(factory); }, std::move(description));
+}
+
+void register_simulation(runtime::Registry& registry, const std::string& type,
+                         SimulationFactory factory, std::string description) {
   registry.add(
       type, [factory] { return std::make_unique<RobotDriver>(factory); }, std::move(description));
 }

@@ -160,6 +160,10 @@ const model::Model& SimBackend::model() const {
   return impl_->model;
 }
 
+Duration SimBackend::step_period() const {
+  return Duration(static_cast<std::int64_t>(config_.wbi.step * 1e9));
+}
+
 Time SimBackend::stamp() const {
   return Time(static_cast<std::int64_t>(std::llround(time_ * 1e9)));
 }
@@ -348,6 +352,8 @@ actuation::BackendDescription SimBackend::on_configure() {
   // ---- sensors ----
   actuation::BackendDescription d;
   d.robot = m.name;
+  d.urdf = c.urdf;
+  d.floating_base = m.floating_base;
   d.joint_names = m.joint_name;
   d.position_lower = m.joint_lower;
   d.position_upper = m.joint_upper;
@@ -626,10 +632,7 @@ void SimBackend::substep(double h) {
   truth_.tau_actuator = s.tau_act;
 }
 
-void SimBackend::step() {
-  if (!impl_) {
-    throw std::logic_error("SimBackend::step(): configure() first");
-  }
+void SimBackend::on_step() {
   const WbiOptions& o = config_.wbi;
   const double h = o.step / o.substeps;
   for (int k = 0; k < o.substeps; ++k) {

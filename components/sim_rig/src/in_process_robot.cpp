@@ -1,7 +1,7 @@
 #include "wbi/sim_rig/in_process_robot.hpp"
 
 #include <wbi/estimator/estimator_component.hpp>
-#include <wbi/robot/sim_robot.hpp>
+#include <wbi/sim_robot/sim_robot.hpp>
 
 namespace wbi::sim_rig {
 
@@ -9,7 +9,7 @@ InProcessRobot::InProcessRobot(const std::string& participant_name,
                                const std::string& sim_parameters,
                                const std::string& estimator_parameters)
     : participant_(participant_name) {
-  robot::register_components(registry_);
+  sim_robot::register_components(registry_);
   estimator::register_components(registry_);
   sim_.emplace(registry_.create("sim_robot"),
                runtime::ComponentContext{"sim", "sim_robot", &participant_, &clock_});

@@ -1,6 +1,7 @@
 // The robot backend interface: the one hardware abstraction that the sensor and
-// actuator components drive. A real robot driver and the simulator (wbi::sim)
-// implement the same class; see components/sim/README.md, "Writing a driver".
+// actuator components drive. A real robot driver and the simulators (wbi::sim,
+// through SimulationBackend) implement the same class; see
+// components/sim/README.md, "Writing a driver".
 //
 // Lifecycle (the states of ros2_control's hardware components):
 //   UNCONFIGURED  constructed; no communication with the hardware.
@@ -67,6 +68,8 @@ struct ForceTorqueReading {
 // of every per-joint vector below.
 struct BackendDescription {
   std::string robot;
+  std::string urdf;            // the robot's URDF file when the backend knows it, else ""
+  bool floating_base = false;  // free-floating base (humanoid) or fixed to the world (arm)
   std::vector<std::string> joint_names;
   std::vector<double> position_lower;   // [rad]; −inf when unlimited
   std::vector<double> position_upper;   // [rad]; +inf when unlimited

@@ -1,32 +1,61 @@
-// A real robot on DDS: register a component type that drives your RobotBackend
-// (wbi/actuation/robot_backend.hpp) with the same sensor and actuator sides as
-// sim_robot, one read → control → write cycle per tick of the runner:
+// The robot on DDS: one component, RobotDriver, runs any RobotBackend
+// (wbi/actuation/robot_backend.hpp) with the sensor side (description, sensor
+// samples) and the actuator side (commands and control parameters into the
+// joint-level controller, watchdog, rejections on the status). One loop, every
+// tick:
+//   read → publish sensors (tick k) → [clock] → joint control → write → [step]
+// Its clock is one of
+//   the runner's period  a real robot: one tick per runner cycle (rate_hz, wall
+//                        clock); register_driver;
+//   lockstep             a simulation (SimulationBackend) that waits, at [clock],
+//                        for every named controller's command for tick k, then
+//                        steps: deterministic; register_simulation, lockstep: true;
+//   real time            a simulation paced at real time (lockstep: false).
+// A simulation is its own clock: its loop runs on the driver's thread while
+// ACTIVE (no rate_hz), stamps are simulation time, and it also publishes its
+// ground truth (wbi/<robot>/ground_truth) and time (wbi/clock).
+//
+// A real robot:
 //
 //   wbi::robot::register_driver(registry, "my_robot", [](const runtime::Parameters& p) {
 //     return std::make_unique<MyBackend>(p.require<std::string>("device"));
 //   });
-//
-// and deploy it with rate_hz = the backend rate:
 //
 //   - name: robot
 //     type: my_robot
 //     rate_hz: 1000
 //     parameters: {robot: my_robot, device: /dev/…}
 //
-// Parameters (besides the backend's own, which the factory reads):
+// Parameters of every driver (besides the backend's own, which the factory reads):
 //   robot               required; topics wbi/<robot>/…
+//   watchdog_timeout_s  joint controller watchdog (default 0.1 s; 0 disables)
+//   reference_speed     default POSITION-mode speed [rad/s] (default 0.5)
+//   hold_at_start       true (default): joints hold their position (POSITION mode)
+//                       until commanded; false: they start IDLE (unpowered)
+// Real robots only:
 //   sides               [sensors, actuators] (default): which sides this instance runs.
 //                       sensors: publishes the description (latched) and a sensor sample
 //                       per tick; the backend is never powered. actuators: commands and
 //                       control parameters in, joint control, backend powered.
 //                       Two instances (one per side, e.g. in two processes) work when
 //                       the hardware accepts two connections.
-//   watchdog_timeout_s  joint controller watchdog (default 0.1 s; 0 disables)
-//   reference_speed     default POSITION-mode speed [rad/s] (default 0.5)
-//   hold_at_start       true (default): joints hold their position until commanded
-//   urdf                the robot's URDF, named in the description (default: none)
-//   floating_base       false (default): whether the description says floating base
-// Status counters: those of the actuator side (rejected_commands, watchdog_trips, …).
+//   urdf                the robot's URDF, named in the description (default: the
+//                       backend's description.urdf)
+//   floating_base       whether the description says floating base (default: the
+//                       backend's description.floating_base)
+// Simulations only:
+//   lockstep              false (default): paced at real time; true: wait for commands
+//   lockstep_controllers  names of the controllers (ActuatorCommand.controller) to wait for
+//   lockstep_timeout_s    longest wait for a tick's commands (default 2 s; then a warning)
+//   lockstep_start_timeout_s  longest wait for the first tick's commands, while the
+//                         controllers start (default 60 s)
+//   duration_s            stop stepping after this simulated time (default 0: never),
+//                         printing "TYPE 'ROBOT': duration_s D reached: stopped stepping"
+// Status counters: those of the actuator side (rejected_commands,
+// rejected_parameters, watchdog_trips, limit_clamps) and, in lockstep,
+// lockstep_timeouts; the last rejection or trip in words as the last error. A
+// simulation that throws (diverged) stops stepping with
+// "simulation stopped at t = T s: …" as the last error.
 #pragma once
 
 #include <functional>
@@ -34,14 +63,24 @@
 #include <string>
 
 #include <wbi/actuation/robot_backend.hpp>
+#include <wbi/actuation/simulation_backend.hpp>
 #include <wbi/runtime/registry.hpp>
 
 namespace wbi::robot {
 
+// Makes the backend from the component's parameters (reading its own keys).
 using BackendFactory =
     std::function<std::unique_ptr<actuation::RobotBackend>(const runtime::Parameters&)>;
+using SimulationFactory =
+    std::function<std::unique_ptr<actuation::SimulationBackend>(const runtime::Parameters&)>;
 
+// A component type for a real robot: the runner's period is the clock.
 void register_driver(runtime::Registry& registry, const std::string& type, BackendFactory factory,
                      std::string description = "robot driver: sensor samples out, commands in");
+
+// A component type for a simulated robot: the simulation is the clock (lockstep
+// or real time), plus ground truth and wbi/clock.
+void register_simulation(runtime::Registry& registry, const std::string& type,
+                         SimulationFactory factory, std::string description);
 
 }  // namespace wbi::robot

@@ -13,7 +13,8 @@
 // its "wbi:" options), then the RobotBackend lifecycle
 // (configure/activate). Each control period: read(t, h_c) → compute commands →
 // write(t, h_c) → step(). time() is the simulation time (step() adds h_c).
-// step() and read()/write() never allocate.
+// step() and read()/write() never allocate. It is the `wbi` engine of the
+// sim_robot component (components/sim_robot).
 #pragma once
 
 #include <cstdint>
@@ -23,7 +24,7 @@
 
 #include <Eigen/Core>
 
-#include "wbi/actuation/robot_backend.hpp"
+#include "wbi/actuation/simulation_backend.hpp"
 #include "wbi/model/data.hpp"
 #include "wbi/model/model.hpp"
 #include "wbi/robot_config/robot_config.hpp"
@@ -50,42 +51,28 @@ struct ContactPoint {
   bool slipping = false;
 };
 
-// Exact state of the simulation, for tests and benchmarks.
-struct GroundTruth {
-  double time = 0.0;    // [s]
-  Eigen::VectorXd q;    // [nq] (base p, quaternion w,x,y,z, joints) or joints
-  Eigen::VectorXd nu;   // [nv] mixed velocity (ṗ_B, ω_B world axes, q̇)
-  Eigen::VectorXd dnu;  // [nv] ν̇ of the last substep
-  Eigen::VectorXd
-      tau;  // [n] total joint torque of the last substep (actuators + limits + friction)
-  Eigen::VectorXd tau_actuator;  // [n] actuator torque of the last substep
-  Eigen::Vector3d base_position = Eigen::Vector3d::Zero();
-  Eigen::Vector4d base_orientation{1.0, 0.0, 0.0, 0.0};                             // w, x, y, z
-  Eigen::Matrix<double, 6, 1> base_velocity = Eigen::Matrix<double, 6, 1>::Zero();  // (ṗ, ω), world
-  Eigen::Matrix<double, 6, 1> base_acceleration = Eigen::Matrix<double, 6, 1>::Zero();  // (p̈, ω̇)
-  std::vector<std::string> contact_links;  // links with contact points
-  // [n_contact_links] total ground wrench on each contact link: (force, moment
-  // about the link frame origin), world axes.
-  std::vector<Eigen::Matrix<double, 6, 1>> contact_wrenches;
+// Exact state of the simulation (actuation::GroundTruth, what every engine
+// offers) and the plant's contact points, for tests and benchmarks.
+struct GroundTruth : actuation::GroundTruth {
   std::vector<ContactPoint> contact_points;
 };
 
-class SimBackend final : public actuation::RobotBackend {
+class SimBackend final : public actuation::SimulationBackend {
  public:
   explicit SimBackend(RobotConfig config);
   ~SimBackend() override;
 
-  // Advance the plant by one control period (config().wbi.step), in `substeps`
-  // integration steps, with the commands of the last write(). Any state.
-  // Needs configure().
-  void step();
+  // step() (actuation::SimulationBackend) advances the plant by one control
+  // period (config().wbi.step), in `wbi.substeps` integration steps, with the
+  // commands of the last write().
 
   // The robot config, completed from the URDF after configure()
   // (robot_config::complete_from_urdf).
   const RobotConfig& config() const { return config_; }
-  double time() const { return time_; }
-  Time stamp() const;  // time() in ns
-  const GroundTruth& ground_truth() const { return truth_; }
+  Duration step_period() const override;  // config().wbi.step in ns
+  double time() const override { return time_; }
+  Time stamp() const override;  // time() in ns
+  const GroundTruth& ground_truth() const override { return truth_; }
   const model::Model& model() const;  // after configure()
 
   // Test helpers (allocate; not for the loop): overwrite the state.
@@ -100,6 +87,7 @@ class SimBackend final : public actuation::RobotBackend {
   void on_cleanup() override;  // releases the model and the state
   void on_read(Time time, Duration period, actuation::SensorReadings& out) override;
   void on_write(Time time, Duration period, const actuation::JointCommands& in) override;
+  void on_step() override;
 
  private:
   struct Impl;

@@ -1,0 +1,81 @@
+#include "step_clock.hpp"
+
+#include <algorithm>
+#include <iostream>
+
+namespace wbi::robot {
+
+void RealTimeClock::start() {
+  std::lock_guard lock(mutex_);
+  stopped_ = false;
+  start_ = std::chrono::steady_clock::now();
+}
+
+void RealTimeClock::wait(std::uint64_t tick) {
+  // From the start, not from the previous tick: a late tick is caught up, no drift.
+  const auto due = start_ + period_ * static_cast<std::int64_t>(tick + 1);
+  std::unique_lock lock(mutex_);
+  stopped_changed_.wait_until(lock, due, [this] { return stopped_; });
+}
+
+void RealTimeClock::stop() {
+  {
+    std::lock_guard lock(mutex_);
+    stopped_ = true;
+  }
+  stopped_changed_.notify_all();
+}
+
+LockstepClock::LockstepClock(LockstepOptions options, std::string who,
+                             runtime::StatusCounter& timeouts)
+    : options_(std::move(options)), who_(std::move(who)), timeouts_(timeouts) {
+  for (const auto& name : options_.controllers) {
+    answered_[name] = -1;
+  }
+}
+
+void LockstepClock::start() {
+  std::lock_guard lock(mutex_);
+  stopped_ = false;
+}
+
+// On a DDS thread, after the actuator side staged the command.
+void LockstepClock::observe(const wbi::msg::ActuatorCommand& command) {
+  {
+    std::lock_guard lock(mutex_);
+    const auto sender = answered_.find(command.controller().to_string());
+    if (sender == answered_.end()) {
+      return;  // a controller the simulation does not wait for
+    }
+    sender->second = std::max(sender->second, static_cast<std::int64_t>(command.tick()));
+  }
+  changed_.notify_all();
+}
+
+bool LockstepClock::all_answered(std::uint64_t tick) const {
+  return std::all_of(answered_.begin(), answered_.end(), [&](const auto& controller) {
+    return controller.second >= static_cast<std::int64_t>(tick);
+  });
+}
+
+void LockstepClock::wait(std::uint64_t tick) {
+  std::unique_lock lock(mutex_);
+  // The first tick waits for the controllers to start; later ticks for one control step.
+  const double timeout_s = tick == 0 ? options_.start_timeout_s : options_.timeout_s;
+  if (!changed_.wait_for(lock, std::chrono::duration<double>(timeout_s),
+                         [&] { return stopped_ || all_answered(tick); })) {
+    timeouts_.add();
+    std::cerr << who_ << ": tick " << tick << " not answered by every controller within "
+              << timeout_s << " s: stepping on" << std::endl;
+  }
+}
+
+void LockstepClock::stop() {
+  {
+    std::lock_guard lock(mutex_);
+    stopped_ = true;
+  }
+  changed_.notify_all();
+}
+
+}  // namespace wbi::robot

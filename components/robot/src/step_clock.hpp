@@ -1,0 +1,88 @@
+// The clocks of a simulated robot's loop: when may tick k, whose sensors are
+// out, apply its commands and step the simulation?
+//   LockstepClock  once every named controller has sent its command for tick k
+//                  (ActuatorCommand.tick), or after a timeout (counted, with a
+//                  warning): deterministic, as fast as the controllers allow;
+//   RealTimeClock  at start + (k + 1)·period on the wall clock (steady time):
+//                  the simulation paced at real time, whatever the controllers do.
+// A real robot needs neither: the runner's periodic tick is its clock
+// (robot_driver.cpp).
+//
+// Threads: wait() runs on the driver's loop; observe() on DDS threads; stop()
+// on the thread that deactivates. wait() never allocates (a timeout's warning
+// excepted).
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <wbi/msg/commands.h>
+#include <wbi/runtime/status_report.hpp>
+
+namespace wbi::robot {
+
+class StepClock {
+ public:
+  virtual ~StepClock() = default;
+  // Before the first tick of an activation.
+  virtual void start() = 0;
+  // Returns when tick `tick` may go on (its commands applied, the simulation stepped).
+  virtual void wait(std::uint64_t tick) = 0;
+  // Ends the wait in progress, and every later one at once, until start().
+  virtual void stop() = 0;
+  // Every command that reached the actuator side, accepted or not (a DDS thread).
+  virtual void observe(const wbi::msg::ActuatorCommand& /*command*/) {}
+  virtual bool lockstep() const = 0;
+};
+
+class RealTimeClock final : public StepClock {
+ public:
+  explicit RealTimeClock(std::chrono::nanoseconds period) : period_(period) {}
+  void start() override;
+  void wait(std::uint64_t tick) override;
+  void stop() override;
+  bool lockstep() const override { return false; }
+
+ private:
+  const std::chrono::nanoseconds period_;
+  std::chrono::steady_clock::time_point start_;
+  std::mutex mutex_;  // guards stopped_
+  std::condition_variable stopped_changed_;
+  bool stopped_ = false;
+};
+
+struct LockstepOptions {
+  std::vector<std::string> controllers;  // ActuatorCommand.controller names to wait for
+  double timeout_s = 2.0;                // longest wait for one tick's commands
+  double start_timeout_s = 60.0;         // longest wait for tick 0's (the controllers start)
+};
+
+class LockstepClock final : public StepClock {
+ public:
+  // who: names the robot in the timeout warning, e.g. "sim_robot 'arm'";
+  // timeouts: the status counter of ticks not answered in time.
+  LockstepClock(LockstepOptions options, std::string who, runtime::StatusCounter& timeouts);
+  void start() override;
+  void wait(std::uint64_t tick) override;
+  void stop() override;
+  void observe(const wbi::msg::ActuatorCommand& command) override;
+  bool lockstep() const override { return true; }
+
+ private:
+  bool all_answered(std::uint64_t tick) const;  // with mutex_ held
+
+  const LockstepOptions options_;
+  const std::string who_;
+  runtime::StatusCounter& timeouts_;
+  std::mutex mutex_;  // guards answered_, stopped_
+  std::condition_variable changed_;
+  std::map<std::string, std::int64_t> answered_;  // newest tick answered per controller
+  bool stopped_ = false;
+};
+
+}  // namespace wbi::robot

@@ -1,0 +1,58 @@
+// Simulation engines by name, for the sim_robot component's `engine` parameter.
+// An engine is a factory of SimulationBackend (wbi/actuation/simulation_backend.hpp):
+// the robot loop, the DDS sides, lockstep and the ground truth are the robot
+// driver's (wbi/robot/robot_driver.hpp), the same for every engine. Adding an
+// engine is one registration (builtin_engines() in src/builtin_engines.cpp,
+// or EngineRegistry::add in your own host); no loop code changes.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <wbi/actuation/simulation_backend.hpp>
+#include <wbi/runtime/parameters.hpp>
+
+namespace wbi::sim_robot {
+
+// What an engine is built from.
+struct EngineContext {
+  std::string robot;             // the robot's name (topics wbi/<robot>/…)
+  std::filesystem::path config;  // the `config` parameter, a relative path resolved
+                                 // against the folder of the host (or deploy) file
+  // The component's parameters: an engine may read keys of its own (every key
+  // nobody reads is rejected after configure).
+  const runtime::Parameters& parameters;
+};
+
+// Builds the backend, UNCONFIGURED (the driver configures and activates it).
+// Bad input: throw with a message naming the file and key.
+using EngineFactory =
+    std::function<std::unique_ptr<actuation::SimulationBackend>(const EngineContext&)>;
+
+class EngineRegistry {
+ public:
+  // Throws std::invalid_argument when the name is taken.
+  void add(const std::string& name, EngineFactory factory, std::string description = "");
+  // Throws std::invalid_argument naming the engine and the registered ones.
+  std::unique_ptr<actuation::SimulationBackend> create(const std::string& name,
+                                                       const EngineContext& context) const;
+  bool contains(const std::string& name) const { return engines_.count(name) != 0; }
+  std::vector<std::string> names() const;  // sorted
+  const std::string& description(const std::string& name) const;
+
+ private:
+  struct Entry {
+    EngineFactory factory;
+    std::string description;
+  };
+  std::map<std::string, Entry> engines_;
+};
+
+// The engines built into wbi::sim_robot: "wbi" (the project's own plant, wbi::sim).
+EngineRegistry builtin_engines();
+
+}  // namespace wbi::sim_robot

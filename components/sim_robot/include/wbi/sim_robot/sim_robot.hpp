@@ -1,0 +1,33 @@
+// Component type "sim_robot": a simulated robot as DDS sees it — the robot
+// driver's one loop (wbi/robot/robot_driver.hpp) with a simulation backend made
+// by the engine the deploy file names, on the simulation's own clock:
+//   read → publish sensors, ground truth, wbi/clock (tick k) → [lockstep: wait
+//   for every controller's command for tick k | real time: wait for the wall
+//   clock] → joint control → write → step.
+//
+// Parameters (the driver's, robot_driver.hpp "Simulations only", and):
+//   robot                 required; the robot's name (topics wbi/<robot>/…)
+//   engine                wbi (default): the project's own plant (components/sim);
+//                         any engine of the EngineRegistry (engine_registry.hpp);
+//                         an unknown name is an error listing the registered ones
+//   config                required; the engine's configuration file (for wbi: the
+//                         simulation's YAML, components/sim/README.md), relative to
+//                         the host file
+//   lockstep, lockstep_controllers, lockstep_timeout_s, lockstep_start_timeout_s,
+//   duration_s, watchdog_timeout_s, reference_speed, hold_at_start: robot_driver.hpp
+//
+// Status (wbi/status): rejected_commands, rejected_parameters, watchdog_trips,
+// limit_clamps, lockstep_timeouts; the last rejection or trip in words.
+// The loop runs on its own thread while ACTIVE (the simulation is the clock).
+#pragma once
+
+#include <wbi/runtime/registry.hpp>
+
+#include "wbi/sim_robot/engine_registry.hpp"
+
+namespace wbi::sim_robot {
+
+// Registers "sim_robot" over `engines`.
+void register_components(runtime::Registry& registry, EngineRegistry engines = builtin_engines());
+
+}  // namespace wbi::sim_robot

@@ -1,0 +1,14 @@
+// The engines built into wbi::sim_robot. A new engine is one add() here (and
+// its factory in a file of its own, declared in engines.hpp).
+#include "engines.hpp"
+
+namespace wbi::sim_robot {
+
+EngineRegistry builtin_engines() {
+  EngineRegistry engines;
+  engines.add("wbi", make_wbi_engine,
+              "the project's own plant: ABA, spring contacts (components/sim/README.md)");
+  return engines;
+}
+
+}  // namespace wbi::sim_robot

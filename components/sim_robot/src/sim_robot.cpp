@@ -1,0 +1,51 @@
+#include "wbi/sim_robot/sim_robot.hpp"
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <wbi/robot/robot_driver.hpp>
+
+namespace wbi::sim_robot {
+
+namespace {
+
+// A relative `config` is looked up beside the host (or deploy) file.
+std::filesystem::path config_path(const runtime::Parameters& parameters) {
+  auto path = std::filesystem::path(parameters.require<std::string>("config"));
+  if (path.is_relative() && !parameters.file().empty() && parameters.file() != "<string>") {
+    path = std::filesystem::path(parameters.file()).parent_path() / path;
+  }
+  return path;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& name : names) {
+    out += (out.empty() ? "" : ", ") + name;
+  }
+  return out;
+}
+
+}  // namespace
+
+void register_components(runtime::Registry& registry, EngineRegistry engines) {
+  const auto shared = std::make_shared<const EngineRegistry>(std::move(engines));
+  const std::string names = joined(shared->names());
+  robot::register_simulation(
+      registry, "sim_robot",
+      [shared, names](const runtime::Parameters& parameters) {
+        const auto engine = parameters.get<std::string>("engine", "wbi");
+        if (!shared->contains(engine)) {
+          throw runtime::ParameterError(parameters.where("engine") + ": unknown engine '" + engine +
+                                        "' (registered: " + names + ")");
+        }
+        const EngineContext context{parameters.require<std::string>("robot"),
+                                    config_path(parameters), parameters};
+        return shared->create(engine, context);
+      },
+      "simulated robot (engine: " + names +
+          "): sensor samples, ground truth and clock out, commands in");
+}
+
+}  // namespace wbi::sim_robot
