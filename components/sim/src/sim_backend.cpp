@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <random>
 #include <set>
 #include <span>
 #include <stdexcept>
@@ -19,6 +18,7 @@
 #include "wbi/model/crba.hpp"
 #include "wbi/model/kinematics.hpp"
 #include "wbi/model/urdf.hpp"
+#include "wbi/sim/sensor_actuator_models.hpp"
 
 namespace wbi::sim {
 
@@ -28,37 +28,6 @@ using Vector6d = Eigen::Matrix<double, 6, 1>;
 using actuation::OutputMode;
 
 namespace {
-
-// Gaussian numbers from mt19937_64 by Box–Muller: the same sequence on every
-// platform (std::normal_distribution is implementation-defined).
-class Gaussian {
- public:
-  explicit Gaussian(std::uint64_t seed) : rng_(seed) {}
-  double operator()(double sigma) {
-    if (sigma <= 0.0) {
-      return 0.0;
-    }
-    if (has_spare_) {
-      has_spare_ = false;
-      return sigma * spare_;
-    }
-    constexpr double kScale = 1.0 / 18446744073709551616.0;  // 2^-64
-    double u1 = 0.0;
-    do {
-      u1 = static_cast<double>(rng_()) * kScale;
-    } while (u1 <= 0.0);
-    const double u2 = static_cast<double>(rng_()) * kScale;
-    const double r = std::sqrt(-2.0 * std::log(u1));
-    spare_ = r * std::sin(2.0 * M_PI * u2);
-    has_spare_ = true;
-    return sigma * r * std::cos(2.0 * M_PI * u2);
-  }
-
- private:
-  std::mt19937_64 rng_;
-  double spare_ = 0.0;
-  bool has_spare_ = false;
-};
 
 Matrix3d rotation_of(const urdf::Rotation& r) {
   return Eigen::Quaterniond(r.w, r.x, r.y, r.z).normalized().toRotationMatrix();
@@ -93,8 +62,6 @@ Vector6d wrench_at_origin(const Vector3d& f, const Vector3d& p) {
   return w;
 }
 
-double quantise(double x, double step) { return step > 0.0 ? step * std::round(x / step) : x; }
-
 }  // namespace
 
 struct SimBackend::Impl {
@@ -105,7 +72,7 @@ struct SimBackend::Impl {
 
   // ---- per joint (size n) ----
   Eigen::VectorXd damping, friction, lower, upper, effort, m_diag, k_limit, d_limit;
-  Eigen::VectorXd k_t, k_e;
+  std::vector<DcMotor> motor;  // PWM commands
   std::vector<OutputMode> cmd_mode;
   Eigen::VectorXd cmd_value;
   Eigen::VectorXd tau;      // [nv] joint-space generalized force of the substep
@@ -212,8 +179,7 @@ actuation::BackendDescription SimBackend::on_configure() {
   s.lower.resize(n);
   s.upper.resize(n);
   s.effort.resize(n);
-  s.k_t.resize(n);
-  s.k_e.resize(n);
+  s.motor.resize(static_cast<std::size_t>(n));
   for (int j = 0; j < n; ++j) {
     const auto& name = m.joint_name[static_cast<std::size_t>(j)];
     s.lower[j] = m.joint_lower[static_cast<std::size_t>(j)];
@@ -222,10 +188,7 @@ actuation::BackendDescription SimBackend::on_configure() {
     const robot_config::JointDynamics& dynamics = c.joints.at(name);
     s.damping[j] = dynamics.damping;
     s.friction[j] = dynamics.friction;
-    const double stall = std::isfinite(s.effort[j]) ? s.effort[j] : 100.0;
-    s.k_t[j] = o.motor.torque_constant > 0.0 ? o.motor.torque_constant
-                                             : stall * o.motor.resistance / o.motor.voltage;
-    s.k_e[j] = o.motor.back_emf > 0.0 ? o.motor.back_emf : s.k_t[j];
+    s.motor[static_cast<std::size_t>(j)] = DcMotor::from(o.motor, s.effort[j]);
   }
   s.cmd_mode.assign(static_cast<std::size_t>(n), OutputMode::kIdle);
   s.cmd_value = Eigen::VectorXd::Zero(n);
@@ -431,8 +394,7 @@ actuation::BackendDescription SimBackend::on_configure() {
   }
 
   s.noise = Gaussian(o.seed);
-  s.encoder_step =
-      o.encoders.counts_per_revolution > 0.0 ? 2.0 * M_PI / o.encoders.counts_per_revolution : 0.0;
+  s.encoder_step = encoder_step(o.encoders);
 
   // ---- ground truth buffers ----
   truth_.q = q;
@@ -576,19 +538,15 @@ void SimBackend::substep(double h) {
       case OutputMode::kTorque:
         act = s.cmd_value[j];
         break;
-      case OutputMode::kPwm: {
-        const double pwm = std::clamp(s.cmd_value[j], -1.0, 1.0);
-        act = s.k_t[j] * (c.motor.voltage * pwm - s.k_e[j] * dq) / c.motor.resistance;
+      case OutputMode::kPwm:
+        act = s.motor[static_cast<std::size_t>(j)].torque(s.cmd_value[j], dq);
         break;
-      }
     }
     act = std::clamp(act, -s.effort[j], s.effort[j]);
     s.tau_act[j] = act;
-    s.pwm[j] =
-        s.cmd_mode[static_cast<std::size_t>(j)] == OutputMode::kPwm
-            ? std::clamp(s.cmd_value[j], -1.0, 1.0)
-            : std::clamp((act * c.motor.resistance / s.k_t[j] + s.k_e[j] * dq) / c.motor.voltage,
-                         -1.0, 1.0);
+    s.pwm[j] = s.cmd_mode[static_cast<std::size_t>(j)] == OutputMode::kPwm
+                   ? std::clamp(s.cmd_value[j], -1.0, 1.0)
+                   : s.motor[static_cast<std::size_t>(j)].duty(act, dq);
     // limits: spring-damper beyond the limit, never pulling towards it
     double lim = 0.0;
     if (qj > s.upper[j]) {
