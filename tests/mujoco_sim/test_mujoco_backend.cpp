@@ -342,6 +342,23 @@ TEST(MujocoBackend, LifecycleAndBadOptions) {
   EXPECT_EQ(bad.state(), act::LifecycleState::kUnconfigured);
 }
 
+// MuJoCo resets a diverging simulation and carries on; the backend throws.
+TEST(MujocoBackend, DivergenceIsAnError) {
+  rc::RobotConfig config = rc::load_robot_config(robot_file("arm.yaml"));
+  config.gravity = Eigen::Vector3d(0.0, 0.0, -1e12);  // accelerations beyond MuJoCo's 1e10
+  MujocoBackend sim(config);
+  sim.configure();
+  sim.activate();
+  try {
+    for (int k = 0; k < 10; ++k) {
+      sim.step();
+    }
+    FAIL() << "no error from a diverging simulation";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("diverged"), std::string::npos) << e.what();
+  }
+}
+
 TEST(MujocoBackend, StepReadWriteAllocateNothing) {
   MujocoBackend sim(rc::load_robot_config(robot_file("humanoid.yaml")));
   sim.configure();

@@ -138,6 +138,7 @@ struct MujocoBackend::Impl {
   };
   std::vector<Push> pushes;
   std::int64_t mj_steps = 0;
+  int bad_qacc = 0;  // MuJoCo's count of mjWARN_BADQACC (it resets the state on each)
 
   sim::Gaussian noise{0};
   double encoder_step = 0.0;
@@ -491,6 +492,16 @@ void MujocoBackend::on_step() {
     }
     s.fresh_position = false;
     ++s.mj_steps;
+    // MuJoCo answers a diverging step by resetting the state to the model's
+    // reference pose and carrying on; a simulation that did is wrong, say so.
+    if (d->warning[mjWARN_BADQACC].number != s.bad_qacc) {
+      s.bad_qacc = d->warning[mjWARN_BADQACC].number;
+      throw std::runtime_error(
+          "MuJoCo: the simulation diverged (non-finite or huge acceleration at dof " +
+          std::to_string(d->warning[mjWARN_BADQACC].lastinfo) + ", t = " + std::to_string(time_) +
+          " s); MuJoCo reset the state. Lower the gains or the "
+          "timestep (mujoco.timestep)");
+    }
   }
   ++step_count_;
   time_ = static_cast<double>(step_count_) * config_.mujoco.timestep * config_.mujoco.substeps;
