@@ -137,6 +137,7 @@ std::vector<std::string> simulator_headers(const std::string& target) {
   EXPECT_EQ(deps.size(), objects.size()) << target << ": a dependency record per object";
   const fs::path build = wbi::test::binary_dir();
   const fs::path source = fs::weakly_canonical(wbi::test::source_dir());
+  const fs::path build_dir = fs::weakly_canonical(build);
   std::vector<std::string> found;
   for (const auto& [object, headers] : deps) {
     // The compiler records the source file first: the record was read.
@@ -147,8 +148,13 @@ std::vector<std::string> simulator_headers(const std::string& target) {
         << object << ": " << headers.size() << " dependencies recorded, not its source";
     for (const auto& header : headers) {
       const fs::path path = fs::weakly_canonical(build / header);  // relative: to the build
+      // MuJoCo by name, within the tree only below it (the checkout's own folder
+      // may well be called after MuJoCo, e.g. a worktree "wt-mujoco").
+      const fs::path named = under(path, build_dir) ? path.lexically_relative(build_dir)
+                             : under(path, source)  ? path.lexically_relative(source)
+                                                    : path;
       if (under(path, source / "components" / "sim") ||
-          under(path, source / "components" / "sim_robot") || mentions_mujoco(path.string())) {
+          under(path, source / "components" / "sim_robot") || mentions_mujoco(named.string())) {
         found.push_back(object + " includes " + path.string());
       }
     }

@@ -8,6 +8,10 @@ EngineRegistry builtin_engines() {
   EngineRegistry engines;
   engines.add("wbi", make_wbi_engine,
               "the project's own plant: ABA, spring contacts (components/sim/README.md)");
+#ifdef WBI_WITH_MUJOCO
+  engines.add("mujoco", make_mujoco_engine,
+              "MuJoCo: soft constraint contacts, implicit integrator (components/mujoco_sim)");
+#endif
   return engines;
 }
 

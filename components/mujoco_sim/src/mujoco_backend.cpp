@@ -1,0 +1,630 @@
+// MujocoBackend: MuJoCo behind SimulationBackend. Conventions and what each
+// reading is: components/mujoco_sim/README.md.
+#include "wbi/mujoco_sim/mujoco_backend.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <urdf_parser/urdf_parser.h>
+#include <Eigen/Geometry>
+
+#include "wbi/mjcf/mjcf.hpp"
+#include "wbi/mjcf/mujoco_conventions.hpp"
+#include "wbi/model/urdf.hpp"
+#include "wbi/sim/sensor_actuator_models.hpp"
+
+namespace wbi::mujoco_sim {
+
+using actuation::Duration;
+using actuation::OutputMode;
+using actuation::Time;
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+using Vector6d = Eigen::Matrix<double, 6, 1>;
+using MapVector = Eigen::Map<Eigen::VectorXd>;
+using ConstMapVector = Eigen::Map<const Eigen::VectorXd>;
+
+namespace {
+
+// The MJCF text as a file of a virtual file system, loaded by MuJoCo: nothing
+// touches the disk.
+mjModel* load_from_memory(const std::string& xml, const std::string& where) {
+  auto vfs = std::make_unique<mjVFS>();
+  mj_defaultVFS(vfs.get());
+  const char* name = "robot.xml";
+  if (mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(xml.size())) != 0) {
+    throw std::runtime_error(where + ": MuJoCo: cannot make the in-memory MJCF file");
+  }
+  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), name)], xml.data(), xml.size());
+  char error[1000] = "";
+  mjModel* m = mj_loadXML(name, vfs.get(), error, sizeof(error));
+  mj_deleteVFS(vfs.get());
+  if (m == nullptr) {
+    throw std::runtime_error(where + ": MuJoCo rejected the model: " + error);
+  }
+  return m;
+}
+
+mjcf::ContactGeometry to_mjcf(const robot_config::ContactGeometry& g, const std::string& name) {
+  mjcf::ContactGeometry out;
+  out.name = name;
+  out.link = g.link;
+  switch (g.shape) {
+    case robot_config::ContactGeometry::Shape::kBox:
+      out.shape = mjcf::ContactShape::kBox;
+      break;
+    case robot_config::ContactGeometry::Shape::kSphere:
+      out.shape = mjcf::ContactShape::kSphere;
+      break;
+    case robot_config::ContactGeometry::Shape::kCapsule:
+      out.shape = mjcf::ContactShape::kCapsule;
+      break;
+  }
+  out.size = g.size;
+  out.radius = g.radius;
+  out.length = g.length;
+  out.position = g.position;
+  out.rotation = g.rotation;
+  out.friction = g.friction;
+  return out;
+}
+
+int id_of(const mjModel* m, mjtObj type, const std::string& name) {
+  const int id = mj_name2id(m, type, name.c_str());
+  if (id < 0) {
+    throw std::logic_error("MujocoBackend: '" + name + "' missing from the written MJCF");
+  }
+  return id;
+}
+
+// Lowest z of a geom (box, sphere or capsule) at its current pose.
+double lowest_z(const mjModel* m, const mjData* d, int g) {
+  const mjtNum* R = d->geom_xmat + 9 * g;  // row-major, columns = geom axes in world
+  const mjtNum* s = m->geom_size + 3 * g;
+  const double z = d->geom_xpos[3 * g + 2];
+  switch (m->geom_type[g]) {
+    case mjGEOM_BOX:
+      return z - std::abs(R[6]) * s[0] - std::abs(R[7]) * s[1] - std::abs(R[8]) * s[2];
+    case mjGEOM_CAPSULE:
+      return z - std::abs(R[8]) * s[1] - s[0];
+    default:  // sphere
+      return z - s[0];
+  }
+}
+
+}  // namespace
+
+struct MujocoBackend::Impl {
+  model::Model model;
+  std::string xml;
+  mjModel* m = nullptr;
+  mjData* d = nullptr;
+  mjcf::MujocoIndex index;
+  std::vector<int> dof_joint;  // [nv] MuJoCo dof → wbi joint (−1: the base)
+  int n = 0;
+  bool fresh_position = false;  // mj_step1 (or mj_forward) done at the current state
+
+  // per joint
+  Eigen::VectorXd effort;
+  std::vector<sim::DcMotor> motor;
+  std::vector<OutputMode> cmd_mode;
+  Eigen::VectorXd cmd_value, tau_act, pwm;
+
+  // contacts: geom → contact link (−1: none), and a site at each contact link's frame
+  std::vector<int> geom_link;
+  std::vector<int> link_site;
+
+  struct Imu {
+    int quat = 0, gyro = 0, accel = 0;  // sensordata addresses
+    double gyro_noise = 0.0, accel_noise = 0.0;
+  };
+  std::vector<Imu> imus;
+  struct Ft {
+    int force = 0, torque = 0;  // sensordata addresses
+    double force_noise = 0.0, torque_noise = 0.0;
+  };
+  std::vector<Ft> fts;
+  struct Push {
+    int site = 0, body = 0;
+    std::int64_t start = 0, end = 0;  // MuJoCo steps: active for start ≤ k < end
+    Vector3d force = Vector3d::Zero();
+  };
+  std::vector<Push> pushes;
+  std::int64_t mj_steps = 0;
+  int bad_qacc = 0;  // MuJoCo's count of mjWARN_BADQACC (it resets the state on each)
+
+  sim::Gaussian noise{0};
+  double encoder_step = 0.0;
+
+  ~Impl() {
+    if (d != nullptr) {
+      mj_deleteData(d);
+    }
+    if (m != nullptr) {
+      mj_deleteModel(m);
+    }
+  }
+};
+
+MujocoBackend::MujocoBackend(robot_config::RobotConfig config) : config_(std::move(config)) {}
+MujocoBackend::~MujocoBackend() = default;
+
+const model::Model& MujocoBackend::model() const {
+  if (!impl_) {
+    throw std::logic_error("MujocoBackend::model(): configure() first");
+  }
+  return impl_->model;
+}
+
+const std::string& MujocoBackend::mjcf() const {
+  if (!impl_) {
+    throw std::logic_error("MujocoBackend::mjcf(): configure() first");
+  }
+  return impl_->xml;
+}
+
+Duration MujocoBackend::step_period() const {
+  return Duration(std::llround(config_.mujoco.timestep * config_.mujoco.substeps * 1e9));
+}
+
+Time MujocoBackend::stamp() const { return Time(std::llround(time_ * 1e9)); }
+
+actuation::BackendDescription MujocoBackend::on_configure() {
+  const std::string where = "robot config (mujoco engine)";
+  const robot_config::MujocoOptions& o = config_.mujoco;
+  if (config_.urdf.empty()) {
+    throw std::invalid_argument(where + ": 'urdf' is required");
+  }
+  if (!(o.timestep > 0.0) || o.substeps < 1) {
+    throw std::invalid_argument(where +
+                                ": 'mujoco.timestep' must be > 0 and 'mujoco.substeps' >= 1");
+  }
+  robot_config::complete_from_urdf(config_);
+  const robot_config::RobotConfig& c = config_;
+  auto impl = std::make_unique<Impl>();
+  Impl& s = *impl;
+
+  // ---- the model library's model, as `wbi model mjcf` loads it ----
+  model::LoadOptions load;
+  load.fixed_base = c.fixed_base;
+  load.armature = robot_config::armature_by_joint(c);
+  load.repair_inertia = true;  // MuJoCo's compiler rejects non-physical inertias
+  s.model = model::load_urdf_file(c.urdf, load);
+  const model::Model& model = s.model;
+  s.n = model.n_joints;
+  const int n = s.n;
+  const urdf::ModelInterfaceSharedPtr urdf_model = urdf::parseURDFFile(c.urdf);
+  if (!urdf_model) {
+    throw std::runtime_error(c.urdf + ": urdfdom could not parse the file");
+  }
+
+  // ---- MJCF ----
+  mjcf::MjcfOptions mo;
+  mo.gravity = c.gravity;
+  mo.timestep = o.timestep;
+  mo.integrator =
+      o.integrator == robot_config::MujocoOptions::Integrator::kEuler ? mjcf::Integrator::kEuler
+      : o.integrator == robot_config::MujocoOptions::Integrator::kRK4 ? mjcf::Integrator::kRK4
+                                                                      : mjcf::Integrator::kImplicit;
+  for (int j = 0; j < n; ++j) {
+    const auto& dyn = c.joints.at(model.joint_name[static_cast<std::size_t>(j)]);
+    mo.armature.push_back(dyn.armature);
+    mo.damping.push_back(dyn.damping);
+    mo.frictionloss.push_back(dyn.friction);
+  }
+  // The ground and the contact geometry when the own plant would have contacts
+  // (the same `wbi.contact.enable` rule: auto = floating base only).
+  using Enable = robot_config::ContactModel::Enable;
+  const bool contacts_on = c.wbi.contact.enable == Enable::kOn ||
+                           (c.wbi.contact.enable == Enable::kAuto && model.floating_base);
+  truth_ = actuation::GroundTruth{};
+  std::vector<std::string> geom_names;
+  std::vector<int> geom_link_index;
+  if (contacts_on) {
+    // MuJoCo takes the larger friction of the two geoms: the ground's 0 lets
+    // each contact's own μ (the ground's when it gives none) act, as in the own plant.
+    mo.ground = {true, c.ground.height, 0.0};
+    for (std::size_t k = 0; k < c.contacts.size(); ++k) {
+      const auto& g = c.contacts[k];
+      auto it = std::find(truth_.contact_links.begin(), truth_.contact_links.end(), g.link);
+      if (it == truth_.contact_links.end()) {
+        truth_.contact_links.push_back(g.link);
+        mo.sites.push_back({"wbi_link_" + std::to_string(truth_.contact_links.size() - 1), g.link,
+                            Vector3d::Zero(), Matrix3d::Identity(), mjcf::SiteSensor::kNone});
+        it = truth_.contact_links.end() - 1;
+      }
+      geom_names.push_back("wbi_contact_" + std::to_string(k));
+      geom_link_index.push_back(static_cast<int>(it - truth_.contact_links.begin()));
+      mo.contacts.push_back(to_mjcf(g, geom_names.back()));
+    }
+  }
+  truth_.contact_wrenches.assign(truth_.contact_links.size(), Vector6d::Zero());
+
+  actuation::BackendDescription desc;
+  desc.robot = model.name;
+  desc.urdf = c.urdf;
+  desc.floating_base = model.floating_base;
+  desc.joint_names = model.joint_name;
+  desc.position_lower = model.joint_lower;
+  desc.position_upper = model.joint_upper;
+  desc.velocity_limit = model.joint_velocity_limit;
+  desc.effort_limit = model.joint_effort_limit;
+  for (std::size_t i = 0; i < c.imus.size(); ++i) {
+    if (!model.has_frame(c.imus[i].frame)) {
+      throw std::invalid_argument(where + ": imus '" + c.imus[i].name + "': unknown frame '" +
+                                  c.imus[i].frame + "' in " + c.urdf);
+    }
+    mo.sites.push_back({"wbi_imu_" + std::to_string(i), c.imus[i].frame, Vector3d::Zero(),
+                        Matrix3d::Identity(), mjcf::SiteSensor::kImu});
+    desc.imu_names.push_back(c.imus[i].name);
+    desc.imu_frames.push_back(c.imus[i].frame);
+  }
+  for (std::size_t i = 0; i < c.force_torque.size(); ++i) {
+    const auto& ft = c.force_torque[i];
+    const auto joint = urdf_model->getJoint(ft.joint);
+    if (!joint || joint->type != urdf::Joint::FIXED) {
+      throw std::invalid_argument(where + ": force_torque '" + ft.name + "': '" + ft.joint +
+                                  "' is not a fixed joint of " + c.urdf);
+    }
+    // The child side as a body of its own, so that MuJoCo's force/torque
+    // sensors measure across the joint.
+    if (std::find(mo.welded_links.begin(), mo.welded_links.end(), joint->child_link_name) ==
+        mo.welded_links.end()) {
+      mo.welded_links.push_back(joint->child_link_name);
+    }
+    mo.sites.push_back({"wbi_ft_" + std::to_string(i), joint->child_link_name, Vector3d::Zero(),
+                        Matrix3d::Identity(), mjcf::SiteSensor::kForceTorque});
+    desc.ft_names.push_back(ft.name);
+    desc.ft_frames.push_back(joint->child_link_name);
+  }
+  for (std::size_t i = 0; i < c.pushes.size(); ++i) {
+    const auto& p = c.pushes[i];
+    if (!model.has_frame(p.link)) {
+      throw std::invalid_argument(where + ": pushes: unknown link '" + p.link + "' in " + c.urdf);
+    }
+    if (!(p.duration >= 0.0)) {
+      throw std::invalid_argument(where + ": pushes: 'duration' must be >= 0");
+    }
+    mo.sites.push_back({"wbi_push_" + std::to_string(i), p.link, p.point, Matrix3d::Identity(),
+                        mjcf::SiteSensor::kNone});
+  }
+  s.xml = mjcf::write_mjcf(model, mo);
+  s.m = load_from_memory(s.xml, where + " " + c.urdf);
+  mjModel* m = s.m;
+
+  // Options the writer leaves at MuJoCo's defaults.
+  m->opt.cone =
+      o.cone == robot_config::MujocoOptions::Cone::kElliptic ? mjCONE_ELLIPTIC : mjCONE_PYRAMIDAL;
+  m->opt.impratio = o.impratio;
+  for (int g = 0; g < m->ngeom; ++g) {
+    std::copy(o.solref.begin(), o.solref.end(), m->geom_solref + mjNREF * g);
+    std::copy(o.solimp.begin(), o.solimp.end(), m->geom_solimp + mjNIMP * g);
+  }
+  s.d = mj_makeData(m);
+  mjData* d = s.d;
+
+  // ---- indices ----
+  for (int j = 0; j < n; ++j) {
+    const int id = id_of(m, mjOBJ_JOINT, model.joint_name[static_cast<std::size_t>(j)]);
+    s.index.qpos.push_back(m->jnt_qposadr[id]);
+    s.index.dof.push_back(m->jnt_dofadr[id]);
+  }
+  s.dof_joint.assign(static_cast<std::size_t>(m->nv), -1);
+  for (int j = 0; j < n; ++j) {
+    s.dof_joint[static_cast<std::size_t>(s.index.dof[static_cast<std::size_t>(j)])] = j;
+  }
+  s.geom_link.assign(static_cast<std::size_t>(m->ngeom), -1);
+  for (std::size_t k = 0; k < geom_names.size(); ++k) {
+    s.geom_link[static_cast<std::size_t>(id_of(m, mjOBJ_GEOM, geom_names[k]))] = geom_link_index[k];
+  }
+  for (std::size_t l = 0; l < truth_.contact_links.size(); ++l) {
+    s.link_site.push_back(id_of(m, mjOBJ_SITE, "wbi_link_" + std::to_string(l)));
+  }
+  auto sensor = [&](const std::string& name) {
+    return m->sensor_adr[id_of(m, mjOBJ_SENSOR, name)];
+  };
+  for (std::size_t i = 0; i < c.imus.size(); ++i) {
+    const std::string site = "wbi_imu_" + std::to_string(i);
+    s.imus.push_back({sensor(site + "_quat"), sensor(site + "_gyro"),
+                      sensor(site + "_accelerometer"), c.imus[i].gyro_noise,
+                      c.imus[i].accel_noise});
+  }
+  for (std::size_t i = 0; i < c.force_torque.size(); ++i) {
+    const std::string site = "wbi_ft_" + std::to_string(i);
+    s.fts.push_back({sensor(site + "_force"), sensor(site + "_torque"),
+                     c.force_torque[i].force_noise, c.force_torque[i].torque_noise});
+  }
+  for (std::size_t i = 0; i < c.pushes.size(); ++i) {
+    const auto& p = c.pushes[i];
+    Impl::Push push;
+    push.site = id_of(m, mjOBJ_SITE, "wbi_push_" + std::to_string(i));
+    push.body = m->site_bodyid[push.site];
+    push.start = std::llround(p.start / o.timestep);
+    push.end = std::llround((p.start + p.duration) / o.timestep);
+    push.force = p.force;
+    s.pushes.push_back(push);
+  }
+
+  // ---- joints: effort limits and motors (the own plant's models) ----
+  s.effort.resize(n);
+  s.motor.resize(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j) {
+    s.effort[j] = model.joint_effort_limit[static_cast<std::size_t>(j)];
+    s.motor[static_cast<std::size_t>(j)] = sim::DcMotor::from(c.wbi.motor, s.effort[j]);
+  }
+  s.cmd_mode.assign(static_cast<std::size_t>(n), OutputMode::kIdle);
+  s.cmd_value = Eigen::VectorXd::Zero(n);
+  s.tau_act = Eigen::VectorXd::Zero(n);
+  s.pwm = Eigen::VectorXd::Zero(n);
+  s.noise = sim::Gaussian(c.wbi.seed);
+  s.encoder_step = sim::encoder_step(c.wbi.encoders);
+
+  // ---- initial state ----
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(model.nq);
+  if (model.floating_base) {
+    if (!(c.initial_base_orientation.norm() > 0.0)) {
+      throw std::invalid_argument(where + ": 'initial_base_orientation' must be non-zero");
+    }
+    q.head<3>() = c.initial_base_position;
+    q.segment<4>(3) = c.initial_base_orientation.normalized();
+  }
+  for (const auto& [name, value] : c.initial_joint_positions) {
+    if (!model.has_joint(name)) {
+      throw std::invalid_argument(where + ": initial_joint_positions: unknown joint '" + name +
+                                  "' in " + c.urdf);
+    }
+    q[model.base_nq + model.joint_id(name)] = value;
+  }
+  mj_resetData(m, d);
+  mjcf::wbi_q_to_mujoco_qpos(model, s.index, q, MapVector(d->qpos, m->nq));
+  if (c.place_on_ground && model.floating_base && !geom_names.empty()) {
+    mj_kinematics(m, d);
+    double z_min = std::numeric_limits<double>::infinity();
+    for (int g = 0; g < m->ngeom; ++g) {
+      if (s.geom_link[static_cast<std::size_t>(g)] >= 0) {
+        z_min = std::min(z_min, lowest_z(m, d, g));
+      }
+    }
+    d->qpos[2] -= z_min - c.ground.height;
+  }
+  truth_.q = q;
+  truth_.nu = Eigen::VectorXd::Zero(model.nv);
+  truth_.dnu = Eigen::VectorXd::Zero(model.nv);
+  truth_.tau = Eigen::VectorXd::Zero(n);
+  truth_.tau_actuator = Eigen::VectorXd::Zero(n);
+  impl_ = std::move(impl);
+  time_ = 0.0;
+  step_count_ = 0;
+  // Every stage at the initial state: sensors and accelerations are defined
+  // before the first step().
+  mj_forward(m, d);
+  impl_->fresh_position = true;
+  collect_dynamics();
+  collect_state();
+  return desc;
+}
+
+void MujocoBackend::on_deactivate() {
+  impl_->cmd_mode.assign(impl_->cmd_mode.size(), OutputMode::kIdle);
+  impl_->cmd_value.setZero();
+}
+
+void MujocoBackend::on_cleanup() {
+  impl_.reset();
+  truth_ = actuation::GroundTruth{};
+  time_ = 0.0;
+  step_count_ = 0;
+}
+
+void MujocoBackend::on_write(Time /*time*/, Duration /*period*/,
+                             const actuation::JointCommands& in) {
+  Impl& s = *impl_;
+  for (int j = 0; j < s.n; ++j) {
+    s.cmd_mode[static_cast<std::size_t>(j)] = in.mode[static_cast<std::size_t>(j)];
+    s.cmd_value[j] = in.value[j];
+  }
+}
+
+// Actuator torques (held commands, the PWM motor at the current velocity) into
+// qfrc_applied, pushes into xfrc_applied. Needs the position stage (site poses).
+void MujocoBackend::apply_controls() {
+  Impl& s = *impl_;
+  mjData* d = s.d;
+  for (int j = 0; j < s.n; ++j) {
+    const auto js = static_cast<std::size_t>(j);
+    const int dof = s.index.dof[js];
+    const double dq = d->qvel[dof];
+    double act = 0.0;
+    switch (s.cmd_mode[js]) {
+      case OutputMode::kIdle:
+        break;
+      case OutputMode::kTorque:
+        act = s.cmd_value[j];
+        break;
+      case OutputMode::kPwm:
+        act = s.motor[js].torque(s.cmd_value[j], dq);
+        break;
+    }
+    act = std::clamp(act, -s.effort[j], s.effort[j]);
+    s.tau_act[j] = act;
+    s.pwm[j] = s.cmd_mode[js] == OutputMode::kPwm ? std::clamp(s.cmd_value[j], -1.0, 1.0)
+                                                  : s.motor[js].duty(act, dq);
+    d->qfrc_applied[dof] = act;
+  }
+  // Pushes: force f at the point p → wrench (f, (p − c) × f) at the body's CoM c.
+  for (const auto& push : s.pushes) {
+    std::fill_n(d->xfrc_applied + 6 * push.body, 6, 0.0);
+  }
+  for (const auto& push : s.pushes) {
+    if (s.mj_steps < push.start || s.mj_steps >= push.end) {
+      continue;
+    }
+    const Eigen::Map<const Vector3d> p(d->site_xpos + 3 * push.site);
+    const Eigen::Map<const Vector3d> com(d->xipos + 3 * push.body);
+    Eigen::Map<Vector6d> w(d->xfrc_applied + 6 * push.body);
+    w.head<3>() += push.force;
+    w.tail<3>() += (p - com).cross(push.force);
+  }
+}
+
+void MujocoBackend::on_step() {
+  Impl& s = *impl_;
+  const mjModel* m = s.m;
+  mjData* d = s.d;
+  const bool rk4 = m->opt.integrator == mjINT_RK4;
+  for (int k = 0; k < config_.mujoco.substeps; ++k) {
+    if (rk4) {  // mj_step1/2 would integrate with Euler
+      apply_controls();
+      mj_step(m, d);
+    } else {
+      if (!s.fresh_position) {
+        mj_step1(m, d);
+      }
+      apply_controls();
+      mj_step2(m, d);
+    }
+    s.fresh_position = false;
+    ++s.mj_steps;
+    // MuJoCo answers a diverging step by resetting the state to the model's
+    // reference pose and carrying on; a simulation that did is wrong, say so.
+    if (d->warning[mjWARN_BADQACC].number != s.bad_qacc) {
+      s.bad_qacc = d->warning[mjWARN_BADQACC].number;
+      throw std::runtime_error(
+          "MuJoCo: the simulation diverged (non-finite or huge acceleration at dof " +
+          std::to_string(d->warning[mjWARN_BADQACC].lastinfo) + ", t = " + std::to_string(time_) +
+          " s); MuJoCo reset the state. Lower the gains or the "
+          "timestep (mujoco.timestep)");
+    }
+  }
+  ++step_count_;
+  time_ = static_cast<double>(step_count_) * config_.mujoco.timestep * config_.mujoco.substeps;
+  // Contact forces, constraint torques and accelerations of the last MuJoCo step
+  // (its start state), then positions and velocities (and their sensors) at the end.
+  collect_dynamics();
+  mj_step1(m, d);
+  s.fresh_position = true;
+  collect_state();
+}
+
+void MujocoBackend::collect_dynamics() {
+  Impl& s = *impl_;
+  const mjModel* m = s.m;
+  const mjData* d = s.d;
+  const model::Model& model = s.model;
+  // ν̇ = Tᵀ qacc (Ṫν = 0, mujoco_conventions.hpp); the base rotation of that state
+  mjcf::mujoco_qvel_to_wbi_nu(model, s.index, ConstMapVector(d->qpos, m->nq),
+                              ConstMapVector(d->qacc, m->nv), truth_.dnu);
+  if (model.floating_base) {
+    truth_.base_acceleration = truth_.dnu.head<6>();
+  }
+  // Joint torque: actuator + passive (damping) + the joint's friction-loss and
+  // limit constraint forces (scalar rows of J = ±1 on the joint's dof).
+  for (int j = 0; j < s.n; ++j) {
+    truth_.tau[j] = s.tau_act[j] + d->qfrc_passive[s.index.dof[static_cast<std::size_t>(j)]];
+  }
+  const bool sparse = mj_isSparse(m) != 0;
+  for (int i = 0; i < d->nefc; ++i) {
+    const int type = d->efc_type[i];
+    if (type != mjCNSTR_FRICTION_DOF && type != mjCNSTR_LIMIT_JOINT) {
+      continue;
+    }
+    const int dof = type == mjCNSTR_FRICTION_DOF ? d->efc_id[i] : m->jnt_dofadr[d->efc_id[i]];
+    const double J = sparse ? d->efc_J[d->efc_J_rowadr[i]] : d->efc_J[i * m->nv + dof];
+    const int j = s.dof_joint[static_cast<std::size_t>(dof)];
+    if (j >= 0) {
+      truth_.tau[j] += J * d->efc_force[i];
+    }
+  }
+  truth_.tau_actuator = s.tau_act;
+  // Ground contact wrenches per contact link: (force, moment about the link
+  // frame origin), world axes. mj_contactForce is in the contact frame (normal
+  // first, from geom1 to geom2): the force on geom2; geom1 gets its opposite.
+  for (auto& w : truth_.contact_wrenches) {
+    w.setZero();
+  }
+  for (int i = 0; i < d->ncon; ++i) {
+    const mjContact& con = d->contact[i];
+    const int l1 = s.geom_link[static_cast<std::size_t>(con.geom1)];
+    const int l2 = s.geom_link[static_cast<std::size_t>(con.geom2)];
+    if (l1 < 0 && l2 < 0) {
+      continue;
+    }
+    mjtNum local[6];
+    mj_contactForce(m, d, i, local);
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> frame(con.frame);
+    const Vector3d f = frame.transpose() * Eigen::Map<const Vector3d>(local);
+    const Eigen::Map<const Vector3d> p(con.pos);
+    for (const auto& [link, sign] : {std::pair{l1, -1.0}, std::pair{l2, 1.0}}) {
+      if (link < 0) {
+        continue;
+      }
+      const auto li = static_cast<std::size_t>(link);
+      const Eigen::Map<const Vector3d> origin(d->site_xpos + 3 * s.link_site[li]);
+      truth_.contact_wrenches[li].head<3>() += sign * f;
+      truth_.contact_wrenches[li].tail<3>() += (p - origin).cross(sign * f);
+    }
+  }
+}
+
+void MujocoBackend::collect_state() {
+  Impl& s = *impl_;
+  const mjModel* m = s.m;
+  const mjData* d = s.d;
+  const model::Model& model = s.model;
+  const ConstMapVector qpos(d->qpos, m->nq);
+  mjcf::mujoco_qpos_to_wbi_q(model, s.index, qpos, truth_.q);
+  mjcf::mujoco_qvel_to_wbi_nu(model, s.index, qpos, ConstMapVector(d->qvel, m->nv), truth_.nu);
+  truth_.time = time_;
+  if (model.floating_base) {
+    truth_.base_position = truth_.q.head<3>();
+    truth_.base_orientation = truth_.q.segment<4>(3);
+    truth_.base_velocity = truth_.nu.head<6>();
+  }
+}
+
+void MujocoBackend::on_read(Time /*time*/, Duration /*period*/, actuation::SensorReadings& out) {
+  Impl& s = *impl_;
+  const mjData* d = s.d;
+  const robot_config::EncoderConfig& enc = config_.wbi.encoders;
+  const Time now = stamp();
+  for (int j = 0; j < s.n; ++j) {
+    const auto js = static_cast<std::size_t>(j);
+    out.position[j] =
+        sim::quantise(d->qpos[s.index.qpos[js]] + s.noise(enc.position_noise), s.encoder_step);
+    out.velocity[j] = d->qvel[s.index.dof[js]] + s.noise(enc.velocity_noise);
+    out.torque[j] = s.tau_act[j] + s.noise(enc.torque_noise);
+    out.pwm[j] = s.pwm[j];
+  }
+  out.joint_stamp = now;
+  const mjtNum* data = d->sensordata;
+  for (std::size_t i = 0; i < s.imus.size(); ++i) {
+    const auto& imu = s.imus[i];
+    auto& r = out.imus[i];
+    r.orientation << data[imu.quat], data[imu.quat + 1], data[imu.quat + 2], data[imu.quat + 3];
+    for (int a = 0; a < 3; ++a) {
+      r.gyro[a] = data[imu.gyro + a] + s.noise(imu.gyro_noise);
+      r.accel[a] = data[imu.accel + a] + s.noise(imu.accel_noise);
+    }
+    r.stamp = now;
+  }
+  // MuJoCo's force/torque: the parent on the child body; wbi's: the child side
+  // on the parent side. Both about the sensor origin, in sensor axes.
+  for (std::size_t i = 0; i < s.fts.size(); ++i) {
+    const auto& ft = s.fts[i];
+    auto& r = out.force_torque[i];
+    for (int a = 0; a < 3; ++a) {
+      r.wrench[a] = -data[ft.force + a] + s.noise(ft.force_noise);
+      r.wrench[a + 3] = -data[ft.torque + a] + s.noise(ft.torque_noise);
+    }
+    r.stamp = now;
+  }
+}
+
+}  // namespace wbi::mujoco_sim
