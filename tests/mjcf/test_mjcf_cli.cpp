@@ -11,6 +11,8 @@
 
 #include <wbi/mjcf/mjcf.hpp>
 #include <wbi/model/urdf.hpp>
+#include <wbi/mujoco_sim/robot_mjcf.hpp>
+#include <wbi/robot_config/robot_config.hpp>
 
 #include "test_support.hpp"
 #include "verb.hpp"
@@ -83,6 +85,24 @@ TEST_F(MjcfCli, WritesTheLibrarysTextForTheModel) {
   EXPECT_EQ(stdout_only.out.find("type=\"free\""), std::string::npos);
 }
 
+// --robot-config: the text MujocoBackend loads for that config (its armature,
+// contact boxes, IMU and F/T sites and sensors, timestep and integrator).
+TEST_F(MjcfCli, WritesWhatTheMujocoEngineLoadsForARobotConfig) {
+  const auto config_file = (wbi::test::source_dir() / "deploy/robots/humanoid.yaml").string();
+  const auto urdf = wbi::test::project_model("humanoid.urdf").string();
+  const auto file = dir_ / "humanoid.xml";
+  const Output o = run({"mjcf", urdf, "--robot-config", config_file, "-o", file.string()});
+  EXPECT_EQ(o.out.rfind("wrote " + file.string() + ": humanoid, ", 0), 0U) << o.out;
+  const auto config = wbi::robot_config::load_robot_config(config_file);
+  const wm::Model model = wbi::mujoco_sim::robot_model(config);
+  const std::string xml = read(file);
+  EXPECT_EQ(xml, wbi::mjcf::write_mjcf(
+                     model, wbi::mujoco_sim::robot_mjcf(config, model, config_file).options));
+  for (const char* item : {"wbi_contact_0", "wbi_imu_0_accelerometer", "wbi_ft_1_torque"}) {
+    EXPECT_NE(xml.find(item), std::string::npos) << item;
+  }
+}
+
 TEST_F(MjcfCli, NamesTheRepairedLinksOnStderr) {
   const auto shared = wbi::test::shared_models_dir();
   if (!shared) {
@@ -116,6 +136,22 @@ TEST_F(MjcfCli, BadInputIsOneError) {
   EXPECT_EQ(message({"mjcf", urdf, "-o", "-", "--timestep", "0"}), "--timestep must be > 0");
   EXPECT_EQ(message({"mjcf", urdf, "-o", (dir_ / "no" / "such" / "dir.xml").string()}),
             "cannot write '" + (dir_ / "no" / "such" / "dir.xml").string() + "'");
+  const auto humanoid_config =
+      (wbi::test::source_dir() / "deploy/robots/humanoid.yaml").string();
+  EXPECT_EQ(message({"mjcf", urdf, "-o", "-", "--robot-config", humanoid_config}).rfind(
+                "URDF '" + urdf + "' is not the robot config's (", 0),
+            0U);
+  const auto humanoid = wbi::test::project_model("humanoid.urdf").string();
+  EXPECT_EQ(
+      message({"mjcf", humanoid, "-o", "-", "--robot-config", humanoid_config, "--joints", "l_knee"}),
+      "--joints: a robot config describes the whole robot (no reduced model)");
+  {
+    std::ofstream bad(dir_ / "bad.yaml");
+    bad << "urdf: " << humanoid << "\njionts: {}\n";
+  }
+  EXPECT_NE(message({"mjcf", humanoid, "-o", "-", "--robot-config", (dir_ / "bad.yaml").string()})
+                .find("bad.yaml:2: jionts: unknown key"),
+            std::string::npos);
   EXPECT_EQ(message({"mjcf", (dir_ / "missing.urdf").string(), "-o", "-"}),
             "URDF '" + (dir_ / "missing.urdf").string() +
                 "': cannot open the file (missing or unreadable)");

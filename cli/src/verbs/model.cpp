@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -19,6 +20,8 @@
 
 #include <nlohmann/json.hpp>
 #include <wbi/mjcf/mjcf.hpp>
+#include <wbi/mujoco_sim/robot_mjcf.hpp>
+#include <wbi/robot_config/robot_config.hpp>
 #include <wbi/model/algorithms.hpp>
 #include <wbi/model/backend.hpp>
 
@@ -645,23 +648,34 @@ int run_bench(Args args) {
 
 int run_mjcf(Args raw_args) {
   Options opts(
-      "wbi model mjcf URDF -o FILE|- [--fixed-base] [--joints a,b,...] [--welded a,b,...]",
+      "wbi model mjcf URDF -o FILE|- [--robot-config FILE] [--fixed-base] [--joints a,b,...]\n"
+      "               [--welded a,b,...] [--timestep S] [--integrator NAME]",
       "Write the model as MJCF (MuJoCo's XML) that MuJoCo loads as the same multibody as\n"
       "wbi's model library: the bodies after lumping fixed joints, joints with axes and\n"
       "limits, inertias written to the last bit, and a free joint on the root link's frame\n"
       "when the base floats. Non-physical link inertias (MuJoCo rejects them) are replaced\n"
       "by the nearest physical ones, as LoadOptions::repair_inertia does in wbi's model,\n"
-      "and each such link is named on stderr. See model_service/mjcf/README.md.");
+      "and each such link is named on stderr. With --robot-config, what the MuJoCo engine\n"
+      "loads for that robot config: its joints' armature, damping and friction, contact\n"
+      "geometry and ground, IMU and F/T sites and sensors (F/T child links welded as\n"
+      "bodies of their own), and its mujoco: timestep and integrator. See\n"
+      "model_service/mjcf/README.md and components/mujoco_sim/README.md.");
   opts.positional("URDF", "the robot description (.urdf)")
       .option("output", "FILE", "where to write the MJCF (also -o FILE); '-' for standard output")
+      .option("robot-config", "FILE",
+              "a robot config (deploy/robots/*.yaml) whose URDF is URDF: write what the MuJoCo "
+              "engine loads")
       .flag("fixed-base", "fix the root link to the world")
       .option("joints", "LIST",
               "reduced model: keep only these joints (comma-separated); lock the rest at 0")
       .option("welded", "LIST",
               "links lumped by fixed joints to keep as MuJoCo bodies of their own, welded to "
               "their parent (comma-separated; e.g. the child links of F/T sensors)")
-      .option("timestep", "SECONDS", "MuJoCo's integration step", "0.001")
-      .option("integrator", "NAME", "MuJoCo's integrator: euler, rk4 or implicit", "euler");
+      .option("timestep", "SECONDS",
+              "MuJoCo's integration step (default 0.001, or the robot config's)")
+      .option("integrator", "NAME",
+              "MuJoCo's integrator: euler, rk4 or implicit (default euler, or the robot "
+              "config's)");
   std::vector<std::string> args(raw_args.begin(), raw_args.end());
   for (auto& arg : args) {
     if (arg == "-o") {
@@ -674,30 +688,54 @@ int run_mjcf(Args raw_args) {
   if (!opts.has("output")) {
     throw UsageError("missing -o FILE (-o - writes to standard output)");
   }
+  wm::Model m;
   wbi::mjcf::MjcfOptions options;
-  options.timestep = opts.get_double("timestep");
-  if (!(options.timestep > 0.0)) {
-    throw UsageError("--timestep must be > 0");
+  try {
+    if (const auto config_file = opts.get_optional("robot-config")) {
+      if (opts.has("joints")) {
+        throw UsageError("--joints: a robot config describes the whole robot (no reduced model)");
+      }
+      wbi::robot_config::RobotConfig config = wbi::robot_config::load_robot_config(*config_file);
+      namespace fs = std::filesystem;
+      if (fs::weakly_canonical(opts.get("URDF")) != fs::weakly_canonical(config.urdf)) {
+        throw UsageError("URDF '" + opts.get("URDF") + "' is not the robot config's (" +
+                         config.urdf + ")");
+      }
+      config.fixed_base = config.fixed_base || opts.has("fixed-base");
+      m = wbi::mujoco_sim::robot_model(config);
+      options = wbi::mujoco_sim::robot_mjcf(config, m, *config_file).options;
+    } else {
+      wm::LoadOptions load = load_options(opts);
+      load.repair_inertia = true;
+      m = wm::load_urdf_file(opts.get("URDF"), load);
+    }
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
   }
-  const std::string integrator = opts.get("integrator");
-  if (integrator == "euler") {
-    options.integrator = wbi::mjcf::Integrator::kEuler;
-  } else if (integrator == "rk4") {
-    options.integrator = wbi::mjcf::Integrator::kRK4;
-  } else if (integrator == "implicit") {
-    options.integrator = wbi::mjcf::Integrator::kImplicit;
-  } else {
-    throw UsageError("--integrator: unknown '" + integrator + "' (euler, rk4 or implicit)");
+  if (const auto timestep = opts.get_optional("timestep")) {
+    options.timestep = opts.get_double("timestep");
+    if (!(options.timestep > 0.0)) {
+      throw UsageError("--timestep must be > 0");
+    }
+  }
+  if (const auto integrator = opts.get_optional("integrator")) {
+    if (*integrator == "euler") {
+      options.integrator = wbi::mjcf::Integrator::kEuler;
+    } else if (*integrator == "rk4") {
+      options.integrator = wbi::mjcf::Integrator::kRK4;
+    } else if (*integrator == "implicit") {
+      options.integrator = wbi::mjcf::Integrator::kImplicit;
+    } else {
+      throw UsageError("--integrator: unknown '" + *integrator + "' (euler, rk4 or implicit)");
+    }
   }
   if (const auto welded = opts.get_optional("welded")) {
-    options.welded_links = split_list(*welded, "welded", "link");
+    for (const std::string& link : split_list(*welded, "welded", "link")) {
+      options.welded_links.push_back(link);
+    }
   }
-  wm::LoadOptions load = load_options(opts);
-  load.repair_inertia = true;
-  wm::Model m;
   std::string xml;
   try {
-    m = wm::load_urdf_file(opts.get("URDF"), load);
     xml = wbi::mjcf::write_mjcf(m, options);
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(e.what());

@@ -12,12 +12,11 @@
 #include <string>
 #include <vector>
 
-#include <urdf_parser/urdf_parser.h>
 #include <Eigen/Geometry>
 
 #include "wbi/mjcf/mjcf.hpp"
 #include "wbi/mjcf/mujoco_conventions.hpp"
-#include "wbi/model/urdf.hpp"
+#include "wbi/mujoco_sim/robot_mjcf.hpp"
 #include "wbi/sim/sensor_actuator_models.hpp"
 
 namespace wbi::mujoco_sim {
@@ -50,30 +49,6 @@ mjModel* load_from_memory(const std::string& xml, const std::string& where) {
     throw std::runtime_error(where + ": MuJoCo rejected the model: " + error);
   }
   return m;
-}
-
-mjcf::ContactGeometry to_mjcf(const robot_config::ContactGeometry& g, const std::string& name) {
-  mjcf::ContactGeometry out;
-  out.name = name;
-  out.link = g.link;
-  switch (g.shape) {
-    case robot_config::ContactGeometry::Shape::kBox:
-      out.shape = mjcf::ContactShape::kBox;
-      break;
-    case robot_config::ContactGeometry::Shape::kSphere:
-      out.shape = mjcf::ContactShape::kSphere;
-      break;
-    case robot_config::ContactGeometry::Shape::kCapsule:
-      out.shape = mjcf::ContactShape::kCapsule;
-      break;
-  }
-  out.size = g.size;
-  out.radius = g.radius;
-  out.length = g.length;
-  out.position = g.position;
-  out.rotation = g.rotation;
-  out.friction = g.friction;
-  return out;
 }
 
 int id_of(const mjModel* m, mjtObj type, const std::string& name) {
@@ -191,60 +166,16 @@ actuation::BackendDescription MujocoBackend::on_configure() {
   auto impl = std::make_unique<Impl>();
   Impl& s = *impl;
 
-  // ---- the model library's model, as `wbi model mjcf` loads it ----
-  model::LoadOptions load;
-  load.fixed_base = c.fixed_base;
-  load.armature = robot_config::armature_by_joint(c);
-  load.repair_inertia = true;  // MuJoCo's compiler rejects non-physical inertias
-  s.model = model::load_urdf_file(c.urdf, load);
+  // ---- the model library's model, as `wbi model mjcf --robot-config` loads it ----
+  s.model = robot_model(c);
   const model::Model& model = s.model;
   s.n = model.n_joints;
   const int n = s.n;
-  const urdf::ModelInterfaceSharedPtr urdf_model = urdf::parseURDFFile(c.urdf);
-  if (!urdf_model) {
-    throw std::runtime_error(c.urdf + ": urdfdom could not parse the file");
-  }
 
   // ---- MJCF ----
-  mjcf::MjcfOptions mo;
-  mo.gravity = c.gravity;
-  mo.timestep = o.timestep;
-  mo.integrator =
-      o.integrator == robot_config::MujocoOptions::Integrator::kEuler ? mjcf::Integrator::kEuler
-      : o.integrator == robot_config::MujocoOptions::Integrator::kRK4 ? mjcf::Integrator::kRK4
-                                                                      : mjcf::Integrator::kImplicit;
-  for (int j = 0; j < n; ++j) {
-    const auto& dyn = c.joints.at(model.joint_name[static_cast<std::size_t>(j)]);
-    mo.armature.push_back(dyn.armature);
-    mo.damping.push_back(dyn.damping);
-    mo.frictionloss.push_back(dyn.friction);
-  }
-  // The ground and the contact geometry when the own plant would have contacts
-  // (the same `wbi.contact.enable` rule: auto = floating base only).
-  using Enable = robot_config::ContactModel::Enable;
-  const bool contacts_on = c.wbi.contact.enable == Enable::kOn ||
-                           (c.wbi.contact.enable == Enable::kAuto && model.floating_base);
+  const RobotMjcf written = robot_mjcf(c, model, where);
   truth_ = actuation::GroundTruth{};
-  std::vector<std::string> geom_names;
-  std::vector<int> geom_link_index;
-  if (contacts_on) {
-    // MuJoCo takes the larger friction of the two geoms: the ground's 0 lets
-    // each contact's own μ (the ground's when it gives none) act, as in the own plant.
-    mo.ground = {true, c.ground.height, 0.0};
-    for (std::size_t k = 0; k < c.contacts.size(); ++k) {
-      const auto& g = c.contacts[k];
-      auto it = std::find(truth_.contact_links.begin(), truth_.contact_links.end(), g.link);
-      if (it == truth_.contact_links.end()) {
-        truth_.contact_links.push_back(g.link);
-        mo.sites.push_back({"wbi_link_" + std::to_string(truth_.contact_links.size() - 1), g.link,
-                            Vector3d::Zero(), Matrix3d::Identity(), mjcf::SiteSensor::kNone});
-        it = truth_.contact_links.end() - 1;
-      }
-      geom_names.push_back("wbi_contact_" + std::to_string(k));
-      geom_link_index.push_back(static_cast<int>(it - truth_.contact_links.begin()));
-      mo.contacts.push_back(to_mjcf(g, geom_names.back()));
-    }
-  }
+  truth_.contact_links = written.contact_links;
   truth_.contact_wrenches.assign(truth_.contact_links.size(), Vector6d::Zero());
 
   actuation::BackendDescription desc;
@@ -256,46 +187,15 @@ actuation::BackendDescription MujocoBackend::on_configure() {
   desc.position_upper = model.joint_upper;
   desc.velocity_limit = model.joint_velocity_limit;
   desc.effort_limit = model.joint_effort_limit;
-  for (std::size_t i = 0; i < c.imus.size(); ++i) {
-    if (!model.has_frame(c.imus[i].frame)) {
-      throw std::invalid_argument(where + ": imus '" + c.imus[i].name + "': unknown frame '" +
-                                  c.imus[i].frame + "' in " + c.urdf);
-    }
-    mo.sites.push_back({"wbi_imu_" + std::to_string(i), c.imus[i].frame, Vector3d::Zero(),
-                        Matrix3d::Identity(), mjcf::SiteSensor::kImu});
-    desc.imu_names.push_back(c.imus[i].name);
-    desc.imu_frames.push_back(c.imus[i].frame);
+  for (const auto& imu : c.imus) {
+    desc.imu_names.push_back(imu.name);
+    desc.imu_frames.push_back(imu.frame);
   }
-  for (std::size_t i = 0; i < c.force_torque.size(); ++i) {
-    const auto& ft = c.force_torque[i];
-    const auto joint = urdf_model->getJoint(ft.joint);
-    if (!joint || joint->type != urdf::Joint::FIXED) {
-      throw std::invalid_argument(where + ": force_torque '" + ft.name + "': '" + ft.joint +
-                                  "' is not a fixed joint of " + c.urdf);
-    }
-    // The child side as a body of its own, so that MuJoCo's force/torque
-    // sensors measure across the joint.
-    if (std::find(mo.welded_links.begin(), mo.welded_links.end(), joint->child_link_name) ==
-        mo.welded_links.end()) {
-      mo.welded_links.push_back(joint->child_link_name);
-    }
-    mo.sites.push_back({"wbi_ft_" + std::to_string(i), joint->child_link_name, Vector3d::Zero(),
-                        Matrix3d::Identity(), mjcf::SiteSensor::kForceTorque});
+  for (const auto& ft : c.force_torque) {
     desc.ft_names.push_back(ft.name);
-    desc.ft_frames.push_back(joint->child_link_name);
   }
-  for (std::size_t i = 0; i < c.pushes.size(); ++i) {
-    const auto& p = c.pushes[i];
-    if (!model.has_frame(p.link)) {
-      throw std::invalid_argument(where + ": pushes: unknown link '" + p.link + "' in " + c.urdf);
-    }
-    if (!(p.duration >= 0.0)) {
-      throw std::invalid_argument(where + ": pushes: 'duration' must be >= 0");
-    }
-    mo.sites.push_back({"wbi_push_" + std::to_string(i), p.link, p.point, Matrix3d::Identity(),
-                        mjcf::SiteSensor::kNone});
-  }
-  s.xml = mjcf::write_mjcf(model, mo);
+  desc.ft_frames = written.ft_frames;
+  s.xml = mjcf::write_mjcf(model, written.options);
   s.m = load_from_memory(s.xml, where + " " + c.urdf);
   mjModel* m = s.m;
 
@@ -321,8 +221,9 @@ actuation::BackendDescription MujocoBackend::on_configure() {
     s.dof_joint[static_cast<std::size_t>(s.index.dof[static_cast<std::size_t>(j)])] = j;
   }
   s.geom_link.assign(static_cast<std::size_t>(m->ngeom), -1);
-  for (std::size_t k = 0; k < geom_names.size(); ++k) {
-    s.geom_link[static_cast<std::size_t>(id_of(m, mjOBJ_GEOM, geom_names[k]))] = geom_link_index[k];
+  for (std::size_t k = 0; k < written.contact_link_of.size(); ++k) {
+    s.geom_link[static_cast<std::size_t>(id_of(m, mjOBJ_GEOM, "wbi_contact_" + std::to_string(k)))] =
+        written.contact_link_of[k];
   }
   for (std::size_t l = 0; l < truth_.contact_links.size(); ++l) {
     s.link_site.push_back(id_of(m, mjOBJ_SITE, "wbi_link_" + std::to_string(l)));
@@ -384,7 +285,7 @@ actuation::BackendDescription MujocoBackend::on_configure() {
   }
   mj_resetData(m, d);
   mjcf::wbi_q_to_mujoco_qpos(model, s.index, q, MapVector(d->qpos, m->nq));
-  if (c.place_on_ground && model.floating_base && !geom_names.empty()) {
+  if (c.place_on_ground && model.floating_base && !written.contact_link_of.empty()) {
     mj_kinematics(m, d);
     double z_min = std::numeric_limits<double>::infinity();
     for (int g = 0; g < m->ngeom; ++g) {

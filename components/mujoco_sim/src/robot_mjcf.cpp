@@ -1,0 +1,132 @@
+// A robot config as MuJoCo is given it (robot_mjcf.hpp).
+#include "wbi/mujoco_sim/robot_mjcf.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include <wbi/model/urdf.hpp>
+
+namespace wbi::mujoco_sim {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+
+namespace {
+
+mjcf::ContactGeometry to_mjcf(const robot_config::ContactGeometry& g, const std::string& name) {
+  mjcf::ContactGeometry out;
+  out.name = name;
+  out.link = g.link;
+  switch (g.shape) {
+    case robot_config::ContactGeometry::Shape::kBox:
+      out.shape = mjcf::ContactShape::kBox;
+      break;
+    case robot_config::ContactGeometry::Shape::kSphere:
+      out.shape = mjcf::ContactShape::kSphere;
+      break;
+    case robot_config::ContactGeometry::Shape::kCapsule:
+      out.shape = mjcf::ContactShape::kCapsule;
+      break;
+  }
+  out.size = g.size;
+  out.radius = g.radius;
+  out.length = g.length;
+  out.position = g.position;
+  out.rotation = g.rotation;
+  out.friction = g.friction;
+  return out;
+}
+
+}  // namespace
+
+model::Model robot_model(const robot_config::RobotConfig& config) {
+  model::LoadOptions load;
+  load.fixed_base = config.fixed_base;
+  load.armature = robot_config::armature_by_joint(config);
+  load.repair_inertia = true;  // MuJoCo's compiler rejects non-physical inertias
+  return model::load_urdf_file(config.urdf, load);
+}
+
+RobotMjcf robot_mjcf(const robot_config::RobotConfig& config, const model::Model& model,
+                     const std::string& where) {
+  RobotMjcf out;
+  mjcf::MjcfOptions& mo = out.options;
+  const robot_config::RobotConfig& c = config;
+  const robot_config::MujocoOptions& o = c.mujoco;
+  const int n = model.n_joints;
+  mo.gravity = c.gravity;
+  mo.timestep = o.timestep;
+  mo.integrator =
+      o.integrator == robot_config::MujocoOptions::Integrator::kEuler ? mjcf::Integrator::kEuler
+      : o.integrator == robot_config::MujocoOptions::Integrator::kRK4 ? mjcf::Integrator::kRK4
+                                                                      : mjcf::Integrator::kImplicit;
+  for (int j = 0; j < n; ++j) {
+    const auto& dyn = c.joints.at(model.joint_name[static_cast<std::size_t>(j)]);
+    mo.armature.push_back(dyn.armature);
+    mo.damping.push_back(dyn.damping);
+    mo.frictionloss.push_back(dyn.friction);
+  }
+  // The ground and the contact geometry when the own plant would have contacts
+  // (the same `wbi.contact.enable` rule: auto = floating base only).
+  using Enable = robot_config::ContactModel::Enable;
+  const bool contacts_on = c.wbi.contact.enable == Enable::kOn ||
+                           (c.wbi.contact.enable == Enable::kAuto && model.floating_base);
+  if (contacts_on) {
+    // MuJoCo takes the larger friction of the two geoms: the ground's 0 lets
+    // each contact's own μ (the ground's when it gives none) act, as in the own plant.
+    mo.ground = {true, c.ground.height, 0.0};
+    for (std::size_t k = 0; k < c.contacts.size(); ++k) {
+      const auto& g = c.contacts[k];
+      auto it = std::find(out.contact_links.begin(), out.contact_links.end(), g.link);
+      if (it == out.contact_links.end()) {
+        out.contact_links.push_back(g.link);
+        mo.sites.push_back({"wbi_link_" + std::to_string(out.contact_links.size() - 1), g.link,
+                            Vector3d::Zero(), Matrix3d::Identity(), mjcf::SiteSensor::kNone});
+        it = out.contact_links.end() - 1;
+      }
+      out.contact_link_of.push_back(static_cast<int>(it - out.contact_links.begin()));
+      mo.contacts.push_back(to_mjcf(g, "wbi_contact_" + std::to_string(k)));
+    }
+  }
+  for (std::size_t i = 0; i < c.imus.size(); ++i) {
+    if (!model.has_frame(c.imus[i].frame)) {
+      throw std::invalid_argument(where + ": imus '" + c.imus[i].name + "': unknown frame '" +
+                                  c.imus[i].frame + "' in " + c.urdf);
+    }
+    mo.sites.push_back({"wbi_imu_" + std::to_string(i), c.imus[i].frame, Vector3d::Zero(),
+                        Matrix3d::Identity(), mjcf::SiteSensor::kImu});
+  }
+  for (std::size_t i = 0; i < c.force_torque.size(); ++i) {
+    const auto& ft = c.force_torque[i];
+    const auto child = std::find(model.frame_joint.begin(), model.frame_joint.end(), ft.joint);
+    if (child == model.frame_joint.end() || model.has_joint(ft.joint)) {
+      throw std::invalid_argument(where + ": force_torque '" + ft.name + "': '" + ft.joint +
+                                  "' is not a fixed joint of " + c.urdf);
+    }
+    const std::string& child_link =
+        model.frame_name[static_cast<std::size_t>(child - model.frame_joint.begin())];
+    // The child side as a body of its own, so that MuJoCo's force/torque
+    // sensors measure across the joint.
+    if (std::find(mo.welded_links.begin(), mo.welded_links.end(), child_link) ==
+        mo.welded_links.end()) {
+      mo.welded_links.push_back(child_link);
+    }
+    mo.sites.push_back({"wbi_ft_" + std::to_string(i), child_link, Vector3d::Zero(),
+                        Matrix3d::Identity(), mjcf::SiteSensor::kForceTorque});
+    out.ft_frames.push_back(child_link);
+  }
+  for (std::size_t i = 0; i < c.pushes.size(); ++i) {
+    const auto& p = c.pushes[i];
+    if (!model.has_frame(p.link)) {
+      throw std::invalid_argument(where + ": pushes: unknown link '" + p.link + "' in " + c.urdf);
+    }
+    if (!(p.duration >= 0.0)) {
+      throw std::invalid_argument(where + ": pushes: 'duration' must be >= 0");
+    }
+    mo.sites.push_back({"wbi_push_" + std::to_string(i), p.link, p.point, Matrix3d::Identity(),
+                        mjcf::SiteSensor::kNone});
+  }
+  return out;
+}
+
+}  // namespace wbi::mujoco_sim
