@@ -342,22 +342,11 @@ void MujocoBackend::apply_controls() {
     const auto js = static_cast<std::size_t>(j);
     const int dof = s.index.dof[js];
     const double dq = d->qvel[dof];
-    double act = 0.0;
-    switch (s.cmd_mode[js]) {
-      case OutputMode::kIdle:
-        break;
-      case OutputMode::kTorque:
-        act = s.cmd_value[j];
-        break;
-      case OutputMode::kPwm:
-        act = s.motor[js].torque(s.cmd_value[j], dq);
-        break;
-    }
-    act = std::clamp(act, -s.effort[j], s.effort[j]);
-    s.tau_act[j] = act;
-    s.pwm[j] = s.cmd_mode[js] == OutputMode::kPwm ? std::clamp(s.cmd_value[j], -1.0, 1.0)
-                                                  : s.motor[js].duty(act, dq);
-    d->qfrc_applied[dof] = act;
+    const sim::ActuatorOutput out =
+        sim::actuator_output(s.cmd_mode[js], s.cmd_value[j], dq, s.motor[js], s.effort[j]);
+    s.tau_act[j] = out.torque;
+    s.pwm[j] = out.pwm;
+    d->qfrc_applied[dof] = out.torque;
   }
   // Pushes: force f at the point p → wrench (f, (p − c) × f) at the body's CoM c.
   for (const auto& push : s.pushes) {

@@ -531,22 +531,12 @@ void SimBackend::substep(double h) {
     const int iv = m.base_nv + j;
     const double qj = truth_.q[m.base_nq + j];
     const double dq = truth_.nu[iv];
-    double act = 0.0;
-    switch (s.cmd_mode[static_cast<std::size_t>(j)]) {
-      case OutputMode::kIdle:
-        break;
-      case OutputMode::kTorque:
-        act = s.cmd_value[j];
-        break;
-      case OutputMode::kPwm:
-        act = s.motor[static_cast<std::size_t>(j)].torque(s.cmd_value[j], dq);
-        break;
-    }
-    act = std::clamp(act, -s.effort[j], s.effort[j]);
+    const ActuatorOutput out = actuator_output(s.cmd_mode[static_cast<std::size_t>(j)],
+                                               s.cmd_value[j], dq,
+                                               s.motor[static_cast<std::size_t>(j)], s.effort[j]);
+    const double act = out.torque;
     s.tau_act[j] = act;
-    s.pwm[j] = s.cmd_mode[static_cast<std::size_t>(j)] == OutputMode::kPwm
-                   ? std::clamp(s.cmd_value[j], -1.0, 1.0)
-                   : s.motor[static_cast<std::size_t>(j)].duty(act, dq);
+    s.pwm[j] = out.pwm;
     // limits: spring-damper beyond the limit, never pulling towards it
     double lim = 0.0;
     if (qj > s.upper[j]) {

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <random>
 
+#include "wbi/actuation/robot_backend.hpp"
 #include "wbi/robot_config/robot_config.hpp"
 
 namespace wbi::sim {
@@ -82,5 +83,32 @@ struct DcMotor {
     return std::clamp((tau * resistance / k_t + k_e * dq) / voltage, -1.0, 1.0);
   }
 };
+
+// What one joint's actuator applies for a held command at joint velocity dq:
+// the torque, saturated at the effort limit (IDLE: none; PWM: the motor's), and
+// the PWM duty that goes with it (the command's when it is a duty, else the
+// motor's at that torque).
+struct ActuatorOutput {
+  double torque = 0.0;  // [N·m]
+  double pwm = 0.0;     // [−1, 1]
+};
+inline ActuatorOutput actuator_output(actuation::OutputMode mode, double value, double dq,
+                                      const DcMotor& motor, double effort_limit) {
+  ActuatorOutput out;
+  switch (mode) {
+    case actuation::OutputMode::kIdle:
+      break;
+    case actuation::OutputMode::kTorque:
+      out.torque = value;
+      break;
+    case actuation::OutputMode::kPwm:
+      out.torque = motor.torque(value, dq);
+      break;
+  }
+  out.torque = std::clamp(out.torque, -effort_limit, effort_limit);
+  out.pwm = mode == actuation::OutputMode::kPwm ? std::clamp(value, -1.0, 1.0)
+                                                : motor.duty(out.torque, dq);
+  return out;
+}
 
 }  // namespace wbi::sim
