@@ -136,15 +136,14 @@ TEST_F(MjcfCli, BadInputIsOneError) {
   EXPECT_EQ(message({"mjcf", urdf, "-o", "-", "--timestep", "0"}), "--timestep must be > 0");
   EXPECT_EQ(message({"mjcf", urdf, "-o", (dir_ / "no" / "such" / "dir.xml").string()}),
             "cannot write '" + (dir_ / "no" / "such" / "dir.xml").string() + "'");
-  const auto humanoid_config =
-      (wbi::test::source_dir() / "deploy/robots/humanoid.yaml").string();
-  EXPECT_EQ(message({"mjcf", urdf, "-o", "-", "--robot-config", humanoid_config}).rfind(
-                "URDF '" + urdf + "' is not the robot config's (", 0),
+  const auto humanoid_config = (wbi::test::source_dir() / "deploy/robots/humanoid.yaml").string();
+  EXPECT_EQ(message({"mjcf", urdf, "-o", "-", "--robot-config", humanoid_config})
+                .rfind("URDF '" + urdf + "' is not the robot config's (", 0),
             0U);
   const auto humanoid = wbi::test::project_model("humanoid.urdf").string();
-  EXPECT_EQ(
-      message({"mjcf", humanoid, "-o", "-", "--robot-config", humanoid_config, "--joints", "l_knee"}),
-      "--joints: a robot config describes the whole robot (no reduced model)");
+  EXPECT_EQ(message({"mjcf", humanoid, "-o", "-", "--robot-config", humanoid_config, "--joints",
+                     "l_knee"}),
+            "--joints: a robot config describes the whole robot (no reduced model)");
   {
     std::ofstream bad(dir_ / "bad.yaml");
     bad << "urdf: " << humanoid << "\njionts: {}\n";

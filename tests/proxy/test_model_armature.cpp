@@ -28,7 +28,8 @@ std::string armature_yaml(bool robot_config_joints) {
   std::string yaml;
   for (const auto& [joint, value] : kArmature) {
     const std::string number = std::to_string(value);
-    yaml += "  " + joint + ": " + (robot_config_joints ? "{armature: " + number + "}" : number) + "\n";
+    yaml +=
+        "  " + joint + ": " + (robot_config_joints ? "{armature: " + number + "}" : number) + "\n";
   }
   return yaml;
 }
@@ -111,9 +112,8 @@ void expect_local_and_remote_agree(const std::string& robot,
 }
 
 TEST(ModelArmature, LocalAndRemoteModelsAgree) {
-  expect_local_and_remote_agree(
-      "arm_armature", "urdf: " + project_model("arm7.urdf").string() + "\narmature:\n" +
-                          armature_yaml(false));
+  expect_local_and_remote_agree("arm_armature", "urdf: " + project_model("arm7.urdf").string() +
+                                                    "\narmature:\n" + armature_yaml(false));
 }
 
 // robot_config: the simulation's file gives the service its URDF and armature.

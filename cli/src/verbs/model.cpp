@@ -20,10 +20,10 @@
 
 #include <nlohmann/json.hpp>
 #include <wbi/mjcf/mjcf.hpp>
-#include <wbi/mujoco_sim/robot_mjcf.hpp>
-#include <wbi/robot_config/robot_config.hpp>
 #include <wbi/model/algorithms.hpp>
 #include <wbi/model/backend.hpp>
+#include <wbi/mujoco_sim/robot_mjcf.hpp>
+#include <wbi/robot_config/robot_config.hpp>
 
 #include "../options.hpp"
 #include "verbs.hpp"

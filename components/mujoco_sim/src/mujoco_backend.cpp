@@ -222,8 +222,8 @@ actuation::BackendDescription MujocoBackend::on_configure() {
   }
   s.geom_link.assign(static_cast<std::size_t>(m->ngeom), -1);
   for (std::size_t k = 0; k < written.contact_link_of.size(); ++k) {
-    s.geom_link[static_cast<std::size_t>(id_of(m, mjOBJ_GEOM, "wbi_contact_" + std::to_string(k)))] =
-        written.contact_link_of[k];
+    s.geom_link[static_cast<std::size_t>(
+        id_of(m, mjOBJ_GEOM, "wbi_contact_" + std::to_string(k)))] = written.contact_link_of[k];
   }
   for (std::size_t l = 0; l < truth_.contact_links.size(); ++l) {
     s.link_site.push_back(id_of(m, mjOBJ_SITE, "wbi_link_" + std::to_string(l)));

@@ -531,9 +531,9 @@ void SimBackend::substep(double h) {
     const int iv = m.base_nv + j;
     const double qj = truth_.q[m.base_nq + j];
     const double dq = truth_.nu[iv];
-    const ActuatorOutput out = actuator_output(s.cmd_mode[static_cast<std::size_t>(j)],
-                                               s.cmd_value[j], dq,
-                                               s.motor[static_cast<std::size_t>(j)], s.effort[j]);
+    const ActuatorOutput out =
+        actuator_output(s.cmd_mode[static_cast<std::size_t>(j)], s.cmd_value[j], dq,
+                        s.motor[static_cast<std::size_t>(j)], s.effort[j]);
     const double act = out.torque;
     s.tau_act[j] = act;
     s.pwm[j] = out.pwm;

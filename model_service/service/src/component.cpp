@@ -38,7 +38,7 @@ void ModelServiceComponent::on_configure(const runtime::Parameters& parameters,
   if (parameters.has("robot_config")) {
     if (parameters.has("urdf")) {
       throw runtime::ParameterError(parameters.where("urdf") +
-                                    ": give urdf or robot_config, not both (the robot "
+                                    ": urdf: give urdf or robot_config, not both (the robot "
                                     "config names its URDF)");
     }
     try {
@@ -47,8 +47,9 @@ void ModelServiceComponent::on_configure(const runtime::Parameters& parameters,
       urdf = config.urdf;
       options.fixed_base = config.fixed_base;
       options.armature = robot_config::armature_by_joint(config);
-    } catch (const std::invalid_argument& error) {  // already "file:line: key: what"
-      throw runtime::ParameterError(parameters.where("robot_config") + ": " + error.what());
+    } catch (const std::exception& error) {  // the config's "file:line: key: what"
+      throw runtime::ParameterError(parameters.where("robot_config") +
+                                    ": robot_config: " + error.what());
     }
   } else {
     urdf = resolve(parameters.require<std::string>("urdf"), parameters);
@@ -56,8 +57,7 @@ void ModelServiceComponent::on_configure(const runtime::Parameters& parameters,
   options.joints = parameters.get<std::vector<std::string>>("joints", {});
   options.fixed_base = parameters.get<bool>("fixed_base", options.fixed_base);
   // Armature by joint name; over the robot config's joint by joint.
-  for (const auto& [joint, value] :
-       parameters.get<std::map<std::string, double>>("armature", {})) {
+  for (const auto& [joint, value] : parameters.get<std::map<std::string, double>>("armature", {})) {
     options.armature[joint] = value;
   }
   const bool worker_thread = parameters.get<bool>("worker_thread", false);
