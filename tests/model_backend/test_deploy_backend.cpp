@@ -38,8 +38,7 @@ fs::path deploy_variant(const std::string& name, const std::string& after, const
   buffer << in.rdbuf();
   std::string text = buffer.str();
   replace_all(text, "../models/", (wbi::test::source_dir() / "models").string() + "/");
-  replace_all(text, "config: arm/", "config: " + (deploy / "arm").string() + "/");
-  replace_all(text, "config: humanoid/", "config: " + (deploy / "humanoid").string() + "/");
+  replace_all(text, "config: robots/", "config: " + (deploy / "robots").string() + "/");
   const auto at = text.find(after);
   EXPECT_NE(at, std::string::npos) << after << " not in " << name;
   if (at != std::string::npos && !line.empty()) {
