@@ -22,8 +22,8 @@ namespace {
 using wbi::estimator::LeggedBaseEstimator;
 using wbi::estimator::LeggedBaseOptions;
 using namespace wbi::sim::test;
-using wbi::sim::SimBackend;
 using wbi::robot_config::RobotConfig;
+using wbi::sim::SimBackend;
 
 LeggedBaseOptions humanoid_options() {
   LeggedBaseOptions options;

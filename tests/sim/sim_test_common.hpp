@@ -73,7 +73,8 @@ struct StiffSim {
 // One control tick at the backend's current time.
 inline void tick(SimBackend& sim, JointController& ctl) {
   const auto t = sim.stamp();
-  const auto period = actuation::Duration(static_cast<std::int64_t>(sim.config().wbi.step * 1e9 + 0.5));
+  const auto period =
+      actuation::Duration(static_cast<std::int64_t>(sim.config().wbi.step * 1e9 + 0.5));
   sim.read(t, period);
   ctl.update(t, period, sim.readings(), sim.commands());
   sim.write(t, period);

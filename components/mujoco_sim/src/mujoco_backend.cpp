@@ -178,15 +178,7 @@ actuation::BackendDescription MujocoBackend::on_configure() {
   truth_.contact_links = written.contact_links;
   truth_.contact_wrenches.assign(truth_.contact_links.size(), Vector6d::Zero());
 
-  actuation::BackendDescription desc;
-  desc.robot = model.name;
-  desc.urdf = c.urdf;
-  desc.floating_base = model.floating_base;
-  desc.joint_names = model.joint_name;
-  desc.position_lower = model.joint_lower;
-  desc.position_upper = model.joint_upper;
-  desc.velocity_limit = model.joint_velocity_limit;
-  desc.effort_limit = model.joint_effort_limit;
+  actuation::BackendDescription desc = sim::joint_description(model, c.urdf);
   for (const auto& imu : c.imus) {
     desc.imu_names.push_back(imu.name);
     desc.imu_frames.push_back(imu.frame);

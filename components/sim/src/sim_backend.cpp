@@ -313,15 +313,7 @@ actuation::BackendDescription SimBackend::on_configure() {
   s.wrenches.assign(truth_.contact_links.size() + s.pushes.size(), model::ExternalWrench{});
 
   // ---- sensors ----
-  actuation::BackendDescription d;
-  d.robot = m.name;
-  d.urdf = c.urdf;
-  d.floating_base = m.floating_base;
-  d.joint_names = m.joint_name;
-  d.position_lower = m.joint_lower;
-  d.position_upper = m.joint_upper;
-  d.velocity_limit = m.joint_velocity_limit;
-  d.effort_limit = m.joint_effort_limit;
+  actuation::BackendDescription d = joint_description(m, c.urdf);
   for (const auto& imu : c.imus) {
     Impl::Imu x;
     x.frame = frame_of(imu.frame, "imus '" + imu.name + "'");

@@ -356,9 +356,8 @@ class Writer {
     } else {
       out_ << attr("limited", "false");
     }
-    const double armature = options_.armature.empty()
-                                ? model_.joint_armature[uk]
-                                : options_.armature[uk];
+    const double armature =
+        options_.armature.empty() ? model_.joint_armature[uk] : options_.armature[uk];
     out_ << attr("armature", num(armature))
          << attr("damping", num(value_or_zero(options_.damping, k)))
          << attr("frictionloss", num(value_or_zero(options_.frictionloss, k))) << "/>\n";

@@ -8,8 +8,10 @@
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <string>
 
 #include "wbi/actuation/robot_backend.hpp"
+#include "wbi/model/model.hpp"
 #include "wbi/robot_config/robot_config.hpp"
 
 namespace wbi::sim {
@@ -83,6 +85,22 @@ struct DcMotor {
     return std::clamp((tau * resistance / k_t + k_e * dq) / voltage, -1.0, 1.0);
   }
 };
+
+// The joints every engine offers: the model's names, order and limits (the
+// sensors are filled by the engine).
+inline actuation::BackendDescription joint_description(const model::Model& m,
+                                                       const std::string& urdf) {
+  actuation::BackendDescription d;
+  d.robot = m.name;
+  d.urdf = urdf;
+  d.floating_base = m.floating_base;
+  d.joint_names = m.joint_name;
+  d.position_lower = m.joint_lower;
+  d.position_upper = m.joint_upper;
+  d.velocity_limit = m.joint_velocity_limit;
+  d.effort_limit = m.joint_effort_limit;
+  return d;
+}
 
 // What one joint's actuator applies for a held command at joint velocity dq:
 // the torque, saturated at the effort limit (IDLE: none; PWM: the motor's), and
