@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <iostream>
 #include <optional>
 #include <stdexcept>
@@ -46,8 +47,9 @@ Sides read_sides(const runtime::Parameters& parameters) {
 struct SimulationOptions {
   bool lockstep = false;
   LockstepOptions lockstep_options;
-  bool real_time = true;    // paced at real time (default: unless lockstep)
-  double duration_s = 0.0;  // 0: no end
+  bool real_time = true;              // paced at real time (default: unless lockstep)
+  double real_time_max_lag_s = 0.02;  // a longer delay is not caught up (step_clock.hpp)
+  double duration_s = 0.0;            // 0: no end
 };
 
 SimulationOptions read_simulation_options(const runtime::Parameters& parameters) {
@@ -62,6 +64,11 @@ SimulationOptions read_simulation_options(const runtime::Parameters& parameters)
   lockstep.timeout_s = parameters.get<double>("lockstep_timeout_s", 2.0);
   lockstep.start_timeout_s = parameters.get<double>("lockstep_start_timeout_s", 60.0);
   options.real_time = parameters.get<bool>("real_time", !options.lockstep);
+  options.real_time_max_lag_s = parameters.get<double>("real_time_max_lag_s", 0.02);
+  if (!(options.real_time_max_lag_s >= 0.0)) {
+    throw runtime::ParameterError(parameters.where("real_time_max_lag_s") +
+                                  ": must be >= 0 (seconds of delay caught up)");
+  }
   options.duration_s = parameters.get<double>("duration_s", 0.0);
   return options;
 }
@@ -207,8 +214,13 @@ class RobotDriver final : public runtime::Component {
       step_clocks_.push_back(
           std::make_unique<LockstepClock>(options.lockstep_options, who_, timeouts));
     }
+    auto& stalls = report().counter("real_time_stalls");  // 0 unless real time
     if (options.real_time) {
-      step_clocks_.push_back(std::make_unique<RealTimeClock>(simulation_->step_period()));
+      step_clocks_.push_back(std::make_unique<RealTimeClock>(
+          simulation_->step_period(),
+          std::chrono::duration_cast<std::chrono::nanoseconds>(
+              std::chrono::duration<double>(options.real_time_max_lag_s)),
+          who_, stalls));
     }
   }
 

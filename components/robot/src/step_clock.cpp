@@ -5,15 +5,36 @@
 
 namespace wbi::robot {
 
+RealTimeSchedule::TimePoint RealTimeSchedule::due(std::uint64_t tick, TimePoint now,
+                                                  std::chrono::nanoseconds& dropped) {
+  // From the anchor, not from the previous tick: jitter is caught up, no drift.
+  const TimePoint due = anchor_ + period_ * static_cast<std::int64_t>(tick + 1);
+  dropped = std::chrono::nanoseconds(0);
+  if (now - due <= max_lag_) {
+    return due;
+  }
+  dropped = std::chrono::duration_cast<std::chrono::nanoseconds>(now - due);
+  anchor_ = now - period_ * static_cast<std::int64_t>(tick + 1);  // tick is due now
+  return now;
+}
+
 void RealTimeClock::start() {
   std::lock_guard lock(mutex_);
   stopped_ = false;
-  start_ = std::chrono::steady_clock::now();
+  schedule_.start(std::chrono::steady_clock::now());
 }
 
 void RealTimeClock::wait(std::uint64_t tick) {
-  // From the start, not from the previous tick: a late tick is caught up, no drift.
-  const auto due = start_ + period_ * static_cast<std::int64_t>(tick + 1);
+  std::chrono::nanoseconds dropped;
+  const auto due = schedule_.due(tick, std::chrono::steady_clock::now(), dropped);
+  if (dropped.count() > 0) {
+    stalls_.add();
+    std::cerr << who_ << ": tick " << tick << " came "
+              << std::chrono::duration<double>(dropped).count()
+              << " s late (the process stalled?): the simulation paused with it, the time "
+                 "is not caught up"
+              << std::endl;
+  }
   std::unique_lock lock(mutex_);
   stopped_changed_.wait_until(lock, due, [this] { return stopped_; });
 }

@@ -5,6 +5,11 @@
 //                  warning): deterministic, as fast as the controllers allow;
 //   RealTimeClock  at start + (k + 1)·period on the wall clock (steady time):
 //                  the simulation paced at real time, whatever the controllers do.
+//                  A tick late by up to max_lag is caught up (scheduling jitter);
+//                  a longer delay (the process stalled: SIGSTOP, a debugger, swap)
+//                  is not: the schedule restarts from now, so the simulation pauses
+//                  with the process instead of running the missed time in a burst
+//                  under commands computed before the stall.
 // A real robot needs neither: the runner's periodic tick is its clock
 // (robot_driver.cpp).
 //
@@ -40,17 +45,41 @@ class StepClock {
   virtual bool lockstep() const = 0;
 };
 
+// When a real-time tick is due: the arithmetic of RealTimeClock, on times given
+// to it (tested without waiting).
+class RealTimeSchedule {
+ public:
+  using TimePoint = std::chrono::steady_clock::time_point;
+  RealTimeSchedule(std::chrono::nanoseconds period, std::chrono::nanoseconds max_lag)
+      : period_(period), max_lag_(max_lag) {}
+  void start(TimePoint now) { anchor_ = now; }
+  // When tick `tick` may go on, seen at `now`: anchor + (tick + 1)·period, or
+  // `now` when that is more than max_lag ago; then the schedule restarts from
+  // `now`, and `dropped` is the time not caught up (else zero).
+  TimePoint due(std::uint64_t tick, TimePoint now, std::chrono::nanoseconds& dropped);
+
+ private:
+  const std::chrono::nanoseconds period_;
+  const std::chrono::nanoseconds max_lag_;
+  TimePoint anchor_;  // tick k is due at anchor_ + (k + 1)·period_
+};
+
 class RealTimeClock final : public StepClock {
  public:
-  explicit RealTimeClock(std::chrono::nanoseconds period) : period_(period) {}
+  // who: names the robot in the stall message; stalls: the status counter of
+  // delays not caught up.
+  RealTimeClock(std::chrono::nanoseconds period, std::chrono::nanoseconds max_lag, std::string who,
+                runtime::StatusCounter& stalls)
+      : schedule_(period, max_lag), who_(std::move(who)), stalls_(stalls) {}
   void start() override;
   void wait(std::uint64_t tick) override;
   void stop() override;
   bool lockstep() const override { return false; }
 
  private:
-  const std::chrono::nanoseconds period_;
-  std::chrono::steady_clock::time_point start_;
+  RealTimeSchedule schedule_;  // the driver's loop only
+  const std::string who_;
+  runtime::StatusCounter& stalls_;
   std::mutex mutex_;  // guards stopped_
   std::condition_variable stopped_changed_;
   bool stopped_ = false;

@@ -49,6 +49,9 @@
 // Simulations only:
 //   lockstep              false (default): do not wait for commands; true: wait for them
 //   real_time             pace at real time (default: true without lockstep, false with)
+//   real_time_max_lag_s   a real-time tick late by up to this is caught up (default 0.02 s);
+//                         a longer delay (the process stalled) is not: the simulation
+//                         pauses with its process, counted in real_time_stalls
 //   lockstep_controllers  names of the controllers (ActuatorCommand.controller) to wait for
 //   lockstep_timeout_s    longest wait for a tick's commands (default 2 s; then a warning)
 //   lockstep_start_timeout_s  longest wait for the first tick's commands, while the
@@ -56,8 +59,8 @@
 //   duration_s            stop stepping after this simulated time (default 0: never),
 //                         printing "TYPE 'ROBOT': duration_s D reached: stopped stepping"
 // Status counters: those of the actuator side (rejected_commands,
-// rejected_parameters, watchdog_trips, limit_clamps) and, in lockstep,
-// lockstep_timeouts; the last rejection or trip in words as the last error. A
+// rejected_parameters, watchdog_trips, limit_clamps), lockstep_timeouts (in
+// lockstep) and real_time_stalls (in real time); the last rejection or trip in words as the last error. A
 // simulation that throws (diverged) stops stepping with
 // "simulation stopped at t = T s: …" as the last error.
 #pragma once

@@ -1,0 +1,62 @@
+// The real-time clock's schedule on given times: jitter is caught up, a stall
+// is not (the simulation pauses with its process instead of stepping the
+// missed time in a burst).
+#include <gtest/gtest.h>
+
+#include <chrono>
+
+#include "step_clock.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using wbi::robot::RealTimeSchedule;
+
+constexpr auto kPeriod = std::chrono::nanoseconds(1ms);
+constexpr auto kMaxLag = std::chrono::nanoseconds(20ms);
+const RealTimeSchedule::TimePoint kStart{std::chrono::seconds(100)};
+
+TEST(RealTimeSchedule, TicksAreDueOnePeriodApartFromTheStart) {
+  RealTimeSchedule schedule(kPeriod, kMaxLag);
+  schedule.start(kStart);
+  std::chrono::nanoseconds dropped{};
+  EXPECT_EQ(schedule.due(0, kStart, dropped), kStart + 1ms);
+  EXPECT_EQ(schedule.due(9, kStart + 5ms, dropped), kStart + 10ms);
+  EXPECT_EQ(dropped.count(), 0);
+}
+
+TEST(RealTimeSchedule, JitterWithinTheMaxLagIsCaughtUp) {
+  RealTimeSchedule schedule(kPeriod, kMaxLag);
+  schedule.start(kStart);
+  std::chrono::nanoseconds dropped{};
+  // Tick 4 seen 15 ms after its time: due in the past (no wait), schedule kept.
+  EXPECT_EQ(schedule.due(4, kStart + 20ms, dropped), kStart + 5ms);
+  EXPECT_EQ(dropped.count(), 0);
+  EXPECT_EQ(schedule.due(5, kStart + 20ms, dropped), kStart + 6ms);
+}
+
+TEST(RealTimeSchedule, AStallIsNotCaughtUp) {
+  RealTimeSchedule schedule(kPeriod, kMaxLag);
+  schedule.start(kStart);
+  std::chrono::nanoseconds dropped{};
+  ASSERT_EQ(schedule.due(4, kStart + 5ms, dropped), kStart + 5ms);
+  // The process stopped for a second after tick 4: tick 5 is due at once, and
+  // the ticks after it one period apart again, not in a burst.
+  const auto resumed = kStart + 1006ms;
+  EXPECT_EQ(schedule.due(5, resumed, dropped), resumed);
+  EXPECT_EQ(dropped, std::chrono::nanoseconds(1000ms));
+  EXPECT_EQ(schedule.due(6, resumed, dropped), resumed + 1ms);
+  EXPECT_EQ(dropped.count(), 0);
+  EXPECT_EQ(schedule.due(10, resumed + 1ms, dropped), resumed + 5ms);
+}
+
+TEST(RealTimeSchedule, ZeroMaxLagCatchesNothingUp) {
+  RealTimeSchedule schedule(kPeriod, std::chrono::nanoseconds(0));
+  schedule.start(kStart);
+  std::chrono::nanoseconds dropped{};
+  EXPECT_EQ(schedule.due(0, kStart + 3ms, dropped), kStart + 3ms);
+  EXPECT_EQ(dropped, std::chrono::nanoseconds(2ms));
+  EXPECT_EQ(schedule.due(1, kStart + 3ms, dropped), kStart + 4ms);
+}
+
+}  // namespace
