@@ -222,7 +222,8 @@ struct ReaderImpl : fdds::DataReaderListener {
       if (!info.valid_data) {
         continue;  // a dispose or unregister notice, not a sample
       }
-      sink.on_sample({info.source_timestamp.to_ns(), steady_now_ns()});
+      sink.on_sample({info.source_timestamp.to_ns(), steady_now_ns(),
+                      to_guid(info.sample_identity.writer_guid())});
     }
   }
 };

@@ -110,6 +110,7 @@ class EstimatorComponent final : public runtime::Component {
     gaps_ = &report().counter("stamp_gaps");
     non_finite_ = &report().counter("non_finite_samples");
     wrong_size_ = &report().counter("wrong_size_samples");
+    new_producers_ = &report().counter("new_producers");
 
     auto& participant = *context.participant;
     description_ = std::make_unique<dds::Subscriber<wbi::msg::RobotDescription>>(
@@ -134,7 +135,9 @@ class EstimatorComponent final : public runtime::Component {
         });
     sensors_ = std::make_unique<dds::Subscriber<wbi::msg::SensorSample>>(
         participant, dds::topics::sensors(robot_), dds::qos::kStream,
-        [this](const wbi::msg::SensorSample& s, const dds::detail::SampleInfo&) { on_sample(s); });
+        [this](const wbi::msg::SensorSample& s, const dds::detail::SampleInfo& info) {
+          on_sample(s, info.writer);
+        });
   }
 
   void on_activate() override {
@@ -298,13 +301,42 @@ class EstimatorComponent final : public runtime::Component {
     }
   }
 
-  void on_sample(const wbi::msg::SensorSample& sample) {
+  void on_sample(const wbi::msg::SensorSample& sample, const dds::detail::Guid& writer) {
     std::lock_guard lock(mutex_);
+    if (writer != producer_) {
+      on_new_producer(writer);
+    }
     if (!ready(sample.encoder_position().size())) {
       pending_ = sample;  // start-up only: not active, no description or no base sample yet
       return;
     }
     estimate(sample);
+  }
+
+  // Samples from another writer than the last one: the robot restarted (a new
+  // process, whose stamps and sequence numbers start again). Every filter starts
+  // afresh from its samples, sized again from its description: continued, they
+  // would ignore its samples as out of order until its stamps passed the old
+  // ones, or differentiate across the jump. Allocates: an event, not a tick.
+  void on_new_producer(const dds::detail::Guid& writer) {  // caller holds mutex_
+    const bool first = producer_ == dds::detail::Guid{};
+    producer_ = writer;
+    if (first) {
+      return;
+    }
+    new_producers_->add();
+    const std::string text = "estimator of robot '" + robot_ + "': sensor samples from a new " +
+                             "writer " + dds::detail::guid_hex(writer) +
+                             " (the robot restarted?): filters restarted";
+    report().set_error(text);
+    std::cerr << text << std::endl;
+    if (estimator_) {
+      earlier_counts_ += estimator_->stamp_counters();
+    }
+    estimator_.reset();  // prepared anew at the next sample (prepare_sized)
+    base_estimator_.reset();
+    legged_estimator_.reset();
+    failed_ = false;
   }
 
   void estimate(const wbi::msg::SensorSample& sample) {
@@ -346,7 +378,8 @@ class EstimatorComponent final : public runtime::Component {
     current_sample_ = &sample;
     fill_base(dq, ddq);
     current_sample_ = nullptr;
-    const auto& counters = estimator_->stamp_counters();
+    auto counters = earlier_counts_;
+    counters += estimator_->stamp_counters();
     state.warnings(static_cast<std::uint32_t>(counters.anomalies()) + ignored_);
     dropped_->set(counters.dropped);
     duplicated_->set(counters.duplicated);
@@ -486,6 +519,9 @@ class EstimatorComponent final : public runtime::Component {
   runtime::StatusCounter* gaps_ = nullptr;
   runtime::StatusCounter* non_finite_ = nullptr;
   runtime::StatusCounter* wrong_size_ = nullptr;
+  runtime::StatusCounter* new_producers_ = nullptr;
+  dds::detail::Guid producer_{};              // the writer of the last sensor sample
+  estimation::StampCounters earlier_counts_;  // of the filters before a new producer
   wbi::msg::StateEstimate state_;
   dds::Received<wbi::msg::GroundTruth> ground_truth_rx_;
 

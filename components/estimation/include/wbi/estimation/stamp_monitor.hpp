@@ -20,6 +20,15 @@ struct StampCounters {
   // Duplicated and out-of-order stamps: the stamps that did not increase.
   std::uint64_t non_increasing() const { return duplicated + out_of_order; }
   std::uint64_t anomalies() const { return non_increasing() + dropped + gaps + non_finite; }
+  StampCounters& operator+=(const StampCounters& other) {
+    accepted += other.accepted;
+    duplicated += other.duplicated;
+    out_of_order += other.out_of_order;
+    dropped += other.dropped;
+    gaps += other.gaps;
+    non_finite += other.non_finite;
+    return *this;
+  }
 };
 
 // What happened to one sample.

@@ -21,14 +21,15 @@ namespace wbi::dds::detail {
 struct WriterImpl;
 struct ReaderImpl;
 
+// The 16-byte RTPS GUID of an endpoint (participant prefix, then entity id).
+using Guid = std::array<std::uint8_t, 16>;
+
 // Metadata of a received sample.
 struct SampleInfo {
   std::int64_t source_stamp_ns = 0;  // DDS source timestamp set by the writer
   std::int64_t received_ns = 0;      // steady-clock time of arrival
+  Guid writer{};                     // the writer that sent it: a restarted process has a new one
 };
-
-// The 16-byte RTPS GUID of an endpoint (participant prefix, then entity id).
-using Guid = std::array<std::uint8_t, 16>;
 
 // 32 lower-case hex digits.
 std::string guid_hex(const Guid& guid);
