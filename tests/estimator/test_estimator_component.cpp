@@ -25,8 +25,10 @@ namespace qos = wbi::dds::qos;
 // A robot's description and sensor stream, and the estimator's output, on one participant.
 class EstimatorFixture {
  public:
+  // force_torque_sensors: F/T sensors "ft_0", … in the description; the samples
+  // carry the wrenches of set_wrenches().
   EstimatorFixture(const std::string& robot, const std::vector<std::string>& joints,
-                   const std::string& parameters_yaml)
+                   const std::string& parameters_yaml, int force_torque_sensors = 0)
       : robot_(robot),
         description_(participant_, topics::description(robot), qos::kLatched),
         sensors_(participant_, topics::sensors(robot), qos::kStream),
@@ -37,6 +39,13 @@ class EstimatorFixture {
     for (const auto& joint : joints) {
       description.joint_names().push_back(joint);
     }
+    for (int i = 0; i < force_torque_sensors; ++i) {
+      wbi::msg::SensorInfo sensor;
+      sensor.name("ft_" + std::to_string(i));
+      sensor.kind(wbi::msg::SensorKind::FORCE_TORQUE);
+      description.sensors().push_back(sensor);
+    }
+    wrenches_.resize(static_cast<std::size_t>(force_torque_sensors));
     description_.publish(description);
     wbi::runtime::Registry registry;
     wbi::estimator::register_components(registry);
@@ -58,6 +67,7 @@ class EstimatorFixture {
     sample.header().seq(k);
     sample.header().stamp_ns(stamp_ns >= 0 ? stamp_ns : static_cast<std::int64_t>(k) * 1'000'000);
     sample.encoder_position().assign(q.data(), q.data() + q.size());
+    sample.force_torque() = wrenches_;
     // Best-effort stream: send again until this sample's estimate comes back.
     for (int attempt = 0; attempt < 50; ++attempt) {
       sensors_.publish(sample);
@@ -68,6 +78,17 @@ class EstimatorFixture {
     }
     ADD_FAILURE() << "no estimate for sample " << k;
     return {};
+  }
+
+  // The F/T reading of sensor i in the next samples: force (f, 2f, 3f), torque (−f, −2f, −3f).
+  void set_wrench(std::size_t i, double f) {
+    auto& w = wrenches_.at(i).wrench();
+    w.force().x(f);
+    w.force().y(2 * f);
+    w.force().z(3 * f);
+    w.torque().x(-f);
+    w.torque().y(-2 * f);
+    w.torque().z(-3 * f);
   }
 
   wbi::dds::Publisher<wbi::msg::EstimatorParameter>& parameters() { return parameters_; }
@@ -137,8 +158,31 @@ class EstimatorFixture {
   wbi::dds::Subscriber<wbi::msg::ComponentStatus> status_{participant_, topics::kStatus,
                                                           qos::kStatus};
   wbi::dds::Received<wbi::msg::StateEstimate> received_;
+  std::vector<wbi::msg::ForceTorqueReading> wrenches_;
   std::unique_ptr<wbi::runtime::ComponentRunner> runner_;
 };
+
+TEST(EstimatorComponent, ForceTorqueEstimatesAreTheReadingsLowPassed) {
+  EstimatorFixture fixture("ft", {"a"}, "robot: ft\ntorque_cutoff_hz: 5\n", 2);
+  const Eigen::VectorXd q = Eigen::VectorXd::Zero(1);
+  fixture.set_wrench(0, 10.0);
+  fixture.set_wrench(1, -4.0);
+  auto state = fixture.step(0, q);
+  ASSERT_EQ(state.force_torque().size(), 2u);  // the first sample sets the filter
+  EXPECT_DOUBLE_EQ(state.force_torque()[0].force().y(), 20.0);
+  EXPECT_DOUBLE_EQ(state.force_torque()[1].torque().z(), 12.0);
+  fixture.set_wrench(0, 20.0);  // a step: the estimate follows at 5 Hz
+  state = fixture.step(1, q);
+  const double first = state.force_torque()[0].force().x();
+  EXPECT_GT(first, 10.0);
+  EXPECT_LT(first, 11.0);
+  for (std::uint64_t k = 2; k <= 1000; ++k) {
+    state = fixture.step(k, q);
+  }
+  EXPECT_NEAR(state.force_torque()[0].force().z(), 60.0, 1e-6);
+  EXPECT_NEAR(state.force_torque()[0].torque().x(), -20.0, 1e-6);
+  EXPECT_NEAR(state.force_torque()[1].force().x(), -4.0, 1e-6);
+}
 
 TEST(EstimatorComponent, EstimatesFollowEverySampleWithItsStamp) {
   EstimatorFixture fixture("ramp", {"a", "b"}, "robot: ramp\nmethod: kalman\n");

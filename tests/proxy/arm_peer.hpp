@@ -28,23 +28,37 @@ inline const std::vector<std::string> kArmJoints{"joint_1", "joint_2", "joint_3"
 // Robot r's joint j position in the peer's samples.
 inline double arm_position(std::size_t j) { return 0.1 * static_cast<double>(j + 1); }
 inline double arm_velocity(std::size_t j) { return -0.01 * static_cast<double>(j + 1); }
+// F/T sensor i's vertical force [N] (and minus its torque about x [N·m]).
+inline double arm_wrench(std::size_t i) { return 5.0 * static_cast<double>(i + 1); }
 
 // The robot side, as DDS sees it: description, sensor and state streams, a
 // command and a parameter reader. Streams are published at 200 Hz while running.
 class ArmPeer {
  public:
-  explicit ArmPeer(const std::string& robot)
+  // force_torque_sensors: F/T sensors "ft_0", … in the description, their readings
+  // in the sensor samples (arm_wrench), and, unless state_without_force_torque, the
+  // same in the state estimates.
+  explicit ArmPeer(const std::string& robot, int force_torque_sensors = 0,
+                   bool state_without_force_torque = false)
       : participant_("robot"),
         description_(participant_, topics::description(robot), qos::kLatched),
         sensors_(participant_, topics::sensors(robot), qos::kStream),
         state_(participant_, topics::state(robot), qos::kStream),
         commands_(participant_, topics::commands(robot), qos::kCommand),
         parameters_(participant_, topics::control_parameters(robot), qos::kCommand),
-        robot_(robot) {
+        robot_(robot),
+        force_torque_sensors_(static_cast<std::size_t>(force_torque_sensors)),
+        state_without_force_torque_(state_without_force_torque) {
     wbi::msg::RobotDescription description;
     description.header().robot(robot);
     for (const auto& joint : kArmJoints) {
       description.joint_names().push_back(joint);
+    }
+    for (std::size_t i = 0; i < force_torque_sensors_; ++i) {
+      wbi::msg::SensorInfo sensor;
+      sensor.name("ft_" + std::to_string(i));
+      sensor.kind(wbi::msg::SensorKind::FORCE_TORQUE);
+      description.sensors().push_back(sensor);
     }
     description_.publish(description);
     thread_ = std::thread([this] { run(); });
@@ -75,6 +89,16 @@ class ArmPeer {
       state.ddq().push_back(0.0);
       state.tau().push_back(0.0);
     }
+    for (std::size_t i = 0; i < force_torque_sensors_; ++i) {
+      wbi::msg::ForceTorqueReading reading;
+      auto& w = reading.wrench();
+      w.force().z(arm_wrench(i));
+      w.torque().x(-arm_wrench(i));
+      sample.force_torque().push_back(reading);
+      if (!state_without_force_torque_) {
+        state.force_torque().push_back(w);
+      }
+    }
     state.base_pose().orientation().w(1.0);
     state.base_pose().position().z(0.25);
     for (std::uint64_t seq = 0; running_; ++seq) {
@@ -94,6 +118,8 @@ class ArmPeer {
   wbi::dds::Subscriber<wbi::msg::ActuatorCommand> commands_;
   wbi::dds::Subscriber<wbi::msg::ControlParameters> parameters_;
   std::string robot_;
+  std::size_t force_torque_sensors_;
+  bool state_without_force_torque_;
   std::atomic<bool> running_{true};
   std::thread thread_;
 };

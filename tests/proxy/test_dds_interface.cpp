@@ -102,6 +102,52 @@ TEST(DdsInterface, ReadsFollowTheControllersJointOrder) {
   EXPECT_THROW(robot->read_sensors(wbi::SensorKind::joint_torque, q), wbi::Error);  // none sent
 }
 
+// Every kind of the enum, read whole: each is answered with the estimator's
+// values, or (F/T estimates missing from the state) refused with wbi::Error
+// naming the kind, never an exception of another type.
+TEST(DdsInterface, EveryEstimateKindIsAnswered) {
+  ArmPeer peer("arm_kinds", 2);
+  auto robot = wbi::make_dds_interface(arm_options("arm_kinds"));
+  robot->add_joints({"joint_2", "joint_5"});
+  robot->init(10s);
+  const auto last = static_cast<int>(wbi::EstimateKind::force_torque);
+  for (int k = 0; k <= last; ++k) {
+    const auto kind = static_cast<wbi::EstimateKind>(k);
+    const int count = k <= static_cast<int>(wbi::EstimateKind::joint_torque) ? 2
+                      : kind == wbi::EstimateKind::force_torque              ? 2
+                                                                             : 1;
+    Eigen::VectorXd values = Eigen::VectorXd::Constant(count * wbi::estimate_width(kind), -99.0);
+    ASSERT_NO_THROW(robot->read_estimates(kind, values, wbi::ReadMode::blocking)) << k;
+    EXPECT_TRUE(values.allFinite()) << k;
+    EXPECT_FALSE((values.array() == -99.0).any()) << "kind " << k << " left values unwritten";
+  }
+  Eigen::VectorXd wrenches(12);
+  robot->read_estimates(wbi::EstimateKind::force_torque, wrenches);
+  EXPECT_DOUBLE_EQ(wrenches[2], arm_wrench(0));
+  EXPECT_DOUBLE_EQ(wrenches[9], -arm_wrench(1));
+  Eigen::VectorXd velocity(2);
+  robot->read_estimates(wbi::EstimateKind::joint_velocity, velocity);
+  EXPECT_DOUBLE_EQ(velocity[1], arm_velocity(4));
+}
+
+TEST(DdsInterface, ForceTorqueEstimatesMissingFromTheStateAreNamed) {
+  ArmPeer peer("arm_no_ft_state", 2, /*state_without_force_torque=*/true);
+  auto robot = wbi::make_dds_interface(arm_options("arm_no_ft_state"));
+  robot->add_joints({"joint_1"});
+  robot->init(10s);
+  Eigen::VectorXd wrenches(12);
+  try {
+    robot->read_estimates(wbi::EstimateKind::force_torque, wrenches, wbi::ReadMode::blocking);
+    FAIL() << "no error";
+  } catch (const wbi::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("force_torque estimates"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("carries 0 of its 2 F/T sensors"), std::string::npos)
+        << e.what();
+  }
+  robot->read_sensors(wbi::SensorKind::force_torque, wrenches);  // the raw readings are there
+  EXPECT_DOUBLE_EQ(wrenches[8], arm_wrench(1));
+}
+
 TEST(DdsInterface, StaleDataIsRefused) {
   ArmPeer peer("arm_stale");
   auto options = arm_options("arm_stale");

@@ -641,6 +641,13 @@ class DdsInterface final : public WholeBodyInterface {
         out = Eigen::Map<const Eigen::Matrix<double, 6, 1>>(state.base_acceleration().data());
         break;
       case EstimateKind::force_torque:
+        if (state.force_torque().size() < static_cast<std::size_t>(first + count)) {
+          throw Error("force_torque estimates: the state of robot '" + options_.robot +
+                      "' carries " + std::to_string(state.force_torque().size()) + " of its " +
+                      std::to_string(force_torque_names_.size()) +
+                      " F/T sensors (the estimator component fills them from the sensor "
+                      "samples; read_sensors(force_torque) has the raw readings)");
+        }
         for (int i = 0; i < count; ++i) {
           const auto& w = state.force_torque().at(static_cast<std::size_t>(first + i));
           out.segment<6>(6 * i) << w.force().x(), w.force().y(), w.force().z(), w.torque().x(),

@@ -255,12 +255,21 @@ class EstimatorComponent final : public runtime::Component {
     torque_filter_.emplace(n, cutoff_hz_);
     q_.setZero(n);
     tau_.setZero(n);
+    const auto force_torques = static_cast<std::size_t>(std::count_if(
+        description->sample.sensors().begin(), description->sample.sensors().end(),
+        [](const auto& sensor) { return sensor.kind() == wbi::msg::SensorKind::FORCE_TORQUE; }));
+    force_torque_filter_.reset();
+    if (force_torques > 0) {
+      force_torque_filter_.emplace(static_cast<Eigen::Index>(6 * force_torques), cutoff_hz_);
+    }
+    wrenches_.setZero(static_cast<Eigen::Index>(6 * force_torques));
     auto& state = state_;
     state.header().robot(robot_);
     state.q().assign(joints, 0.0);
     state.dq().assign(joints, 0.0);
     state.ddq().assign(joints, 0.0);
     state.tau().assign(joints, 0.0);
+    state.force_torque().assign(force_torques, wbi::msg::Wrench{});
     std::vector<std::string> names;
     for (const auto& name : description->sample.joint_names()) {
       names.push_back(name.to_string());
@@ -359,7 +368,36 @@ class EstimatorComponent final : public runtime::Component {
                              Eigen::Map<const Eigen::VectorXd>(tau_in.data(), q_.size()));
       tau_ = torque_filter_->value();
     }
+    filter_force_torque(sample);
     publish(sample);
+  }
+
+  // The F/T readings, low-passed like the joint torques, into the state's
+  // force_torque (sensor frame, in the description's order). A sample without
+  // every reading leaves the last estimate.
+  void filter_force_torque(const wbi::msg::SensorSample& sample) {
+    const auto& readings = sample.force_torque();
+    if (!force_torque_filter_ ||
+        6 * readings.size() != static_cast<std::size_t>(wrenches_.size())) {
+      return;
+    }
+    for (std::size_t i = 0; i < readings.size(); ++i) {
+      const auto& w = readings[i].wrench();
+      wrenches_.segment<6>(static_cast<Eigen::Index>(6 * i)) << w.force().x(), w.force().y(),
+          w.force().z(), w.torque().x(), w.torque().y(), w.torque().z();
+    }
+    force_torque_filter_->update(sample.header().stamp_ns(), wrenches_);
+    const auto& filtered = force_torque_filter_->value();
+    for (std::size_t i = 0; i < readings.size(); ++i) {
+      const auto k = static_cast<Eigen::Index>(6 * i);
+      auto& out = state_.force_torque()[i];
+      out.force().x(filtered[k]);
+      out.force().y(filtered[k + 1]);
+      out.force().z(filtered[k + 2]);
+      out.torque().x(filtered[k + 3]);
+      out.torque().y(filtered[k + 4]);
+      out.torque().z(filtered[k + 5]);
+    }
   }
 
   void publish(const wbi::msg::SensorSample& sample) {
@@ -499,6 +537,8 @@ class EstimatorComponent final : public runtime::Component {
   std::mutex mutex_;  // between the sample and the parameter callbacks
   std::unique_ptr<estimation::DerivativeEstimator> estimator_;
   std::optional<estimation::LowPassFilter> torque_filter_;
+  std::optional<estimation::LowPassFilter> force_torque_filter_;  // 6 per F/T sensor; none: no F/T
+  Eigen::VectorXd wrenches_;  // [6 m] the sample's F/T readings (force, torque)
   std::unique_ptr<FixedLinkBaseEstimator> base_estimator_;
   std::unique_ptr<LeggedBaseEstimator> legged_estimator_;
   LeggedBaseOptions legged_options_;
