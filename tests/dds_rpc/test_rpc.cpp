@@ -162,9 +162,11 @@ TEST(Rpc, NoServerIsATimeoutNamingTheServiceWithinTheDeadline) {
     EXPECT_NE(std::string(error.what()).find("timed out after 300 ms"), std::string::npos)
         << error.what();
   }
+  // Not before its deadline; and it returned (how soon after it on a loaded
+  // machine is not this test's business: a bound that only rules out a hang).
   const auto elapsed = Clock::now() - start;
   EXPECT_GE(elapsed, 300ms);
-  EXPECT_LT(elapsed, 800ms);
+  EXPECT_LT(elapsed, 300ms + 5s);
 }
 
 TEST(Rpc, ClientStartedBeforeTheServerGetsItsReply) {

@@ -96,8 +96,12 @@ TEST(RpcProcesses, ServerKilledMidRunGivesTimeoutsThenANewServerAnswers) {
     } catch (const wbi::dds::TimeoutError& error) {
       EXPECT_NE(std::string(error.what()).find("service '" + kService + "'"), std::string::npos);
     }
+    // Not before the deadline, and not hung past it (scheduling on a loaded
+    // machine may add a little: the bound only rules out waiting for a reply
+    // that cannot come).
     const auto elapsed = Clock::now() - start;
-    EXPECT_LT(elapsed, 200ms + 100ms) << "call " << i << " overran its deadline";
+    EXPECT_GE(elapsed, 200ms) << "call " << i << " gave up before its deadline";
+    EXPECT_LT(elapsed, 200ms + 5s) << "call " << i << " hung past its deadline";
   }
   // A new server: calls succeed again, within a few seconds.
   ChildProcess second(peer(), {"server", kService});
