@@ -56,6 +56,7 @@ processes:
     components:
       - {type: sim, name: sim}
     respawn: {enabled: true, delay: 0.5, max_retries: 2}
+    hang_timeout: 2.5
   - name: controller
     command: [wbi_pd, --rate, "1000"]
     environment: {B: two}
@@ -75,6 +76,8 @@ processes:
   EXPECT_DOUBLE_EQ(robot.respawn.delay_s, 0.5);
   EXPECT_EQ(robot.respawn.max_retries, 2);
   EXPECT_TRUE(robot.required);
+  EXPECT_EQ(robot.components, std::vector<std::string>{"sim"});
+  EXPECT_DOUBLE_EQ(robot.hang_timeout_s, 2.5);
   const auto& controller = deploy.processes[1];
   EXPECT_EQ(controller.command, (std::vector<std::string>{"wbi_pd", "--rate", "1000"}));
   EXPECT_EQ(controller.environment.at("B"), "two");
@@ -82,6 +85,7 @@ processes:
   EXPECT_TRUE(controller.shutdown_on_exit);
   EXPECT_EQ(controller.wait_for_topics, std::vector<std::string>{"wbi/arm/state"});
   EXPECT_DOUBLE_EQ(controller.wait_timeout_s, 3.0);
+  EXPECT_DOUBLE_EQ(controller.hang_timeout_s, 0.0);  // not watched
   ASSERT_TRUE(deploy.summary.has_value());
   EXPECT_EQ(deploy.summary->process, "controller");
 }
@@ -90,7 +94,13 @@ TEST_F(DeployFileTest, MistakesNameFileLineAndField) {
   EXPECT_EQ(error_of("processes: []\n"), ":1: processes: expected a non-empty list of processes");
   EXPECT_EQ(error_of("processes:\n  - name: a\n    command: [x]\n    colour: red\n"),
             ":4: processes[0].colour: unknown key (known: command, components, environment, "
-            "name, required, respawn, shutdown_on_exit, wait_for)");
+            "hang_timeout, name, required, respawn, shutdown_on_exit, wait_for)");
+  EXPECT_EQ(error_of("processes:\n  - {name: a, command: [x], hang_timeout: 2}\n"),
+            ":2: processes[0].hang_timeout: needs 'components' (the heartbeats watched are its "
+            "components' status)");
+  EXPECT_EQ(error_of("processes:\n  - {name: a, components: [{name: i, type: idle}], "
+                     "hang_timeout: 0}\n"),
+            ":2: processes[0].hang_timeout: must be > 0");
   EXPECT_EQ(error_of("processes:\n  - name: a\n    command: [x]\n    respawn: {delay: soon}\n"),
             ":4: processes[0].respawn.delay: expected a number of seconds, got 'soon'");
   EXPECT_EQ(error_of("processes:\n  - name: a\n    command: [x]\n    components: [{type: sim}]\n"),

@@ -167,6 +167,70 @@ TEST_F(LaunchTest, ComponentsStopWhenTheLauncherIsKilled) {
   }
 }
 
+// The pid `wbi launch` printed for process `name` (its n-th start, from 1).
+pid_t started_pid(const std::string& output, const std::string& name, int nth = 1) {
+  const std::string marker = "[launch] " + name + ": started (pid ";
+  std::size_t at = std::string::npos;
+  for (int k = 0; k < nth; ++k) {
+    at = output.find(marker, at == std::string::npos ? 0 : at + 1);
+    if (at == std::string::npos) {
+      return -1;
+    }
+  }
+  return std::stoi(output.substr(at + marker.size()));
+}
+
+// A process stopped without dying (SIGSTOP: as a deadlock looks from outside)
+// sends no status heartbeat: the launch says so within its hang_timeout and
+// applies its respawn policy (killed and started again).
+TEST_F(LaunchTest, HungProcessIsDetectedAndRespawned) {
+  const auto deploy = write("hang.yaml",
+                            "processes:\n"
+                            "  - name: host\n"
+                            "    components: [{name: idle_hang, type: idle}]\n"
+                            "    hang_timeout: 2.5\n"
+                            "    respawn: {enabled: true, delay: 0.1, max_retries: 1}\n");
+  ChildProcess launch(wbi_exe(), {"launch", deploy.string(), "--duration", "60"});
+  ASSERT_TRUE(launch.wait_for_output("host: heartbeat heard", 30s)) << launch.output();
+  const pid_t host = started_pid(launch.output(), "host");
+  ASSERT_GT(host, 0) << launch.output();
+  kill(host, SIGSTOP);
+  ASSERT_TRUE(launch.wait_for_output("host: no status heartbeat from its components", 30s))
+      << launch.output();
+  ASSERT_TRUE(launch.wait_for_output("host: respawn 1 of 1", 10s)) << launch.output();
+  const auto deadline = std::chrono::steady_clock::now() + 20s;
+  while (started_pid(launch.output(), "host", 2) < 0 &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(20ms);  // polling the launch's output for its second start
+  }
+  ASSERT_GT(started_pid(launch.output(), "host", 2), 0) << launch.output();
+  EXPECT_NE(started_pid(launch.output(), "host", 2), host);
+  launch.stop(SIGINT);
+  const auto code = launch.wait(30s);
+  ASSERT_TRUE(code.has_value()) << launch.output();
+  EXPECT_EQ(*code, 130) << launch.output();
+}
+
+// The same without respawn: a required process that hangs fails the launch.
+TEST_F(LaunchTest, HungRequiredProcessFailsTheLaunch) {
+  const auto deploy = write("hang_required.yaml",
+                            "processes:\n"
+                            "  - name: host\n"
+                            "    components: [{name: idle_required, type: idle}]\n"
+                            "    hang_timeout: 2.5\n");
+  ChildProcess launch(wbi_exe(), {"launch", deploy.string(), "--duration", "60"});
+  ASSERT_TRUE(launch.wait_for_output("host: heartbeat heard", 30s)) << launch.output();
+  const pid_t host = started_pid(launch.output(), "host");
+  ASSERT_GT(host, 0) << launch.output();
+  kill(host, SIGSTOP);
+  const auto code = launch.wait(40s);
+  ASSERT_TRUE(code.has_value()) << launch.output();
+  EXPECT_EQ(*code, 1) << launch.output();
+  EXPECT_TRUE(contains(launch.output(), "host is required: stopping the launch"))
+      << launch.output();
+  EXPECT_FALSE(running(host)) << "the stopped process was left behind";
+}
+
 TEST_F(LaunchTest, ProcessIgnoringSigtermIsKilled) {
   const auto deploy =
       write("stubborn.yaml",

@@ -115,7 +115,7 @@ RespawnPolicy read_respawn(const Reader& in, const YAML::Node& node, const std::
 ProcessSpec read_process(const Reader& in, const YAML::Node& node, const std::string& field) {
   in.only_keys(node, field,
                {"name", "command", "components", "environment", "required", "respawn", "wait_for",
-                "shutdown_on_exit"});
+                "shutdown_on_exit", "hang_timeout"});
   ProcessSpec process;
   if (!node["name"]) {
     in.fail(node, field + ".name", "missing");
@@ -140,6 +140,22 @@ ProcessSpec read_process(const Reader& in, const YAML::Node& node, const std::st
     }
     process.hosts_components = true;
     process.command = {"wbi_host", in.path().string(), "--process", process.name};
+    for (const auto& component : node["components"]) {
+      if (component.IsMap() && component["name"] && component["name"].IsScalar()) {
+        process.components.push_back(component["name"].as<std::string>());
+      }  // else wbi_host names the mistake
+    }
+  }
+  if (node["hang_timeout"]) {
+    if (!has_components) {
+      in.fail(node["hang_timeout"], field + ".hang_timeout",
+              "needs 'components' (the heartbeats watched are its components' status)");
+    }
+    process.hang_timeout_s =
+        in.scalar<double>(node["hang_timeout"], field + ".hang_timeout", "a number of seconds");
+    if (!(process.hang_timeout_s > 0)) {
+      in.fail(node["hang_timeout"], field + ".hang_timeout", "must be > 0");
+    }
   }
   if (node["environment"]) {
     process.environment = in.string_map(node["environment"], field + ".environment");

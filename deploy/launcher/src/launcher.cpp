@@ -21,6 +21,8 @@
 
 #include <wbi/dds/participant.hpp>
 
+#include "heartbeats.hpp"
+
 extern char** environ;
 
 namespace wbi::launch {
@@ -84,7 +86,9 @@ struct Managed {
   std::optional<int> exit_code;  // of the last run; 128 + signal when killed
   bool stopped_by_us = false;
   std::optional<Clock::time_point> restart_at;
-  std::string summary_line;  // last line containing the summary match
+  std::string summary_line;    // last line containing the summary match
+  bool hang_reported = false;  // silent past its hang_timeout, said once
+  bool heard = false;          // a heartbeat of this start was heard (said once)
 };
 
 class Launcher {
@@ -101,6 +105,10 @@ class Launcher {
   int run() {
     const auto start = Clock::now();
     bool failed = false;
+    if (std::any_of(processes_.begin(), processes_.end(),
+                    [](const Managed& p) { return p.spec->hang_timeout_s > 0; })) {
+      heartbeats_.emplace(participant());
+    }
     for (auto& process : processes_) {
       if (stop_signal != 0 || !wait_until_ready(process) || !spawn(process)) {
         failed = stop_signal == 0;
@@ -150,11 +158,9 @@ class Launcher {
     return entries;
   }
 
-  bool wait_until_ready(const Managed& process) {
-    const auto& topics = process.spec->wait_for_topics;
-    if (topics.empty()) {
-      return true;
-    }
+  // The launcher's own participant (made when first needed): waits for topics,
+  // hears heartbeats; the deploy's domain, QoS, network and security.
+  dds::Participant& participant() {
     if (!participant_) {
       dds::ParticipantOptions participant_options;
       participant_options.name = "wbi launch";
@@ -167,6 +173,15 @@ class Launcher {
       participant_options.security = deploy_.security;
       participant_.emplace(participant_options);
     }
+    return *participant_;
+  }
+
+  bool wait_until_ready(const Managed& process) {
+    const auto& topics = process.spec->wait_for_topics;
+    if (topics.empty()) {
+      return true;
+    }
+    participant();
     const auto deadline = Clock::now() + seconds(process.spec->wait_timeout_s);
     for (const auto& topic : topics) {
       say(process.spec->name + ": waiting for " + topic);
@@ -244,6 +259,11 @@ class Launcher {
     process.output_fd = fds[0];
     process.exit_code.reset();
     process.restart_at.reset();
+    process.hang_reported = false;
+    process.heard = false;
+    if (heartbeats_) {
+      heartbeats_->forget(process.spec->components);  // the new ones are not late yet
+    }
     say(process.spec->name + ": started (pid " + std::to_string(process.pid) + ")");
     return true;
   }
@@ -350,11 +370,57 @@ class Launcher {
     return stop;
   }
 
+  // A process whose components' heartbeats stopped for its hang_timeout
+  // (stopped, or hung without dying) is said once and handled like a failure:
+  // killed (SIGKILL: it may not be able to handle SIGTERM) so that reap()
+  // respawns it, else, when required, the launch stops. Returns true when the
+  // launch must stop.
+  bool check_hangs(bool& failed) {
+    if (!heartbeats_) {
+      return false;
+    }
+    for (auto& process : processes_) {
+      const double timeout_s = process.spec->hang_timeout_s;
+      if (timeout_s <= 0 || process.pid <= 0) {
+        continue;
+      }
+      const auto heard = heartbeats_->newest(process.spec->components);
+      if (heard && !process.heard) {
+        process.heard = true;  // watched from now on (a start may take any time)
+        say(process.spec->name + ": heartbeat heard; hung after " + std::to_string(timeout_s) +
+            " s without one");
+      }
+      if (!heard || Clock::now() - *heard < seconds(timeout_s)) {
+        process.hang_reported = false;
+        continue;
+      }
+      if (process.hang_reported) {
+        continue;
+      }
+      process.hang_reported = true;
+      const double silent_s = std::chrono::duration<double>(Clock::now() - *heard).count();
+      say(process.spec->name + ": no status heartbeat from its components for " +
+          std::to_string(silent_s) + " s (hang_timeout " + std::to_string(timeout_s) +
+          " s): hung or stopped");
+      const bool will_respawn =
+          process.spec->respawn.enabled && process.restarts < process.spec->respawn.max_retries;
+      if (will_respawn) {
+        say(process.spec->name + ": killed (SIGKILL) to be respawned");
+        kill(-process.pid, SIGKILL);  // reap() sees the exit and respawns it
+      } else if (process.spec->required) {
+        say(process.spec->name + " is required: stopping the launch");
+        failed = true;
+        return true;
+      }
+    }
+    return false;
+  }
+
   bool supervise(Clock::time_point start) {
     bool failed = false;
     while (stop_signal == 0) {
       pump_output(std::chrono::milliseconds(50));
-      if (reap(failed)) {
+      if (reap(failed) || check_hangs(failed)) {
         return failed;
       }
       for (auto& process : processes_) {
@@ -390,6 +456,7 @@ class Launcher {
       if (it->pid > 0) {
         it->stopped_by_us = true;
         kill(-it->pid, SIGTERM);
+        kill(-it->pid, SIGCONT);  // a stopped process handles SIGTERM only once resumed
       }
     }
     const auto deadline = Clock::now() + seconds(options_.stop_grace_s);
@@ -458,6 +525,7 @@ class Launcher {
   std::ostream& out_;
   std::vector<Managed> processes_;
   std::optional<dds::Participant> participant_;
+  std::optional<Heartbeats> heartbeats_;  // when a process has a hang_timeout
 };
 
 }  // namespace

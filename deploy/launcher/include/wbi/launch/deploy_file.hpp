@@ -14,6 +14,7 @@
 //       respawn: {enabled: false, delay: 1.0, max_retries: 3}
 //       wait_for: {topics: [wbi/arm/sensors], timeout: 10}   # start once these exist
 //       shutdown_on_exit: false            # true: when it exits, the launch stops
+//       hang_timeout: 3.0                  # components: only; s without a status heartbeat
 #pragma once
 
 #include <filesystem>
@@ -41,7 +42,12 @@ struct ProcessSpec {
   RespawnPolicy respawn;
   std::vector<std::string> wait_for_topics;  // start only once these topics exist on the domain
   double wait_timeout_s = 10.0;
-  bool shutdown_on_exit = false;  // its exit (any code) stops the whole launch
+  bool shutdown_on_exit = false;        // its exit (any code) stops the whole launch
+  std::vector<std::string> components;  // instance names, when hosts_components
+  // > 0: the process is hung when none of its components' status heartbeats
+  // came for this long (after the first); handled as a failure (respawn, or
+  // required). 0: not watched.
+  double hang_timeout_s = 0.0;
 };
 
 // The launch repeats, as its last line, the last line of `process` that
