@@ -1,6 +1,7 @@
 #include "wbi/dds/participant.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -8,6 +9,8 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+
+#include <unistd.h>
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
@@ -23,6 +26,19 @@
 namespace wbi::dds {
 
 namespace fdds = eprosima::fastdds::dds;
+
+namespace {
+// 24 lower-case hex digits.
+std::string prefix_text(const eprosima::fastrtps::rtps::GuidPrefix_t& prefix) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string text;
+  for (const auto byte : prefix.value) {
+    text += kDigits[byte >> 4];
+    text += kDigits[byte & 0xf];
+  }
+  return text;
+}
+}  // namespace
 
 int domain_id_from_environment() {
   const char* text = std::getenv("WBI_DOMAIN_ID");
@@ -78,9 +94,34 @@ void load_qos_profiles(const std::string& requested_file) {
   loaded.insert(key);
 }
 
-fdds::DomainParticipantQos participant_qos(const ParticipantOptions& options) {
+// Who this participant is, for others' discovery (ParticipantInfo): a robot
+// refuses to start when its name is taken, and names the other by host and pid.
+constexpr const char* kHostProperty = "wbi.host";
+constexpr const char* kPidProperty = "wbi.pid";
+constexpr const char* kStartProperty = "wbi.start_ns";
+
+ParticipantInfo own_info(const std::string& name) {
+  ParticipantInfo info;
+  info.name = name;
+  char host[256] = {};
+  if (gethostname(host, sizeof host - 1) == 0) {
+    info.host = host;
+  }
+  info.pid = static_cast<long>(getpid());
+  info.start_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                      std::chrono::system_clock::now().time_since_epoch())
+                      .count();
+  return info;
+}
+
+fdds::DomainParticipantQos participant_qos(const ParticipantOptions& options,
+                                           const ParticipantInfo& info) {
   fdds::DomainParticipantQos qos = fdds::PARTICIPANT_QOS_DEFAULT;
   qos.name(options.name);
+  auto& properties = qos.properties().properties();
+  properties.emplace_back(kHostProperty, info.host, true);  // propagated: sent in discovery
+  properties.emplace_back(kPidProperty, std::to_string(info.pid), true);
+  properties.emplace_back(kStartProperty, std::to_string(info.start_ns), true);
   // A participant that starts announces itself at once, but learns of the
   // participants already running only from their periodic announcements: with
   // Fast DDS's default 3 s period a new client often waited ~3 s to connect to
@@ -104,7 +145,7 @@ fdds::DomainParticipantQos participant_qos(const ParticipantOptions& options) {
 namespace detail {
 
 ParticipantImpl::ParticipantImpl(const ParticipantOptions& options)
-    : domain_id(options.domain_id), name(options.name) {
+    : domain_id(options.domain_id), name(options.name), self(own_info(options.name)) {
   if (domain_id < 0 || domain_id > 232) {
     throw std::invalid_argument("DDS domain id must be in [0, 232], got " +
                                 std::to_string(domain_id));
@@ -112,11 +153,12 @@ ParticipantImpl::ParticipantImpl(const ParticipantOptions& options)
   load_qos_profiles(options.qos_file);
   auto* factory = fdds::DomainParticipantFactory::get_instance();
   fdds::StatusMask mask = fdds::StatusMask::none();  // discovery callbacks only
-  participant_ = factory->create_participant(domain_id, participant_qos(options), this, mask);
+  participant_ = factory->create_participant(domain_id, participant_qos(options, self), this, mask);
   if (participant_ == nullptr) {
     throw std::runtime_error("cannot create a DDS participant on domain " +
                              std::to_string(domain_id));
   }
+  self.guid_prefix = prefix_text(participant_->guid().guidPrefix);
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
   if (publisher_ == nullptr || subscriber_ == nullptr) {
@@ -197,6 +239,54 @@ std::string guid_text(const eprosima::fastrtps::rtps::GUID_t& guid) {
 }
 }  // namespace
 
+void ParticipantImpl::on_participant_discovery(
+    fdds::DomainParticipant* /*participant*/,
+    eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& discovered) {
+  using Status = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo::DISCOVERY_STATUS;
+  const std::string prefix = prefix_text(discovered.info.m_guid.guidPrefix);
+  std::lock_guard lock(discovery_mutex_);
+  if (discovered.status == Status::REMOVED_PARTICIPANT ||
+      discovered.status == Status::DROPPED_PARTICIPANT) {
+    remote_participants_.erase(prefix);
+    return;
+  }
+  ParticipantInfo remote;
+  remote.guid_prefix = prefix;
+  remote.name = discovered.info.m_participantName.to_string();
+  for (const auto& property : discovered.info.m_properties) {
+    const std::string key = property.first();
+    const std::string value = property.second();
+    if (key == kHostProperty) {
+      remote.host = value;
+    } else if (key == kPidProperty) {
+      remote.pid = std::strtol(value.c_str(), nullptr, 10);
+    } else if (key == kStartProperty) {
+      remote.start_ns = std::strtoll(value.c_str(), nullptr, 10);
+    }
+  }
+  remote_participants_[prefix] = std::move(remote);
+}
+
+std::vector<ParticipantInfo> ParticipantImpl::publishers_of(const std::string& topic) const {
+  std::lock_guard lock(discovery_mutex_);
+  std::vector<ParticipantInfo> publishers;
+  for (const auto& [guid, endpoint] : remote_endpoints_) {
+    if (!endpoint.writer || endpoint.topic != topic ||
+        std::any_of(publishers.begin(), publishers.end(),
+                    [&](const auto& p) { return p.guid_prefix == endpoint.participant; })) {
+      continue;
+    }
+    const auto known = remote_participants_.find(endpoint.participant);
+    ParticipantInfo publisher;
+    if (known != remote_participants_.end()) {
+      publisher = known->second;
+    }
+    publisher.guid_prefix = endpoint.participant;
+    publishers.push_back(std::move(publisher));
+  }
+  return publishers;
+}
+
 void ParticipantImpl::on_publisher_discovery(fdds::DomainParticipant* /*participant*/,
                                              eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) {
   using Status = eprosima::fastrtps::rtps::WriterDiscoveryInfo::DISCOVERY_STATUS;
@@ -207,9 +297,12 @@ void ParticipantImpl::on_publisher_discovery(fdds::DomainParticipant* /*particip
       remote_endpoints_.erase(key);
     } else {
       const auto& qos = info.info.m_qos;
-      remote_endpoints_[key] = {info.info.topicName().to_string(), info.info.typeName().to_string(),
-                                true, qos.m_reliability.kind == fdds::RELIABLE_RELIABILITY_QOS,
-                                qos.m_durability.kind == fdds::TRANSIENT_LOCAL_DURABILITY_QOS};
+      remote_endpoints_[key] = {info.info.topicName().to_string(),
+                                info.info.typeName().to_string(),
+                                true,
+                                qos.m_reliability.kind == fdds::RELIABLE_RELIABILITY_QOS,
+                                qos.m_durability.kind == fdds::TRANSIENT_LOCAL_DURABILITY_QOS,
+                                prefix_text(info.info.guid().guidPrefix)};
     }
   }
   discovery_changed_.notify_all();
@@ -225,8 +318,12 @@ void ParticipantImpl::on_subscriber_discovery(
     if (info.status == Status::REMOVED_READER) {
       remote_endpoints_.erase(key);
     } else {
-      remote_endpoints_[key] = {info.info.topicName().to_string(), info.info.typeName().to_string(),
-                                false, false, false};
+      remote_endpoints_[key] = {info.info.topicName().to_string(),
+                                info.info.typeName().to_string(),
+                                false,
+                                false,
+                                false,
+                                prefix_text(info.info.guid().guidPrefix)};
     }
   }
   discovery_changed_.notify_all();
@@ -287,6 +384,12 @@ Participant::Participant(const std::string& name)
       }()) {}
 
 Participant::~Participant() = default;
+
+const ParticipantInfo& Participant::info() const { return impl_->self; }
+
+std::vector<ParticipantInfo> Participant::publishers_of(const std::string& topic) const {
+  return impl_->publishers_of(topic);
+}
 
 int Participant::domain_id() const { return impl_->domain_id; }
 const std::string& Participant::name() const { return impl_->name; }

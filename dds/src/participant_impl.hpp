@@ -41,10 +41,15 @@ class ParticipantImpl : public fdds::DomainParticipantListener {
   std::optional<TopicInfo> wait_for_topic(const std::string& topic,
                                           std::chrono::nanoseconds timeout) const;
 
+  std::vector<ParticipantInfo> publishers_of(const std::string& topic) const;
+
   int domain_id;
   std::string name;
+  ParticipantInfo self;  // announced by participant_qos()
 
  private:
+  void on_participant_discovery(fdds::DomainParticipant* participant,
+                                eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override;
   void on_publisher_discovery(fdds::DomainParticipant* participant,
                               eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override;
   void on_subscriber_discovery(fdds::DomainParticipant* participant,
@@ -63,6 +68,7 @@ class ParticipantImpl : public fdds::DomainParticipantListener {
     bool writer = false;
     bool reliable = false;
     bool transient_local = false;
+    std::string participant;  // its participant's GUID prefix (ParticipantInfo::guid_prefix)
   };
 
   fdds::DomainParticipant* participant_ = nullptr;
@@ -73,7 +79,8 @@ class ParticipantImpl : public fdds::DomainParticipantListener {
 
   mutable std::mutex discovery_mutex_;
   mutable std::condition_variable discovery_changed_;
-  std::map<std::string, RemoteEndpoint> remote_endpoints_;  // by GUID
+  std::map<std::string, RemoteEndpoint> remote_endpoints_;      // by GUID
+  std::map<std::string, ParticipantInfo> remote_participants_;  // by GUID prefix
 };
 
 }  // namespace wbi::dds::detail

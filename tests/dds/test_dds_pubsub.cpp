@@ -10,6 +10,8 @@
 #include <string>
 #include <thread>
 
+#include <unistd.h>
+
 #include <wbi/dds/publisher.hpp>
 #include <wbi/dds/subscriber.hpp>
 #include <wbi/dds/topics.hpp>
@@ -169,6 +171,34 @@ TEST(DdsPubSub, BadDomainIdIsRefused) {
   setenv("WBI_DOMAIN_ID", "seven", 1);
   EXPECT_THROW(wbi::dds::domain_id_from_environment(), std::invalid_argument);
   setenv("WBI_DOMAIN_ID", restore.c_str(), 1);
+}
+
+}  // namespace
+
+namespace {
+
+// Discovery names a topic's publishers by participant: name, host, process id
+// (what a robot that finds its name taken prints).
+TEST(DdsDiscovery, PublishersAreNamedByParticipantHostAndProcess) {
+  Participant a("observer");
+  Participant b("publisher_b");
+  Publisher<wbi::msg::RobotDescription> writer(b, topics::description("named"), qos::kLatched);
+  std::vector<wbi::dds::ParticipantInfo> publishers;
+  const auto deadline = std::chrono::steady_clock::now() + 10s;
+  while ((publishers.empty() || publishers.front().name.empty()) &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(20ms);  // polling discovery: no event to wait on here
+    publishers = a.publishers_of(topics::description("named"));
+  }
+  ASSERT_EQ(publishers.size(), 1u);
+  EXPECT_EQ(publishers.front().name, "publisher_b");
+  EXPECT_EQ(publishers.front().guid_prefix, b.info().guid_prefix);
+  EXPECT_EQ(publishers.front().pid, static_cast<long>(getpid()));
+  EXPECT_EQ(publishers.front().host, a.info().host);
+  EXPECT_EQ(publishers.front().start_ns, b.info().start_ns);
+  EXPECT_FALSE(a.info().host.empty());
+  EXPECT_NE(a.info().guid_prefix, b.info().guid_prefix);
+  EXPECT_TRUE(a.publishers_of(topics::description("nobody")).empty());
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "actuator_side.hpp"
+#include "robot_name.hpp"
 #include "sensor_side.hpp"
 #include "simulation_side.hpp"
 #include "step_clock.hpp"
@@ -108,15 +109,20 @@ class RobotDriver final : public runtime::Component {
       }
     }
 
+    const double name_check_s = parameters.get<double>("name_check_s", 0.5);
+    auto& participant = *context.participant;
+    std::optional<RobotNameClaim> name;
+    if (sides.sensors) {  // the side that publishes the robot takes its name
+      name.emplace(participant, robot_, name_check_s);
+    }
     make_backend(parameters, context);
     backend_->configure();
     const auto& description = backend_->description();
-    auto& participant = *context.participant;
     if (sides.sensors) {
       sensors_ = std::make_unique<SensorSide>(participant, robot_, description,
                                               urdf.empty() ? description.urdf : urdf,
                                               floating_base.value_or(description.floating_base));
-    }
+    }  // its description writer holds the name from here on
     ActuatorSide::CommandObserver observer;
     if (simulation_) {
       make_simulation_parts(participant, simulation);

@@ -40,6 +40,10 @@ extern "C" void on_stop_signal(int signal_number) {
   [[maybe_unused]] const auto ignored = write(wake_pipe[1], &byte, 1);
 }
 
+// Longest wait for a components: process to say it runs (configure may load
+// large models) before the next process starts anyway.
+constexpr double kStartTimeoutS = 60.0;
+
 Clock::duration seconds(double s) {
   return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
 }
@@ -89,6 +93,7 @@ struct Managed {
   std::string summary_line;    // last line containing the summary match
   bool hang_reported = false;  // silent past its hang_timeout, said once
   bool heard = false;          // a heartbeat of this start was heard (said once)
+  bool running = false;        // a components: process printed "wbi_host: running"
 };
 
 class Launcher {
@@ -110,7 +115,8 @@ class Launcher {
       heartbeats_.emplace(participant());
     }
     for (auto& process : processes_) {
-      if (stop_signal != 0 || !wait_until_ready(process) || !spawn(process)) {
+      if (stop_signal != 0 || !wait_until_ready(process) || !spawn(process) ||
+          !wait_until_running(process)) {
         failed = stop_signal == 0;
         break;
       }
@@ -200,6 +206,34 @@ class Launcher {
     return true;
   }
 
+  // A components: process is started once wbi_host says its components run
+  // (configured and active): the next process starts only then, so that its
+  // wait_for cannot be met by another deployment's topics while this one is
+  // still starting (or refusing to: a robot whose name is taken). Returns
+  // false when it ended first and that fails the launch.
+  bool wait_until_running(Managed& process) {
+    if (!process.spec->hosts_components) {
+      return true;
+    }
+    const auto deadline = Clock::now() + seconds(kStartTimeoutS);
+    while (!process.running && stop_signal == 0) {
+      pump_output(std::chrono::milliseconds(50));
+      bool failed = false;
+      if (reap(failed) && failed) {
+        return false;
+      }
+      if (process.pid <= 0) {
+        return true;  // ended, not fatal (reap said so; respawn may follow)
+      }
+      if (Clock::now() >= deadline) {
+        say(process.spec->name + ": not running after " + std::to_string(kStartTimeoutS) +
+            " s: going on with the next process");
+        return true;
+      }
+    }
+    return stop_signal == 0;
+  }
+
   bool spawn(Managed& process) {
     int fds[2];
     if (pipe2(fds, O_CLOEXEC) != 0) {
@@ -261,6 +295,7 @@ class Launcher {
     process.restart_at.reset();
     process.hang_reported = false;
     process.heard = false;
+    process.running = false;
     if (heartbeats_) {
       heartbeats_->forget(process.spec->components);  // the new ones are not late yet
     }
@@ -327,6 +362,9 @@ class Launcher {
 
   void emit(Managed& process, const std::string& line) {
     out_ << "[" << process.spec->name << "] " << line << "\n";
+    if (process.spec->hosts_components && line.rfind("wbi_host: running ", 0) == 0) {
+      process.running = true;
+    }
     if (deploy_.summary && deploy_.summary->process == process.spec->name &&
         line.find(deploy_.summary->match) != std::string::npos) {
       process.summary_line = line;

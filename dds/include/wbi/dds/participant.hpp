@@ -67,6 +67,17 @@ struct TopicInfo {
   bool writers_transient_local = true;  // every known writer keeps history for late joiners
 };
 
+// A participant as discovery announces it. wbi's participants announce their
+// host name, process id and creation time (properties wbi.host, wbi.pid,
+// wbi.start_ns); another vendor's or tool's participants leave them empty/0.
+struct ParticipantInfo {
+  std::string guid_prefix;  // 24 hex digits: the participant's part of every GUID
+  std::string name;
+  std::string host;
+  long pid = 0;
+  std::int64_t start_ns = 0;  // system clock at creation
+};
+
 class Participant {
  public:
   explicit Participant(const ParticipantOptions& options = {});
@@ -87,6 +98,13 @@ class Participant {
   // Waits until a remote writer or reader of `topic` is known.
   std::optional<TopicInfo> wait_for_topic(const std::string& topic,
                                           std::chrono::nanoseconds timeout) const;
+
+  // This participant, as others see it.
+  const ParticipantInfo& info() const;
+  // The remote participants that have a writer of `topic` (each once), as
+  // discovery knows them now; a killed process's stay until their lease
+  // (5 s) ends.
+  std::vector<ParticipantInfo> publishers_of(const std::string& topic) const;
 
   detail::ParticipantImpl& impl() { return *impl_; }
 

@@ -35,6 +35,10 @@
 //   reference_speed     default POSITION-mode speed [rad/s] (default 0.5)
 //   hold_at_start       true (default): joints hold their position (POSITION mode)
 //                       until commanded; false: they start IDLE (unpowered)
+//   name_check_s        how long discovery runs before the robot takes its name
+//                       (default 0.5 s; 0: no check): a robot of the same name
+//                       already on the domain makes configure fail, naming it
+//                       (src/robot_name.hpp)
 // Real robots only:
 //   sides               [sensors, actuators] (default): which sides this instance runs.
 //                       sensors: publishes the description (latched) and a sensor sample
