@@ -95,6 +95,7 @@ TEST(RobotDriver, CommandsMoveTheJointsAndBadOnesAreCounted) {
                                                           topics::commands("toy_a"), qos::kCommand);
   ASSERT_TRUE(commands.wait_for_subscribers(1, 10s));
   wbi::msg::ActuatorCommand command;
+  command.header().robot("toy_a");
   command.controller("test");
   command.joints({0, 1});
   command.modes({wbi::msg::POSITION, wbi::msg::POSITION});
@@ -122,6 +123,7 @@ TEST(RobotDriver, CommandsMoveTheJointsAndBadOnesAreCounted) {
       !(status.wait_newer(got, got.count, 1s) && counter(got.sample, "rejected_commands") == 1)) {
   }
   EXPECT_EQ(counter(got.sample, "rejected_commands"), 1u);
+  EXPECT_EQ(counter(got.sample, "rejected_from/test"), 1u);  // per sender
   EXPECT_EQ(got.sample.last_error(),
             "command from 'test' rejected: joint index 7 out of range (the robot has 2 joints)");
 
@@ -134,6 +136,7 @@ TEST(RobotDriver, CommandsMoveTheJointsAndBadOnesAreCounted) {
       driver.participant, topics::control_parameters("toy_a"), qos::kCommand);
   ASSERT_TRUE(parameters.wait_for_subscribers(1, 10s));
   wbi::msg::ControlParameters gains;
+  gains.header().robot("toy_a");
   gains.controller("test");
   gains.joints({0, 9});
   gains.kp({1.0, 1.0});
@@ -145,6 +148,7 @@ TEST(RobotDriver, CommandsMoveTheJointsAndBadOnesAreCounted) {
   }
   EXPECT_EQ(counter(got.sample, "limit_clamps"), 1u);
   EXPECT_EQ(counter(got.sample, "rejected_parameters"), 1u);
+  EXPECT_EQ(counter(got.sample, "rejected_from/test"), 2u);
   EXPECT_EQ(got.sample.last_error(),
             "control parameters from 'test' rejected: joint index 9 out of range (the robot has "
             "2 joints)");

@@ -155,7 +155,8 @@ CommandResult JointController::submit(const JointCommandBatch& batch, Time now) 
     const std::string& name = description_.joint_names[i];
     if (!batch.values.empty()) {
       if (!std::isfinite(batch.values[b])) {
-        return reject("joint '" + name + "': value is not finite");
+        return reject("joint '" + name + "': value " + std::to_string(batch.values[b]) +
+                      " is not finite");
       }
       // A value for a joint left IDLE is a mistake; a value that comes with an
       // explicit switch to IDLE (the wire carries one per joint) is ignored.
@@ -165,7 +166,8 @@ CommandResult JointController::submit(const JointCommandBatch& batch, Time now) 
       clamped += outside_limits(mode, batch.values[b], i) ? 1 : 0;
     }
     if (!batch.reference_speeds.empty() && !(batch.reference_speeds[b] > 0.0)) {
-      return reject("joint '" + name + "': reference speed must be > 0");
+      return reject("joint '" + name + "': reference speed " +
+                    std::to_string(batch.reference_speeds[b]) + " must be > 0");
     }
   }
   // accepted: stage everything
