@@ -200,6 +200,36 @@ TEST(CommandChecks, EveryClassOfBadParametersIsRejectedNamedAndCounted) {
   EXPECT_EQ(s.side.gains(1).kp, 20.0);
 }
 
+// Valid but extreme: a denormal reference speed (> 0), gains of 1e300, a
+// torque of 1e300 and a target far beyond the limits. Accepted; the outputs
+// stay finite and within the effort limit.
+TEST(CommandChecks, ExtremeValidValuesKeepTheOutputsFinite) {
+  Side s;
+  auto p = good_parameters();
+  p.kp({1e300, 1e300});
+  p.kd({1e300, 0.0});
+  p.ki({1e300, 0.0});
+  p.reference_speed({4.9e-324, 1e300});
+  s.side.handle(p);
+  EXPECT_EQ(s.counter("accepted_parameters"), 1u) << s.report.last_error();
+  auto c = good_command();
+  c.modes({wbi::msg::POSITION, wbi::msg::TORQUE});
+  c.references({1e300, -1e300});
+  s.readings.velocity << 1.0, -1.0;  // moving: every PID term is large
+  for (int k = 0; k < 50; ++k) {
+    s.side.handle(c);
+    c.references()[0] = -c.references()[0];  // a new target every tick
+    s.update();
+    for (int j = 0; j < 2; ++j) {
+      ASSERT_TRUE(std::isfinite(s.out.value[j])) << "tick " << k << " joint " << j;
+      ASSERT_LE(std::abs(s.out.value[j]), 50.0);
+      ASSERT_TRUE(std::isfinite(s.side.status().position_reference[j]));
+    }
+  }
+  EXPECT_EQ(s.counter("accepted_commands"), 50u);
+  EXPECT_EQ(s.counter("limit_clamps"), 100u);
+}
+
 TEST(RejectionLog, KindMasksNumbersAndNames) {
   using wbi::robot::RejectionLog;
   EXPECT_EQ(RejectionLog::kind_of("joint index 41 out of range (the robot has 7 joints)"),

@@ -221,7 +221,11 @@ void JointController::start_trajectory(Joint& j, int i, double t) {
       std::min(j.speed > 0.0 ? j.speed : config_.reference_speed, description_.velocity_limit[u]);
   const double q = j.q_r, dq = j.dq_r, a0 = j.ddq_r;
   const double delta = j.target - q;
-  const double T = std::max(config_.min_trajectory_time, 1.875 * std::abs(delta) / v_max);
+  // A speed so small that T overflows (a denormal from the wire is > 0) plans
+  // an "endless" move instead: the coefficients stay finite.
+  constexpr double kLongest = 1e6;  // [s]
+  double T = 1.875 * std::abs(delta) / v_max;
+  T = T <= kLongest ? std::max(config_.min_trajectory_time, T) : kLongest;
   const double T2 = T * T, T3 = T2 * T;
   j.t0 = t;
   j.duration = T;
@@ -242,7 +246,10 @@ double JointController::pid(Joint& j, int i, double q, double dq, double dt) {
     const double bound = (g.max_integral > 0.0 ? g.max_integral : effort) / std::abs(g.ki);
     j.integral = std::clamp(j.integral + e * dt, -bound, bound);
   }
-  const double tau = g.kp * e + g.kd * (j.dq_r - dq) + g.ki * j.integral;
+  double tau = g.kp * e + g.kd * (j.dq_r - dq) + g.ki * j.integral;
+  if (std::isnan(tau)) {
+    tau = 0.0;  // huge gains: +inf from one term and −inf from another
+  }
   return std::clamp(tau, -effort, effort);
 }
 

@@ -23,6 +23,8 @@ ActuatorSide::ActuatorSide(dds::Participant& participant, const std::string& rob
       reference_speed_(description.joint_names.size(), config.reference_speed),
       was_tripped_(description.joint_names.size(), 0),
       report_(report),
+      accepted_commands_(report.counter("accepted_commands")),
+      accepted_parameters_(report.counter("accepted_parameters")),
       rejected_commands_(report.counter("rejected_commands")),
       rejected_parameters_(report.counter("rejected_parameters")),
       watchdog_trips_(report.counter("watchdog_trips")),
@@ -67,6 +69,7 @@ void ActuatorSide::handle(const wbi::msg::ActuatorCommand& command) {
     if (error.empty()) {
       auto result = controller_.submit(batch_, actuation::Time(now_ns_.load()));
       if (result.ok) {
+        accepted_commands_.add();
         limit_clamps_.add(static_cast<std::uint64_t>(result.clamped));
       } else {
         error = std::move(result.error);
@@ -100,6 +103,7 @@ void ActuatorSide::handle(const wbi::msg::ControlParameters& message) {
         controller_.set_gains(joint_names_[joint], gains);
         reference_speed_[joint] = value(message.reference_speed(), reference_speed_[joint]);
       }
+      accepted_parameters_.add();
     }
   }
   if (!error.empty()) {

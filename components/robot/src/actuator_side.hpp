@@ -2,6 +2,8 @@
 // control parameters, runs the joint-level controller (wbi::actuation::
 // JointController: modes, PID, limits, watchdog) at the backend rate, and
 // reports on the owner component's status (StatusReport):
+//   accepted_commands    commands applied (staged for the next tick)
+//   accepted_parameters  control parameters applied
 //   rejected_commands    commands refused (header.robot not this robot, mode
 //                        not in the enum, unknown joint index, sizes that
 //                        disagree, non-finite values…): nothing of them is applied
@@ -87,6 +89,8 @@ class ActuatorSide {
   std::mutex mutex_;  // guards controller_, batch_, reference_speed_ (DDS threads vs loop)
 
   runtime::StatusReport& report_;
+  runtime::StatusCounter& accepted_commands_;
+  runtime::StatusCounter& accepted_parameters_;
   runtime::StatusCounter& rejected_commands_;
   runtime::StatusCounter& rejected_parameters_;
   runtime::StatusCounter& watchdog_trips_;
