@@ -77,7 +77,7 @@ void ActuatorSide::handle(const wbi::msg::ActuatorCommand& command) {
     }
   }
   if (!error.empty()) {
-    reject("command", command.controller(), error);
+    reject(rejected_commands_, "command", command.controller(), error);
   }
   if (observer_) {
     observer_(command);
@@ -107,14 +107,14 @@ void ActuatorSide::handle(const wbi::msg::ControlParameters& message) {
     }
   }
   if (!error.empty()) {
-    reject("control parameters", message.controller(), error);
+    reject(rejected_parameters_, "control parameters", message.controller(), error);
   }
 }
 
-void ActuatorSide::reject(std::string_view what, const wbi::msg::Name& sender,
-                          const std::string& error) {
+void ActuatorSide::reject(runtime::StatusCounter& counter, std::string_view what,
+                          const wbi::msg::Name& sender, const std::string& error) {
   const std::string_view name(sender.c_str(), sender.size());
-  (what == "command" ? rejected_commands_ : rejected_parameters_).add();
+  counter.add();
   report_.set_error(std::string(what) + " from '" + RejectionLog::printable(name) +
                     "' rejected: " + error);
   rejections_.reject(what, name, error);

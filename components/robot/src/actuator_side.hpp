@@ -68,13 +68,14 @@ class ActuatorSide {
   void handle(const wbi::msg::ControlParameters& message);
 
   const actuation::JointControlStatus& status() const { return controller_.status(); }
-  // The gains in use (control parameters change them).
+  // The gains in use (control parameters change them); read where no message is handled.
   const actuation::PidGains& gains(int joint) const { return controller_.gains(joint); }
 
  private:
   void report_new_trips();
-  // Counts, reports and logs a refused message (after mutex_ is released).
-  void reject(std::string_view what, const wbi::msg::Name& sender, const std::string& error);
+  // Counts (in `counter`), reports and logs a refused message (after mutex_ is released).
+  void reject(runtime::StatusCounter& counter, std::string_view what, const wbi::msg::Name& sender,
+              const std::string& error);
 
   const std::string robot_;  // header.robot every message must carry
   const std::vector<std::string> joint_names_;
