@@ -99,6 +99,9 @@ std::vector<BadCommand> bad_commands() {
   add(
       "no robot", [](C& c) { c.header().robot(""); }, "header.robot '' is not this robot");
   add(
+      "robot name with control characters", [](C& c) { c.header().robot("a\nb\x1b[2J"); },
+      "header.robot 'a?b?[2J' is not this robot");
+  add(
       "mode outside the enum", [](C& c) { c.modes()[1] = static_cast<wbi::msg::ControlMode>(77); },
       "modes[1] = 77 is not a ControlMode");
   add(
@@ -240,6 +243,7 @@ TEST(RejectionLog, KindMasksNumbersAndNames) {
             "header.robot '…' is not this robot ('…')");
   EXPECT_EQ(RejectionLog::printable(std::string("a\nb\x1b", 4)), "a?b?");
   EXPECT_EQ(RejectionLog::printable(""), "(unnamed)");
+  EXPECT_EQ(RejectionLog::printable("r_knee ≥ 0"), "r_knee ≥ 0");  // UTF-8 stays
 }
 
 // One line per (sender, kind), whatever the rate; a summary per period with

@@ -114,10 +114,11 @@ void ActuatorSide::handle(const wbi::msg::ControlParameters& message) {
 void ActuatorSide::reject(runtime::StatusCounter& counter, std::string_view what,
                           const wbi::msg::Name& sender, const std::string& error) {
   const std::string_view name(sender.c_str(), sender.size());
+  const std::string text = RejectionLog::without_control_characters(error);  // may quote the wire
   counter.add();
   report_.set_error(std::string(what) + " from '" + RejectionLog::printable(name) +
-                    "' rejected: " + error);
-  rejections_.reject(what, name, error);
+                    "' rejected: " + text);
+  rejections_.reject(what, name, text);
 }
 
 void ActuatorSide::update(actuation::Time now, actuation::Duration period,

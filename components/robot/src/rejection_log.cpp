@@ -1,7 +1,6 @@
 #include "rejection_log.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <ostream>
 
@@ -63,17 +62,19 @@ std::string RejectionLog::kind_of(std::string_view error) {
   return kind;
 }
 
-std::string RejectionLog::printable(std::string_view name) {
-  if (name.empty()) {
-    return "(unnamed)";
-  }
-  std::string out(name);
+std::string RejectionLog::without_control_characters(std::string_view text) {
+  std::string out(text);
   for (char& c : out) {
-    if (!std::isprint(static_cast<unsigned char>(c))) {
-      c = '?';
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      c = '?';  // a line stays one line, and no terminal escape goes out
     }
   }
   return out;
+}
+
+std::string RejectionLog::printable(std::string_view name) {
+  return name.empty() ? "(unnamed)" : without_control_characters(name);
 }
 
 RejectionLog::Sender& RejectionLog::sender_entry(const std::string& name) {
@@ -123,7 +124,7 @@ void RejectionLog::reject(std::string_view what, std::string_view sender, std::s
     key = "(other rejections)";
     kind = std::find_if(kinds_.begin(), kinds_.end(), [&](const Kind& k) { return k.key == key; });
     if (kind == kinds_.end()) {
-      kinds_.push_back({"(any)", key, "", 0, 0});
+      kinds_.push_back({"(any)", key, 0, 0});
       kind = kinds_.end() - 1;
       log_ << "rejections: more than " << kMaxKinds
            << " kinds of rejection; further kinds are counted together\n";
@@ -131,12 +132,11 @@ void RejectionLog::reject(std::string_view what, std::string_view sender, std::s
     }
   }
   if (kind == kinds_.end()) {
-    std::string text = std::string(what) + " from '" + name + "' rejected: " + std::string(error);
-    log_ << text << " (repeats of this from '" << name << "' are counted: summary every "
-         << seconds(period_) << ")\n";
+    log_ << what << " from '" << name << "' rejected: " << error << " (repeats of this from '"
+         << name << "' are counted: summary every " << seconds(period_) << ")\n";
     log_.flush();
     ++lines_;
-    kinds_.push_back({name, key, std::move(text), 1, 1});  // logged: nothing to summarise
+    kinds_.push_back({name, key, 1, 1});  // logged: nothing to summarise
   } else {
     ++kind->count;
   }

@@ -13,7 +13,8 @@
 //      rejected from 'pd' in the last 10 s: 2000 × command: joint index # out of range … (2001 in
 //      all)
 //    At most kMaxKinds kinds are kept; rejections beyond them are one more
-//    kind, "(other rejections)".
+//    kind, "(other rejections)". Control characters in names and errors (text
+//    from the wire) are printed as '?'.
 //  - Status: a counter per sender on the owner's StatusReport,
 //    "rejected_from/<sender>" (commands and parameters), for the first
 //    kMaxSenders senders while the report has room; later senders share
@@ -48,7 +49,8 @@ class RejectionLog {
   RejectionLog& operator=(const RejectionLog&) = delete;
 
   // One refused message: `what` ("command", "control parameters"), the
-  // sender's name (the message's controller field) and the error text.
+  // sender's name (the message's controller field) and the error text
+  // (without control characters: ActuatorSide passes it so).
   void reject(std::string_view what, std::string_view sender, std::string_view error,
               Clock::time_point now = Clock::now());
 
@@ -60,14 +62,15 @@ class RejectionLog {
   // "joint index # out of range (the robot has # joints)": numbers → '#',
   // quoted text → '…'.
   static std::string kind_of(std::string_view error);
-  // The name as it can be printed: non-printable bytes → '?'; empty → "(unnamed)".
+  // Control characters (newline, escape…) → '?': text from the wire as one log line.
+  static std::string without_control_characters(std::string_view text);
+  // A sender's name as it is printed: without_control_characters; empty → "(unnamed)".
   static std::string printable(std::string_view name);
 
  private:
   struct Kind {
     std::string sender;  // printable
     std::string key;     // what + kind_of(error)
-    std::string text;    // the first such rejection, in words
     std::uint64_t count = 0;
     std::uint64_t summarised = 0;  // count at the last summary
   };
