@@ -314,6 +314,14 @@ TEST(RejectionLog, SendersAndKindsAreBounded) {
   EXPECT_EQ(report.counter("rejected_from/fuzz0").value(), 3u);
   EXPECT_EQ(report.counter("rejected_from/(other senders)").value(),
             300u - 3u * RejectionLog::kMaxSenders);
+  // the first kMaxSenders each, and the others together: three kinds each
+  EXPECT_EQ(rejections.lines(), 3 * (RejectionLog::kMaxSenders + 1));
+  // and whatever the kinds, the table is bounded
+  for (int kind = 0; kind < 200; ++kind) {
+    rejections.reject(
+        "command", "fuzz0",
+        "kind " + std::string(1 + kind / 26, 'a') + static_cast<char>('a' + kind % 26));
+  }
   EXPECT_LE(rejections.lines(), RejectionLog::kMaxKinds + 1);  // + "further kinds are counted"
 }
 

@@ -117,8 +117,10 @@ void RejectionLog::reject(std::string_view what, std::string_view sender, std::s
   if (s.counter != nullptr) {
     s.counter->add();
   }
+  // Kinds per sender entry: senders beyond kMaxSenders share theirs, so that
+  // a publisher changing its name at every message fills no table.
   auto kind = std::find_if(kinds_.begin(), kinds_.end(),
-                           [&](const Kind& k) { return k.sender == name && k.key == key; });
+                           [&](const Kind& k) { return k.sender == s.name && k.key == key; });
   if (kind == kinds_.end() && kinds_.size() >= kMaxKinds) {
     // full: one more kind for everything else
     key = "(other rejections)";
@@ -133,10 +135,10 @@ void RejectionLog::reject(std::string_view what, std::string_view sender, std::s
   }
   if (kind == kinds_.end()) {
     log_ << what << " from '" << name << "' rejected: " << error << " (repeats of this from '"
-         << name << "' are counted: summary every " << seconds(period_) << ")\n";
+         << s.name << "' are counted: summary every " << seconds(period_) << ")\n";
     log_.flush();
     ++lines_;
-    kinds_.push_back({name, key, 1, 1});  // logged: nothing to summarise
+    kinds_.push_back({s.name, key, 1, 1});  // logged: nothing to summarise
   } else {
     ++kind->count;
   }

@@ -12,7 +12,8 @@
 //    that recurred gives its count over the period and in all:
 //      rejected from 'pd' in the last 10 s: 2000 × command: joint index # out of range … (2001 in
 //      all)
-//    At most kMaxKinds kinds are kept; rejections beyond them are one more
+//    Senders beyond the first kMaxSenders share their kinds ("(other
+//    senders)"). At most kMaxKinds kinds are kept; rejections beyond them are one more
 //    kind, "(other rejections)". Control characters in names and errors (text
 //    from the wire) are printed as '?'.
 //  - Status: a counter per sender on the owner's StatusReport,
@@ -69,7 +70,7 @@ class RejectionLog {
 
  private:
   struct Kind {
-    std::string sender;  // printable
+    std::string sender;  // the sender entry's name: printable, or "(other senders)"
     std::string key;     // what + kind_of(error)
     std::uint64_t count = 0;
     std::uint64_t summarised = 0;  // count at the last summary
