@@ -10,7 +10,8 @@
 //                    cycle) leaves the trajectory in progress untouched. A new target
 //                    re-plans from the current reference: a quintic from its
 //                    (q_r, q̇_r, q̈_r) to (target, 0, 0) in
-//                    T = max(min_trajectory_time, 1.875 |target − q_r| / speed), so
+//                    T = max(min_trajectory_time, 1.875 |target − q_r| / speed) (at
+//                    most 10⁶ s: a denormal speed plans no overflow), so
 //                    position, velocity and acceleration stay continuous and a target
 //                    that moves a little every cycle is followed smoothly: a ramp at
 //                    speed v (< 0.89 × reference speed) is tracked at v with a lag of
@@ -29,7 +30,8 @@
 //   TORQUE           the value is the joint torque (streaming).
 //   PWM              the value is the motor duty cycle in [−1, 1] (streaming); the
 //                    backend's motor turns it into torque.
-// PID: τ = kp (q_r − q) + kd (q̇_r − q̇) + ki ∫(q_r − q) dt, |ki ∫| ≤ max_integral.
+// PID: τ = kp (q_r − q) + kd (q̇_r − q̇) + ki ∫(q_r − q) dt, |ki ∫| ≤ max_integral
+// (a NaN from ∞ − ∞ with huge gains counts as 0 before the effort clamp).
 // Limits: position references clamped to [lower, upper]; velocity references to
 // ±velocity_limit; torques to ±effort_limit. In TORQUE mode a guard adds
 // kp (limit − q) beyond a position limit and −kd (q̇ ∓ v_max) beyond the velocity limit.
