@@ -37,6 +37,7 @@ TEST(ActuatorSide, CommandsTicksAndTripsDoNotAllocate) {
   wbi::actuation::JointCommands out;
   out.resize(2);
   wbi::msg::ActuatorCommand command;
+  command.header().robot("toy_no_alloc");
   command.controller("test");
   command.joints({0, 1});
   command.modes({wbi::msg::VELOCITY, wbi::msg::VELOCITY});

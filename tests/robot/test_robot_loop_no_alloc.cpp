@@ -86,6 +86,7 @@ TEST(RobotLoop, ALockstepTickAllocatesNothingButInsideItsDdsWrites) {
   runner.activate();
 
   wbi::msg::ActuatorCommand command;
+  command.header().robot("toy_no_alloc");
   command.controller("test");
   command.joints({0});
   command.modes({wbi::msg::VELOCITY});  // streaming: the watchdog is checked every tick

@@ -81,6 +81,7 @@ TEST(SimRobotEngines, AThirdEngineRunsInLockstepByRegistrationAlone) {
   runner.activate();
 
   wbi::msg::ActuatorCommand command;
+  command.header().robot("toy_lockstep");
   command.controller("test");
   command.joints({0});
   command.modes({wbi::msg::TORQUE});

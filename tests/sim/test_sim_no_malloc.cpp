@@ -21,7 +21,8 @@ namespace {
 #error "this test must be built with EIGEN_RUNTIME_NO_MALLOC"
 #endif
 
-void run_without_allocation(RobotConfig c, ControlMode mode) {
+// `ramp`: the values move every tick (POSITION: a re-planned trajectory per tick).
+void run_without_allocation(RobotConfig c, ControlMode mode, bool ramp = false) {
   c.wbi.encoders.position_noise = 1e-4;
   c.imus[0].gyro_noise = 1e-3;
   c.pushes.push_back({"root_link", 0.01, 0.02, Eigen::Vector3d(5, 0, 0), Eigen::Vector3d::Zero()});
@@ -30,7 +31,7 @@ void run_without_allocation(RobotConfig c, ControlMode mode) {
   JointController& ctl = held.ctl;
   const auto& d = sim.description();
   const Eigen::VectorXd& q_j0 = held.q_j0;
-  const JointCommandBatch batch =
+  JointCommandBatch batch =
       all_joints(d.n_joints(), mode,
                  mode == ControlMode::kTorque ? Eigen::VectorXd::Zero(d.n_joints()) : q_j0);
   ctl.submit(batch, sim.stamp());
@@ -42,6 +43,11 @@ void run_without_allocation(RobotConfig c, ControlMode mode) {
     const auto t = sim.stamp();
     const Duration period(1000000);
     sim.read(t, period);
+    if (ramp) {
+      for (double& value : batch.values) {
+        value += 1e-4;
+      }
+    }
     ctl.submit(batch, t);
     ctl.update(t, period, sim.readings(), sim.commands());
     sim.write(t, period);
@@ -68,6 +74,7 @@ TEST(SimNoMalloc, HumanoidLoopDoesNotAllocate) {
   RobotConfig c = humanoid_config();
   c.wbi.contact.tangential = robot_config::ContactModel::Tangential::kRegularized;
   run_without_allocation(c, ControlMode::kPosition);
+  run_without_allocation(humanoid_config(), ControlMode::kPosition, true);
   run_without_allocation(humanoid_config(), ControlMode::kTorque);
 }
 

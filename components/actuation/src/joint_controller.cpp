@@ -155,7 +155,8 @@ CommandResult JointController::submit(const JointCommandBatch& batch, Time now) 
     const std::string& name = description_.joint_names[i];
     if (!batch.values.empty()) {
       if (!std::isfinite(batch.values[b])) {
-        return reject("joint '" + name + "': value is not finite");
+        return reject("joint '" + name + "': value " + std::to_string(batch.values[b]) +
+                      " is not finite");
       }
       // A value for a joint left IDLE is a mistake; a value that comes with an
       // explicit switch to IDLE (the wire carries one per joint) is ignored.
@@ -165,7 +166,8 @@ CommandResult JointController::submit(const JointCommandBatch& batch, Time now) 
       clamped += outside_limits(mode, batch.values[b], i) ? 1 : 0;
     }
     if (!batch.reference_speeds.empty() && !(batch.reference_speeds[b] > 0.0)) {
-      return reject("joint '" + name + "': reference speed must be > 0");
+      return reject("joint '" + name + "': reference speed " +
+                    std::to_string(batch.reference_speeds[b]) + " must be > 0");
     }
   }
   // accepted: stage everything
@@ -209,23 +211,30 @@ bool JointController::outside_limits(ControlMode mode, double value, std::size_t
   return false;
 }
 
-// Quintic from (q, q̇, q̈) to (target, 0, 0) in time T (minimum jerk when starting at rest).
-void JointController::start_trajectory(Joint& j, int i, double t, double q, double dq) {
+// Quintic from (q, q̇, q̈) to (target, 0, 0) in time T: minimum jerk when it
+// starts at rest; from a moving reference, position, velocity and acceleration
+// stay continuous. T = max(min_trajectory_time, 1.875 |Δ| / v) is the time in
+// which a rest-to-rest minimum-jerk move reaches the peak speed v (1.875 Δ/T at T/2).
+void JointController::start_trajectory(Joint& j, int i, double t) {
   const auto u = static_cast<std::size_t>(i);
   const double v_max =
       std::min(j.speed > 0.0 ? j.speed : config_.reference_speed, description_.velocity_limit[u]);
+  const double q = j.q_r, dq = j.dq_r, a0 = j.ddq_r;
   const double delta = j.target - q;
-  // rest-to-rest minimum jerk reaches its peak speed 1.875 Δ/T at T/2
-  const double T = std::max(config_.min_trajectory_time, 1.875 * std::abs(delta) / v_max);
-  const double a0 = 0.0;
+  // A speed so small that T overflows (a denormal from the wire is > 0) plans
+  // an "endless" move instead: the coefficients stay finite.
+  constexpr double kLongest = 1e6;  // [s]
+  double T = 1.875 * std::abs(delta) / v_max;
+  T = T <= kLongest ? std::max(config_.min_trajectory_time, T) : kLongest;
+  const double T2 = T * T, T3 = T2 * T;
   j.t0 = t;
   j.duration = T;
   j.c[0] = q;
   j.c[1] = dq;
   j.c[2] = 0.5 * a0;
-  j.c[3] = (20.0 * delta - 12.0 * dq * T - 3.0 * a0 * T * T) / (2.0 * T * T * T);
-  j.c[4] = (-30.0 * delta + 16.0 * dq * T + 3.0 * a0 * T * T) / (2.0 * T * T * T * T);
-  j.c[5] = (12.0 * delta - 6.0 * dq * T - a0 * T * T) / (2.0 * T * T * T * T * T);
+  j.c[3] = (20.0 * delta - 12.0 * dq * T - 3.0 * a0 * T2) / (2.0 * T3);
+  j.c[4] = (-30.0 * delta + 16.0 * dq * T + 3.0 * a0 * T2) / (2.0 * T3 * T);
+  j.c[5] = (12.0 * delta - 6.0 * dq * T - a0 * T2) / (2.0 * T3 * T2);
 }
 
 double JointController::pid(Joint& j, int i, double q, double dq, double dt) {
@@ -237,7 +246,10 @@ double JointController::pid(Joint& j, int i, double q, double dq, double dt) {
     const double bound = (g.max_integral > 0.0 ? g.max_integral : effort) / std::abs(g.ki);
     j.integral = std::clamp(j.integral + e * dt, -bound, bound);
   }
-  const double tau = g.kp * e + g.kd * (j.dq_r - dq) + g.ki * j.integral;
+  double tau = g.kp * e + g.kd * (j.dq_r - dq) + g.ki * j.integral;
+  if (std::isnan(tau)) {
+    tau = 0.0;  // huge gains: +inf from one term and −inf from another
+  }
   return std::clamp(tau, -effort, effort);
 }
 
@@ -264,20 +276,28 @@ void JointController::update(Time now, Duration period, const SensorReadings& in
       if (s.has_mode && (s.mode != j.mode || j.tripped)) {
         j.mode = s.mode;
         j.integral = 0.0;
-        j.q_r = q;  // bumpless: references start at the measured state
+        j.q_r = q;  // bumpless: references start at the measured state, at rest
         j.dq_r = 0.0;
+        j.ddq_r = 0.0;
         j.target =
             j.mode == ControlMode::kPosition || j.mode == ControlMode::kPositionDirect ? q : 0.0;
         j.start_trajectory = j.mode == ControlMode::kPosition;
       }
       if (s.has_value) {
-        j.target = s.value;
         if (j.mode == ControlMode::kPosition) {
-          j.start_trajectory = true;
+          // the same target again (a controller streaming it) leaves the
+          // trajectory in progress alone; a new one re-plans from the reference
+          const double target =
+              std::clamp(s.value, description_.position_lower[u], description_.position_upper[u]);
+          j.start_trajectory = j.start_trajectory || target != j.target;
+          j.target = target;
+        } else {
+          j.target = s.value;
         }
       }
-      if (s.speed > 0.0) {
+      if (s.speed > 0.0 && s.speed != j.speed) {
         j.speed = s.speed;
+        j.start_trajectory = j.start_trajectory || j.mode == ControlMode::kPosition;
       }
       j.tripped = false;
       j.last_command = s.time;
@@ -300,6 +320,7 @@ void JointController::update(Time now, Duration period, const SensorReadings& in
       ++status_.watchdog_trips;
       j.q_r = std::clamp(q, lower, upper);
       j.dq_r = 0.0;
+      j.ddq_r = 0.0;
       j.integral = 0.0;
     }
     OutputMode out_mode = OutputMode::kTorque;
@@ -322,17 +343,22 @@ void JointController::update(Time now, Duration period, const SensorReadings& in
         case ControlMode::kPosition: {
           j.target = std::clamp(j.target, lower, upper);
           if (j.start_trajectory) {
-            // from the current reference when moving, else from the measured state
-            start_trajectory(j, i, t, j.q_r, j.dq_r);
+            // from the reference's (q_r, q̇_r, q̈_r), which are those of the last tick
+            start_trajectory(j, i, t - dt);
             j.start_trajectory = false;
           }
           const double s = std::clamp(t - j.t0, 0.0, j.duration);
           const double* c = j.c;
-          j.q_r = c[0] + s * (c[1] + s * (c[2] + s * (c[3] + s * (c[4] + s * c[5]))));
-          j.dq_r = c[1] + s * (2 * c[2] + s * (3 * c[3] + s * (4 * c[4] + s * 5 * c[5])));
           if (t - j.t0 >= j.duration) {
             j.q_r = j.target;
             j.dq_r = 0.0;
+            j.ddq_r = 0.0;
+          } else {
+            j.q_r = c[0] + s * (c[1] + s * (c[2] + s * (c[3] + s * (c[4] + s * c[5]))));
+            j.dq_r = c[1] + s * (2 * c[2] + s * (3 * c[3] + s * (4 * c[4] + s * 5 * c[5])));
+            j.ddq_r = 2 * c[2] + s * (6 * c[3] + s * (12 * c[4] + s * 20 * c[5]));
+            // a re-planned move from speed may overshoot a target at a limit
+            j.q_r = std::clamp(j.q_r, lower, upper);
           }
           value = pid(j, i, q, dq, dt);
           break;

@@ -15,17 +15,21 @@ ActuatorSide::ActuatorSide(dds::Participant& participant, const std::string& rob
                            const actuation::BackendDescription& description,
                            const actuation::JointControllerConfig& config,
                            runtime::StatusReport& report, CommandObserver observer)
-    : joint_names_(description.joint_names),
+    : robot_(robot),
+      joint_names_(description.joint_names),
       watchdog_timeout_s_(config.watchdog_timeout),
       damp_on_trip_(config.watchdog_action == actuation::WatchdogAction::kDamp),
       controller_(description, config),
       reference_speed_(description.joint_names.size(), config.reference_speed),
       was_tripped_(description.joint_names.size(), 0),
       report_(report),
+      accepted_commands_(report.counter("accepted_commands")),
+      accepted_parameters_(report.counter("accepted_parameters")),
       rejected_commands_(report.counter("rejected_commands")),
       rejected_parameters_(report.counter("rejected_parameters")),
       watchdog_trips_(report.counter("watchdog_trips")),
       limit_clamps_(report.counter("limit_clamps")),
+      rejections_(report, std::cerr),
       observer_(std::move(observer)) {
   // Subscribers last: their callbacks use everything above.
   commands_ = std::make_unique<dds::Subscriber<wbi::msg::ActuatorCommand>>(
@@ -55,54 +59,66 @@ void ActuatorSide::hold(const actuation::SensorReadings& readings, actuation::Ti
 }
 
 // Runs on a DDS thread: stages the command for the next tick; never throws into DDS.
+// The loop waits for mutex_ only while the command is checked and staged; a
+// rejection is reported after it is released.
 void ActuatorSide::handle(const wbi::msg::ActuatorCommand& command) {
+  std::string error;
   {
     std::lock_guard lock(mutex_);
-    const std::string error = to_batch(command, reference_speed_, batch_);
-    const auto result = error.empty() ? controller_.submit(batch_, actuation::Time(now_ns_.load()))
-                                      : actuation::CommandResult{false, error};
-    if (result.ok) {
-      limit_clamps_.add(static_cast<std::uint64_t>(result.clamped));
-    } else {
-      rejected_commands_.add();
-      const std::string text =
-          "command from '" + command.controller().to_string() + "' rejected: " + result.error;
-      report_.set_error(text);
-      std::cerr << text << std::endl;
+    error = to_batch(command, robot_, reference_speed_, batch_);
+    if (error.empty()) {
+      auto result = controller_.submit(batch_, actuation::Time(now_ns_.load()));
+      if (result.ok) {
+        accepted_commands_.add();
+        limit_clamps_.add(static_cast<std::uint64_t>(result.clamped));
+      } else {
+        error = std::move(result.error);
+      }
     }
+  }
+  if (!error.empty()) {
+    reject(rejected_commands_, "command", command.controller(), error);
   }
   if (observer_) {
     observer_(command);
   }
 }
 
-// Runs on a DDS thread. All indices are checked first: a bad message changes nothing.
+// Runs on a DDS thread. Every field is checked first: a bad message changes nothing.
 void ActuatorSide::handle(const wbi::msg::ControlParameters& message) {
-  std::lock_guard lock(mutex_);
-  for (const auto joint : message.joints()) {
-    if (joint >= joint_names_.size()) {
-      rejected_parameters_.add();
-      const std::string text = "control parameters from '" + message.controller().to_string() +
-                               "' rejected: joint index " + std::to_string(joint) +
-                               " out of range (the robot has " +
-                               std::to_string(joint_names_.size()) + " joints)";
-      report_.set_error(text);
-      std::cerr << text << std::endl;
-      return;
+  std::string error;
+  {
+    std::lock_guard lock(mutex_);
+    error = check_parameters(message, robot_, joint_names_);
+    if (error.empty()) {
+      for (std::size_t k = 0; k < message.joints().size(); ++k) {
+        const auto joint = message.joints()[k];
+        const auto value = [&](const std::vector<double>& values, double current) {
+          return !values.empty() && !std::isnan(values[k]) ? values[k] : current;  // NaN: unchanged
+        };
+        auto gains = controller_.gains(joint);
+        gains.kp = value(message.kp(), gains.kp);
+        gains.ki = value(message.ki(), gains.ki);
+        gains.kd = value(message.kd(), gains.kd);
+        controller_.set_gains(joint_names_[joint], gains);
+        reference_speed_[joint] = value(message.reference_speed(), reference_speed_[joint]);
+      }
+      accepted_parameters_.add();
     }
   }
-  for (std::size_t k = 0; k < message.joints().size(); ++k) {
-    const auto joint = message.joints()[k];
-    const auto value = [&](const std::vector<double>& values, double current) {
-      return k < values.size() && !std::isnan(values[k]) ? values[k] : current;
-    };
-    auto gains = controller_.gains(joint);
-    gains.kp = value(message.kp(), gains.kp);
-    gains.ki = value(message.ki(), gains.ki);
-    gains.kd = value(message.kd(), gains.kd);
-    controller_.set_gains(joint_names_[joint], gains);
-    reference_speed_[joint] = value(message.reference_speed(), reference_speed_[joint]);
+  if (!error.empty()) {
+    reject(rejected_parameters_, "control parameters", message.controller(), error);
   }
+}
+
+void ActuatorSide::reject(runtime::StatusCounter& counter, std::string_view what,
+                          const wbi::msg::Name& sender, const std::string& error) {
+  const std::string_view name(sender.c_str(), sender.size());
+  const std::string text = RejectionLog::without_control_characters(error);  // may quote the wire
+  counter.add();
+  report_.set_error(std::string(what) + " from '" + RejectionLog::printable(name) +
+                    "' rejected: " + text);
+  rejections_.reject(what, name, text);
 }
 
 void ActuatorSide::update(actuation::Time now, actuation::Duration period,

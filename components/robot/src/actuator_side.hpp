@@ -2,13 +2,20 @@
 // control parameters, runs the joint-level controller (wbi::actuation::
 // JointController: modes, PID, limits, watchdog) at the backend rate, and
 // reports on the owner component's status (StatusReport):
-//   rejected_commands    commands refused (unknown joint index, sizes that
+//   accepted_commands    commands applied (staged for the next tick)
+//   accepted_parameters  control parameters applied
+//   rejected_commands    commands refused (header.robot not this robot, mode
+//                        not in the enum, unknown joint index, sizes that
 //                        disagree, non-finite values…): nothing of them is applied
-//   rejected_parameters  control parameters refused (unknown joint index): none applied
+//   rejected_parameters  control parameters refused (same checks, and gains
+//                        finite and ≥ 0, speeds > 0): none of them applied
+//   rejected_from/<sender>  both, per sending controller (rejection_log.hpp)
 //   watchdog_trips       streaming joints that got no command in time (they hold)
 //   limit_clamps         command values outside the joint's limits (clamped)
 // and the last rejection or trip, in words, as the last error, e.g.
 //   command from 'pd' rejected: joint index 41 out of range (the robot has 7 joints)
+// The log gets the first rejection of each kind per sender and a periodic
+// summary (RejectionLog): a bad publisher cannot flood it.
 // One implementation, used by sim_robot and by the driver component.
 //
 // Threads: commands and parameters arrive on DDS threads; begin_tick() and
@@ -20,12 +27,15 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <wbi/msg/commands.h>
 #include <wbi/actuation/joint_controller.hpp>
 #include <wbi/dds/subscriber.hpp>
 #include <wbi/runtime/status_report.hpp>
+
+#include "rejection_log.hpp"
 
 namespace wbi::robot {
 
@@ -58,10 +68,16 @@ class ActuatorSide {
   void handle(const wbi::msg::ControlParameters& message);
 
   const actuation::JointControlStatus& status() const { return controller_.status(); }
+  // The gains in use (control parameters change them); read where no message is handled.
+  const actuation::PidGains& gains(int joint) const { return controller_.gains(joint); }
 
  private:
   void report_new_trips();
+  // Counts (in `counter`), reports and logs a refused message (after mutex_ is released).
+  void reject(runtime::StatusCounter& counter, std::string_view what, const wbi::msg::Name& sender,
+              const std::string& error);
 
+  const std::string robot_;  // header.robot every message must carry
   const std::vector<std::string> joint_names_;
   const double watchdog_timeout_s_;
   const bool damp_on_trip_;
@@ -74,10 +90,13 @@ class ActuatorSide {
   std::mutex mutex_;  // guards controller_, batch_, reference_speed_ (DDS threads vs loop)
 
   runtime::StatusReport& report_;
+  runtime::StatusCounter& accepted_commands_;
+  runtime::StatusCounter& accepted_parameters_;
   runtime::StatusCounter& rejected_commands_;
   runtime::StatusCounter& rejected_parameters_;
   runtime::StatusCounter& watchdog_trips_;
   runtime::StatusCounter& limit_clamps_;
+  RejectionLog rejections_;
   CommandObserver observer_;
 
   std::unique_ptr<dds::Subscriber<wbi::msg::ActuatorCommand>> commands_;

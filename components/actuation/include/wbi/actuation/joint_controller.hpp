@@ -3,8 +3,24 @@
 // per-joint control modes, low-level PID loops, limits, a command watchdog.
 //
 //   IDLE             no output (joint unpowered).
-//   POSITION         minimum-jerk trajectory from the current state to the target,
-//                    peak speed = reference speed; the position PID tracks it.
+//   POSITION         the target is reached by a minimum-jerk trajectory at the
+//                    reference speed, tracked by the position PID (the original
+//                    WBI's semantics; for point-to-point moves). A value equal to
+//                    the current target (a controller sending the same target every
+//                    cycle) leaves the trajectory in progress untouched. A new target
+//                    re-plans from the current reference: a quintic from its
+//                    (q_r, q̇_r, q̈_r) to (target, 0, 0) in
+//                    T = max(min_trajectory_time, 1.875 |target − q_r| / speed) (at
+//                    most 10⁶ s: a denormal speed plans no overflow), so
+//                    position, velocity and acceleration stay continuous and a target
+//                    that moves a little every cycle is followed smoothly: a ramp at
+//                    speed v (< 0.89 × reference speed) is tracked at v with a lag of
+//                    0.6 v min_trajectory_time (receding-horizon quintic in steady
+//                    state: 60 Δ/T³ = 36 v/T²); a faster one is followed at about 0.89 ×
+//                    the reference speed. A mode switch into POSITION, or the first
+//                    command after a watchdog trip, starts from the measured position
+//                    at rest. Streaming controllers (a new position every cycle, to be
+//                    tracked as it comes) use POSITION_DIRECT.
 //   POSITION_DIRECT  the target is tracked directly by the position PID (streaming);
 //                    the reference moves towards the target at most at the
 //                    velocity limit per tick.
@@ -14,7 +30,8 @@
 //   TORQUE           the value is the joint torque (streaming).
 //   PWM              the value is the motor duty cycle in [−1, 1] (streaming); the
 //                    backend's motor turns it into torque.
-// PID: τ = kp (q_r − q) + kd (q̇_r − q̇) + ki ∫(q_r − q) dt, |ki ∫| ≤ max_integral.
+// PID: τ = kp (q_r − q) + kd (q̇_r − q̇) + ki ∫(q_r − q) dt, |ki ∫| ≤ max_integral
+// (a NaN from ∞ − ∞ with huge gains counts as 0 before the effort clamp).
 // Limits: position references clamped to [lower, upper]; velocity references to
 // ±velocity_limit; torques to ±effort_limit. In TORQUE mode a guard adds
 // kp (limit − q) beyond a position limit and −kd (q̇ ∓ v_max) beyond the velocity limit.
@@ -144,6 +161,7 @@ class JointController {
     double target = 0.0;  // command value (position, velocity, torque, PWM)
     double speed = 0.0;   // POSITION reference speed
     double q_r = 0.0, dq_r = 0.0;
+    double ddq_r = 0.0;  // POSITION: the trajectory's acceleration (re-planning keeps it)
     double integral = 0.0;
     Time last_command{0};
     bool tripped = false;
@@ -156,7 +174,7 @@ class JointController {
 
   int find(const std::string& name) const;
   bool outside_limits(ControlMode mode, double value, std::size_t joint) const;
-  void start_trajectory(Joint& j, int i, double t, double q, double dq);
+  void start_trajectory(Joint& j, int i, double t);
   double pid(Joint& j, int i, double q, double dq, double dt);
 
   int n_ = 0;
