@@ -22,47 +22,14 @@
 #include <wbi/robot/robot_driver.hpp>
 #include <wbi/runtime/runner.hpp>
 
+#include "two_joint_toy.hpp"
+
 namespace {
 
 using namespace std::chrono_literals;
 namespace topics = wbi::dds::topics;
 namespace qos = wbi::dds::qos;
 constexpr const char* kRobot = "bench_rejections";
-
-// Two unit-inertia joints, q̈ = τ.
-class ToyBackend final : public wbi::actuation::RobotBackend {
- protected:
-  wbi::actuation::BackendDescription on_configure() override {
-    wbi::actuation::BackendDescription d;
-    d.robot = kRobot;
-    d.joint_names = {"a", "b"};
-    d.position_lower = {-2.0, -2.0};
-    d.position_upper = {2.0, 2.0};
-    d.velocity_limit = {5.0, 5.0};
-    d.effort_limit = {50.0, 50.0};
-    return d;
-  }
-  void on_read(wbi::actuation::Time time, wbi::actuation::Duration,
-               wbi::actuation::SensorReadings& out) override {
-    out.position = q_;
-    out.velocity = dq_;
-    out.joint_stamp = time;
-  }
-  void on_write(wbi::actuation::Time, wbi::actuation::Duration period,
-                const wbi::actuation::JointCommands& in) override {
-    const double dt = 1e-9 * static_cast<double>(period.count());
-    for (int i = 0; i < 2; ++i) {
-      const bool torque =
-          in.mode[static_cast<std::size_t>(i)] == wbi::actuation::OutputMode::kTorque;
-      dq_[i] += (torque ? in.value[i] : 0.0) * dt;
-      q_[i] += dq_[i] * dt;
-    }
-  }
-
- private:
-  Eigen::Vector2d q_ = Eigen::Vector2d::Zero();
-  Eigen::Vector2d dq_ = Eigen::Vector2d::Zero();
-};
 
 // The k-th malformed command: one of six kinds, in turn.
 wbi::msg::ActuatorCommand bad_command(std::uint64_t k) {
@@ -104,7 +71,7 @@ Phase run(double duration_s, bool with_bad_publisher) {
   wbi::runtime::SystemClock clock;
   wbi::runtime::Registry registry;
   wbi::robot::register_driver(registry, "toy_robot", [](const wbi::runtime::Parameters&) {
-    return std::make_unique<ToyBackend>();
+    return std::make_unique<wbi::test::TwoJointToyBackend>(kRobot);
   });
   wbi::runtime::RunnerOptions options;
   options.rate_hz = 1000.0;

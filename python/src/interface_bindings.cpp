@@ -95,13 +95,15 @@ PythonInterface make_interface(const std::string& robot, const std::string& urdf
                                double max_age_s, double blocking_read_timeout_s,
                                double model_timeout_s, std::optional<int> domain_id,
                                const std::string& discovery, const std::string& participant_name,
-                               const std::string& qos_file) {
+                               const std::string& qos_file,
+                               const std::map<std::string, double>& armature) {
   DdsInterfaceOptions options;
   options.robot = robot;
   options.urdf = urdf;
   options.controller = controller;
   options.model_source = model_source_from(model);
   options.locked_positions = locked_positions;
+  options.armature = armature;
   options.max_age_s = max_age_s;
   options.blocking_read_timeout = milliseconds(blocking_read_timeout_s);
   options.model_timeout = milliseconds(model_timeout_s);
@@ -430,7 +432,8 @@ void bind_interface(py::module_& module) {
            arg("locked_positions") = std::map<std::string, double>{}, arg("max_age_s") = 0.1,
            arg("blocking_read_timeout_s") = 1.0, arg("model_timeout_s") = 0.2,
            arg("domain_id") = py::none(), arg("discovery") = "localhost",
-           arg("participant_name") = "wbi_python", arg("qos_file") = "")
+           arg("participant_name") = "wbi_python", arg("qos_file") = "",
+           arg("armature") = std::map<std::string, double>{})
       .def(
           "add_joints",
           [](PythonInterface& self, const IdList& joints) { self.robot().add_joints(joints); },

@@ -85,11 +85,13 @@ ColumnMajorArray matrix_result(const Result& result, const py::object& out, cons
 
 PythonModel from_urdf(const std::string& path,
                       const std::optional<std::vector<std::string>>& joints, bool fixed_base,
-                      const std::map<std::string, double>& locked_positions) {
+                      const std::map<std::string, double>& locked_positions,
+                      const std::map<std::string, double>& armature) {
   wm::LoadOptions options;
   options.fixed_base = fixed_base;
   options.joints = joints.value_or(std::vector<std::string>{});
   options.locked_positions = locked_positions;
+  options.armature = armature;
   return PythonModel(wm::load_urdf_file(path, options));
 }
 
@@ -118,8 +120,11 @@ void bind_model(py::module_& module) {
       .def_static("from_urdf", &from_urdf, arg("path"), arg("joints") = none,
                   arg("fixed_base") = false,
                   arg("locked_positions") = std::map<std::string, double>{},
+                  arg("armature") = std::map<std::string, double>{},
                   "Loads a URDF. joints: keep these, in this order (reduced model), the other "
-                  "movable joints locked at locked_positions (default 0).")
+                  "movable joints locked at locked_positions (default 0). armature: rotor "
+                  "inertia by joint name [kg m^2 or kg], on M's diagonal, in forward and "
+                  "inverse dynamics (MuJoCo's convention; model_service/README.md).")
       .def_property_readonly("name", [](const PythonModel& m) { return m.model().name; })
       .def_property_readonly("floating_base",
                              [](const PythonModel& m) { return m.model().floating_base; })

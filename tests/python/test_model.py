@@ -119,6 +119,21 @@ class Inputs(unittest.TestCase):
     def setUp(self):
         self.model = wbi.Model.from_urdf(str(support.project_model("humanoid.urdf")))
 
+    def test_armature_adds_to_the_diagonal_of_the_mass_matrix_only(self):
+        urdf = support.SOURCE_DIR / "models" / "arm7.urdf"
+        plain = wbi.Model.from_urdf(str(urdf), fixed_base=True)
+        geared = wbi.Model.from_urdf(str(urdf), fixed_base=True,
+                                     armature={"joint_2": 0.25, "joint_5": 0.1})
+        q = RNG.uniform(-1.0, 1.0, plain.nq)
+        nu = RNG.uniform(-1.0, 1.0, plain.nv)
+        added = np.zeros(plain.nv)
+        added[1], added[4] = 0.25, 0.1
+        np.testing.assert_allclose(geared.mass_matrix(q) - plain.mass_matrix(q), np.diag(added),
+                                   atol=1e-12)
+        np.testing.assert_allclose(geared.bias_forces(q, nu), plain.bias_forces(q, nu), atol=1e-12)
+        with self.assertRaises(Exception):
+            wbi.Model.from_urdf(str(urdf), fixed_base=True, armature={"no_such_joint": 1.0})
+
     def test_out_arrays_are_filled_in_place(self):
         q = self.model.neutral_configuration()
         M = np.zeros((self.model.nv, self.model.nv), order="F")

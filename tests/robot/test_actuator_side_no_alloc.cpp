@@ -9,22 +9,12 @@
 
 #include "actuator_side.hpp"
 #include "allocation_counter.hpp"
+#include "two_joint_toy.hpp"
 
 namespace {
 
-wbi::actuation::BackendDescription two_joints() {
-  wbi::actuation::BackendDescription d;
-  d.robot = "toy";
-  d.joint_names = {"a", "b"};
-  d.position_lower = {-2.0, -2.0};
-  d.position_upper = {2.0, 2.0};
-  d.velocity_limit = {5.0, 5.0};
-  d.effort_limit = {50.0, 50.0};
-  return d;
-}
-
 TEST(ActuatorSide, CommandsTicksAndTripsDoNotAllocate) {
-  const auto description = two_joints();
+  const auto description = wbi::test::two_joint_description();
   wbi::dds::Participant participant("actuator_no_alloc");
   wbi::runtime::StatusReport report;
   wbi::actuation::JointControllerConfig config;

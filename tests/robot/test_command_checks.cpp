@@ -13,6 +13,7 @@
 
 #include "actuator_side.hpp"
 #include "rejection_log.hpp"
+#include "two_joint_toy.hpp"
 
 namespace {
 
@@ -20,29 +21,19 @@ using wbi::actuation::ControlMode;
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-wbi::actuation::BackendDescription two_joints() {
-  wbi::actuation::BackendDescription d;
-  d.robot = "toy";
-  d.joint_names = {"a", "b"};
-  d.position_lower = {-2.0, -2.0};
-  d.position_upper = {2.0, 2.0};
-  d.velocity_limit = {5.0, 5.0};
-  d.effort_limit = {50.0, 50.0};
-  return d;
-}
-
 // An actuator side of the robot "checked" (two joints a, b), ticked by hand.
 struct Side {
   static constexpr const char* kRobot = "checked";
   wbi::dds::Participant participant{"command_checks"};
   wbi::runtime::StatusReport report;
-  wbi::robot::ActuatorSide side{participant, kRobot, two_joints(), {}, report};
+  wbi::robot::ActuatorSide side{
+      participant, kRobot, wbi::test::two_joint_description(), {}, report};
   wbi::actuation::SensorReadings readings;
   wbi::actuation::JointCommands out;
   std::int64_t tick = 0;
 
   Side() {
-    readings.resize(two_joints());
+    readings.resize(wbi::test::two_joint_description());
     readings.position.setZero();
     readings.velocity.setZero();
     out.resize(2);
