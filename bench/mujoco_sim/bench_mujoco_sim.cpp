@@ -6,9 +6,10 @@
 // The own plant runs the config's `wbi:` step and substeps (2 × 0.5 ms). MuJoCo
 // runs the config's `mujoco:` section (argument 0) or, to show what each option
 // costs, the config with options taken back one by one (arguments 1–4):
-//   0  the config: 1 × 1 ms, Euler, joint friction as a torque
-//   1  as 0 with joint friction as frictionloss constraint rows
-//   2  as 1 with 2 × 0.5 ms per tick (the config before, 2026-11)
+//   0  the config: 1 × 1 ms, Euler, elliptic cone, joint friction as a torque
+//   1  as 0 with the pyramidal cone
+//   2  as 1 with joint friction as frictionloss constraint rows
+//   3  as 2 with 2 × 0.5 ms per tick (the config before, 2026-11)
 //
 // Counters:  rt_factor     simulated s / wall s of the whole tick (target for
 //                          MuJoCo: ≥ 20 on one core)
@@ -54,9 +55,12 @@ void standing(benchmark::State& state) {
   using Opt = robot_config::MujocoOptions;
   const std::int64_t variant = state.range(0);  // MuJoCo options taken back (see the top)
   if (variant >= 1) {
-    config.mujoco.joint_friction = Opt::JointFriction::kConstraint;
+    config.mujoco.cone = Opt::Cone::kPyramidal;
   }
   if (variant >= 2) {
+    config.mujoco.joint_friction = Opt::JointFriction::kConstraint;
+  }
+  if (variant >= 3) {
     config.mujoco.timestep = 0.5e-3;
     config.mujoco.substeps = 2;
   }
@@ -121,7 +125,7 @@ void BM_ICub3Standing_MuJoCo(benchmark::State& state) {
 }
 void BM_ICub3Standing_OwnPlant(benchmark::State& state) { standing<sim::SimBackend>(state); }
 
-BENCHMARK(BM_ICub3Standing_MuJoCo)->DenseRange(0, 2)->Unit(benchmark::kMicrosecond)->MinTime(2.0);
+BENCHMARK(BM_ICub3Standing_MuJoCo)->DenseRange(0, 3)->Unit(benchmark::kMicrosecond)->MinTime(2.0);
 BENCHMARK(BM_ICub3Standing_OwnPlant)->Arg(0)->Unit(benchmark::kMicrosecond)->MinTime(2.0);
 
 }  // namespace
