@@ -3,7 +3,8 @@
 //   - iCub 3 standing for 5 s, joints held in POSITION mode: the base drifts
 //     < 1 mm, the foot F/T sensors carry the robot's weight (1 %), the IMU
 //     reads +9.81 up (± 0.01);
-//   - the same PD + gravity run on the arm in both engines ends within 1 mrad;
+//   - the same PD + gravity run on the arm in both engines ends within 1 mrad,
+//     with either joint-friction model of MuJoCo;
 //   - on the humanoid standing, the foot F/T sensors of both engines agree in sign
 //     and size (the project's convention: the child side on the parent side);
 //   - every reading is finite and stamped with the simulation time; pushes move
@@ -224,17 +225,35 @@ Eigen::VectorXd pd_gravity_run(Backend& sim) {
   return sim.ground_truth().q;
 }
 
+// Both joint-friction models of MuJoCo (mujoco.joint_friction): the own plant's
+// smoothed torque (default) and MuJoCo's frictionloss rows. Both end within
+// 1 mrad of the own plant; the torque, being the own plant's model, closer.
 TEST(MujocoBackend, ArmPdGravityAgreesWithTheOwnPlant) {
   const rc::RobotConfig config = rc::load_robot_config(robot_file("arm.yaml"));
   ASSERT_EQ(config.mujoco.timestep * config.mujoco.substeps, config.wbi.step)
       << "the same control period in both engines";
+  ASSERT_EQ(config.mujoco.joint_friction, rc::MujocoOptions::JointFriction::kTorque);
   wbi::sim::SimBackend own(config);
-  MujocoBackend mujoco(config);
   const Eigen::VectorXd q_own = pd_gravity_run(own);
-  const Eigen::VectorXd q_mj = pd_gravity_run(mujoco);
-  const double diff = (q_own - q_mj).cwiseAbs().maxCoeff();
-  EXPECT_LT(diff, 1e-3) << "own " << q_own.transpose() << "\nmujoco " << q_mj.transpose();
-  std::cout << "arm PD + gravity, 3 s: engines differ by " << diff * 1e3 << " mrad at the end\n";
+  double diff_by_model[2] = {0.0, 0.0};
+  for (const auto model :
+       {rc::MujocoOptions::JointFriction::kTorque, rc::MujocoOptions::JointFriction::kConstraint}) {
+    rc::RobotConfig c = config;
+    c.mujoco.joint_friction = model;
+    MujocoBackend mujoco(c);
+    const Eigen::VectorXd q_mj = pd_gravity_run(mujoco);
+    const bool rows = model == rc::MujocoOptions::JointFriction::kConstraint;
+    // frictionloss in the MJCF only for the constraint model (the arm's joints have friction)
+    EXPECT_EQ(mujoco.mjcf().find("frictionloss=\"0.") != std::string::npos, rows);
+    const double diff = (q_own - q_mj).cwiseAbs().maxCoeff();
+    diff_by_model[rows ? 1 : 0] = diff;
+    EXPECT_LT(diff, 1e-3) << (rows ? "frictionloss" : "friction torque") << "\nown "
+                          << q_own.transpose() << "\nmujoco " << q_mj.transpose();
+  }
+  EXPECT_LT(diff_by_model[0], diff_by_model[1]);
+  std::cout << "arm PD + gravity, 3 s: engines differ by " << diff_by_model[0] * 1e3
+            << " mrad at the end (friction torque), " << diff_by_model[1] * 1e3
+            << " mrad (frictionloss)\n";
 }
 
 TEST(MujocoBackend, FootForceTorqueSensorsAgreeWithTheOwnPlant) {

@@ -71,7 +71,8 @@ wbi:
   motor: {voltage: 48, resistance: 0.5, torque_constant: 0.1, back_emf: 0.1}
   seed: 7
 mujoco: {timestep: 0.001, substeps: 1, integrator: RK4, solref: [0.01, 0.9],
-         solimp: [0.8, 0.9, 0.002, 0.4, 3], cone: elliptic, impratio: 10}
+         solimp: [0.8, 0.9, 0.002, 0.4, 3], cone: elliptic, impratio: 10,
+         joint_friction: constraint}
 )"),
                                            "robot.yaml");
   EXPECT_EQ(c.urdf, humanoid_urdf());
@@ -123,6 +124,7 @@ mujoco: {timestep: 0.001, substeps: 1, integrator: RK4, solref: [0.01, 0.9],
   EXPECT_EQ(c.mujoco.solimp[4], 3.0);
   EXPECT_EQ(c.mujoco.cone, MujocoOptions::Cone::kElliptic);
   EXPECT_EQ(c.mujoco.impratio, 10.0);
+  EXPECT_EQ(c.mujoco.joint_friction, MujocoOptions::JointFriction::kConstraint);
 }
 
 // Without "joints:" and "contacts:", the URDF's <dynamics> and <collision> boxes;
@@ -143,6 +145,7 @@ TEST(RobotConfig, DefaultsComeFromTheUrdf) {
   EXPECT_EQ(c.wbi.step, 1e-3);
   EXPECT_EQ(c.wbi.substeps, 2);
   EXPECT_EQ(c.mujoco.integrator, MujocoOptions::Integrator::kImplicit);
+  EXPECT_EQ(c.mujoco.joint_friction, MujocoOptions::JointFriction::kTorque);
 
   // A configuration built in code is completed the same way, idempotently.
   RobotConfig in_code;
@@ -214,6 +217,8 @@ TEST(RobotConfigErrors, WrongType) {
   expect_error(humanoid("mujoco: {integrator: RK5}\n"), 2, "mujoco.integrator",
                "expected one of Euler, implicit, RK4, got 'RK5'");
   expect_error(humanoid("mujoco: {cone: round}\n"), 2, "mujoco.cone", "pyramidal, elliptic");
+  expect_error(humanoid("mujoco: {joint_friction: sticky}\n"), 2, "mujoco.joint_friction",
+               "expected one of torque, constraint, got 'sticky'");
   expect_error(humanoid("wbi: {contact: {tangential: sticky}}\n"), 2, "wbi.contact.tangential",
                "sticky");
 }

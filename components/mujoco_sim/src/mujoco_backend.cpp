@@ -91,6 +91,11 @@ struct MujocoBackend::Impl {
   std::vector<sim::DcMotor> motor;
   std::vector<OutputMode> cmd_mode;
   Eigen::VectorXd cmd_value, tau_act, pwm;
+  // Joint Coulomb friction as a torque (mujoco.joint_friction: torque): F_c, and
+  // the effective inertia 1/(M⁻¹)_jj at the initial state that bounds it (the
+  // own plant's model); tau_friction = the torque applied in the last step.
+  bool friction_torque = false;
+  Eigen::VectorXd friction, m_eff, tau_friction;
 
   // contacts: geom → contact link (−1: none), and a site at each contact link's frame
   std::vector<int> geom_link;
@@ -256,6 +261,13 @@ actuation::BackendDescription MujocoBackend::on_configure() {
   s.cmd_value = Eigen::VectorXd::Zero(n);
   s.tau_act = Eigen::VectorXd::Zero(n);
   s.pwm = Eigen::VectorXd::Zero(n);
+  s.friction_torque = o.joint_friction == robot_config::MujocoOptions::JointFriction::kTorque;
+  s.friction = Eigen::VectorXd::Zero(n);
+  for (int j = 0; j < n; ++j) {
+    s.friction[j] = c.joints.at(model.joint_name[static_cast<std::size_t>(j)]).friction;
+  }
+  s.m_eff = Eigen::VectorXd::Zero(n);
+  s.tau_friction = Eigen::VectorXd::Zero(n);
   s.noise = sim::Gaussian(c.wbi.seed);
   s.encoder_step = sim::encoder_step(c.wbi.encoders);
 
@@ -299,6 +311,17 @@ actuation::BackendDescription MujocoBackend::on_configure() {
   // before the first step().
   mj_forward(m, d);
   impl_->fresh_position = true;
+  // Effective joint inertias 1/(M⁻¹)_jj at the initial state (armature included).
+  {
+    std::vector<mjtNum> e(static_cast<std::size_t>(m->nv), 0.0), x(e.size(), 0.0);
+    for (int j = 0; j < n; ++j) {
+      const auto dof = static_cast<std::size_t>(impl_->index.dof[static_cast<std::size_t>(j)]);
+      e[dof] = 1.0;
+      mj_solveM(m, d, x.data(), e.data(), 1);
+      e[dof] = 0.0;
+      impl_->m_eff[j] = 1.0 / x[dof];
+    }
+  }
   collect_dynamics();
   collect_state();
   return desc;
@@ -338,7 +361,14 @@ void MujocoBackend::apply_controls() {
         sim::actuator_output(s.cmd_mode[js], s.cmd_value[j], dq, s.motor[js], s.effort[j]);
     s.tau_act[j] = out.torque;
     s.pwm[j] = out.pwm;
-    d->qfrc_applied[dof] = out.torque;
+    if (s.friction_torque) {
+      // The own plant's smoothed Coulomb friction, bounded so that it never
+      // reverses q̇ within one step (components/sim): explicit, no constraint row.
+      const double f = -s.friction[j] * std::tanh(dq / config_.wbi.friction_velocity);
+      const double bound = 0.5 * s.m_eff[j] * std::abs(dq) / s.m->opt.timestep;
+      s.tau_friction[j] = std::clamp(f, -bound, bound);
+    }
+    d->qfrc_applied[dof] = out.torque + s.tau_friction[j];
   }
   // Pushes: force f at the point p → wrench (f, (p − c) × f) at the body's CoM c.
   for (const auto& push : s.pushes) {
@@ -406,10 +436,11 @@ void MujocoBackend::collect_dynamics() {
   if (model.floating_base) {
     truth_.base_acceleration = truth_.dnu.head<6>();
   }
-  // Joint torque: actuator + passive (damping) + the joint's friction-loss and
-  // limit constraint forces (scalar rows of J = ±1 on the joint's dof).
+  // Joint torque: actuator + friction torque + passive (damping) + the joint's
+  // friction-loss and limit constraint forces (scalar rows of J = ±1 on the joint's dof).
   for (int j = 0; j < s.n; ++j) {
-    truth_.tau[j] = s.tau_act[j] + d->qfrc_passive[s.index.dof[static_cast<std::size_t>(j)]];
+    truth_.tau[j] = s.tau_act[j] + s.tau_friction[j] +
+                    d->qfrc_passive[s.index.dof[static_cast<std::size_t>(j)]];
   }
   const bool sparse = mj_isSparse(m) != 0;
   for (int i = 0; i < d->nefc; ++i) {

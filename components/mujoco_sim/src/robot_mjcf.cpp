@@ -60,11 +60,15 @@ RobotMjcf robot_mjcf(const robot_config::RobotConfig& config, const model::Model
       o.integrator == robot_config::MujocoOptions::Integrator::kEuler ? mjcf::Integrator::kEuler
       : o.integrator == robot_config::MujocoOptions::Integrator::kRK4 ? mjcf::Integrator::kRK4
                                                                       : mjcf::Integrator::kImplicit;
+  // Coulomb friction as MuJoCo's frictionloss rows, or none here: MujocoBackend
+  // then applies the own plant's smoothed model as a torque (mujoco.joint_friction).
+  const bool friction_rows =
+      o.joint_friction == robot_config::MujocoOptions::JointFriction::kConstraint;
   for (int j = 0; j < n; ++j) {
     const auto& dyn = c.joints.at(model.joint_name[static_cast<std::size_t>(j)]);
     mo.armature.push_back(dyn.armature);
     mo.damping.push_back(dyn.damping);
-    mo.frictionloss.push_back(dyn.friction);
+    mo.frictionloss.push_back(friction_rows ? dyn.friction : 0.0);
   }
   // The ground and the contact geometry when the own plant would have contacts
   // (the same `wbi.contact.enable` rule: auto = floating base only).

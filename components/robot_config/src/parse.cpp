@@ -376,7 +376,8 @@ class Parser {
     const std::string p = "mujoco";
     MujocoOptions& m = c_.mujoco;
     r_.check_keys(n, p,
-                  {"timestep", "substeps", "integrator", "solref", "solimp", "cone", "impratio"});
+                  {"timestep", "substeps", "integrator", "solref", "solimp", "cone", "impratio",
+                   "joint_friction"});
     r_.get_positive(n, p, "timestep", m.timestep, false);
     if (r_.get(n, p, "substeps", m.substeps) && m.substeps < 1) {
       r_.fail(n["substeps"], "mujoco.substeps", "must be >= 1");
@@ -411,6 +412,11 @@ class Parser {
                                       {"elliptic", MujocoOptions::Cone::kElliptic}},
                                      m.cone);
     r_.get_positive(n, p, "impratio", m.impratio, false);
+    r_.get_enum<MujocoOptions::JointFriction>(
+        n, p, "joint_friction",
+        {{"torque", MujocoOptions::JointFriction::kTorque},
+         {"constraint", MujocoOptions::JointFriction::kConstraint}},
+        m.joint_friction);
   }
 
   YamlReader r_;

@@ -6,10 +6,12 @@
 // MJCF in memory (wbi::mjcf; an mjVFS, no file): the F/T sensors' child links
 // welded as bodies of their own with MuJoCo force/torque sensors at their frame,
 // IMU sites (framequat, gyro, accelerometer), the contact geometry and the
-// ground, per-joint armature, damping and friction loss, the `mujoco:` options
-// (timestep, integrator, solref/solimp, cone, impratio). One step() is
-// `mujoco.substeps` MuJoCo steps of `mujoco.timestep`; actuator torques go to
-// qfrc_applied. Every reading is MuJoCo's state mapped to wbi's conventions
+// ground, per-joint armature and damping, the `mujoco:` options (timestep,
+// integrator, solref/solimp, cone, impratio). One step() is `mujoco.substeps`
+// MuJoCo steps of `mujoco.timestep`; actuator torques go to qfrc_applied, with
+// the joints' Coulomb friction as the own plant's smoothed torque
+// (mujoco.joint_friction: torque) or as MuJoCo's frictionloss rows (constraint).
+// Every reading is MuJoCo's state mapped to wbi's conventions
 // (components/mujoco_sim/README.md). The sensor and actuator models (encoder
 // quantisation and noise, sensor noise, the PWM motor) are the own plant's, from
 // the config's `wbi:` section (wbi/sim/sensor_actuator_models.hpp).

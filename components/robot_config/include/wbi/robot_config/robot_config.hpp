@@ -131,6 +131,10 @@ struct MujocoOptions {
   std::array<double, 5> solimp{0.9, 0.95, 0.001, 0.5, 2.0};  // (dmin, dmax, width [m], mid, power)
   enum class Cone { kPyramidal, kElliptic } cone = Cone::kPyramidal;
   double impratio = 1.0;  // frictional-to-normal impedance ratio (> 0)
+  // Joint Coulomb friction (joints: friction): kTorque = the own plant's smoothed
+  // model −F_c tanh(q̇ / wbi.friction_velocity) as an applied torque; kConstraint =
+  // MuJoCo's frictionloss, one constraint row per joint (stiction, slower).
+  enum class JointFriction { kTorque, kConstraint } joint_friction = JointFriction::kTorque;
 };
 
 struct RobotConfig {
