@@ -63,10 +63,10 @@
 //   duration_s            stop stepping after this simulated time (default 0: never),
 //                         printing "TYPE 'ROBOT': duration_s D reached: stopped stepping"
 // Status counters: those of the actuator side (rejected_commands,
-// rejected_parameters, watchdog_trips, limit_clamps), lockstep_timeouts (in
-// lockstep) and real_time_stalls (in real time); the last rejection or trip in words as the last error. A
-// simulation that throws (diverged) stops stepping with
-// "simulation stopped at t = T s: …" as the last error.
+// rejected_parameters, watchdog_trips, limit_clamps, …), lockstep_timeouts (in
+// lockstep) and real_time_stalls (in real time); the last rejection or trip in
+// words as the last error. A simulation that throws (diverged) stops stepping
+// with "simulation stopped at t = T s: …" as the last error.
 #pragma once
 
 #include <functional>
