@@ -34,8 +34,10 @@ cleanup() {
 trap cleanup EXIT
 fail() { echo "== wbi launch output"; cat "$log"; echo "FAIL: $*"; exit 1; }
 
-# The demo with absolute paths (it is copied out of deploy/) and every process respawned.
+# The demo with absolute paths (it is copied out of deploy/) and every process
+# respawned once (the robot too: its restart is a case here).
 sed -e "s#config: robots/#config: $src/deploy/robots/#" -e "s#\.\./models/#$src/models/#g" \
+    -e "/^    respawn:/d" \
     -e "/^  - name: [a-z_]*$/a\\    respawn: {enabled: true, delay: 0.2, max_retries: 1}" \
     "$src/deploy/demo.yaml" >"$deploy"
 (($(grep -c "respawn: {enabled: true" "$deploy") == 4)) || fail "could not add respawn to the 4 processes of deploy/demo.yaml"
