@@ -1,7 +1,9 @@
 // The paper's example, whole: PD + gravity compensation written against the
 // whole-body interface only. τ = G_j(q) − K_p (q − q_d) − K_d q̇ at the rate of
-// the state estimates, for `ticks` estimates. Usage:
+// the state estimates, for `ticks` estimates; K_p = ω² m_j, K_d = 2ω m_j. Usage:
 //   wbi_example_pd_gravity URDF [TICKS]       (robot "arm", e.g. deploy/demo.yaml's)
+#include <Eigen/LU>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -18,8 +20,13 @@ int main(int argc, char** argv) {
   const int n = robot->dofs(), ticks = argc > 2 ? std::stoi(argv[2]) : 5000;
   Eigen::VectorXd q(n), dq(n), g(6 + n), tau(n), q_d(n);
   q_d << 0.3, 0.6, -0.2, 1.2, 0.1, 0.9, 0.0;
-  const Eigen::VectorXd kp = Eigen::VectorXd::Constant(n, 60.0), kd = kp / 10.0;
   wbi::Transform world_H_base;
+  robot->read_base_pose(world_H_base);
+  Eigen::MatrixXd M(6 + n, 6 + n);
+  robot->mass_matrix(q_d, world_H_base, M);  // each joint's inertia, the others free:
+  const Eigen::VectorXd m = M.bottomRightCorner(n, n).inverse().diagonal().cwiseInverse();
+  const double w = 2 * M_PI * 5.0;  // each joint critically damped at 5 Hz
+  const Eigen::VectorXd kp = w * w * m, kd = 2 * w * m;
   robot->set_control_mode(wbi::ControlMode::torque);
   for (int tick = 0; tick < ticks; ++tick) {
     robot->read_estimates(wbi::EstimateKind::joint_position, q, wbi::ReadMode::blocking);

@@ -19,9 +19,8 @@ TEST(Example, TwentyFiveLinePdGravityReachesItsTarget) {
   const auto demo = (wbi::test::source_dir() / "deploy" / "demo.yaml").string();
   ChildProcess robot(bin / "wbi_host", {demo, "--process", "robot"});
   ChildProcess estimator(bin / "wbi_host", {demo, "--process", "estimator"});
-  // 8 s of estimates: started with the robot, the controller's first cycles can
-  // kick the arm (the README's gains are soft: kp 60, kd 6), and at 4 s it was
-  // still 0.06-0.3 rad off in some runs, before and after the robot loop change.
+  // 8 s of estimates: started with the robot, the first second or two go to
+  // discovery and the 5 Hz approach (2-3 s to 0.01 rad, then 0.0004-0.005 rad).
   ChildProcess controller(bin / "wbi_example_pd_gravity",
                           {(wbi::test::source_dir() / "models" / "arm7.urdf").string(), "8000"});
   const auto code = controller.wait(90s);

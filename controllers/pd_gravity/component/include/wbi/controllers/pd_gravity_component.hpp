@@ -14,7 +14,8 @@
 //                    model service's `backend` parameter
 //   joints           required; the controlled joints, by name
 //   target           q_d, one per controlled joint [rad]
-//   bandwidth_hz     gains from the mass-matrix diagonal at q_d: kp = ω² M_jj, kd = 2ω M_jj
+//   bandwidth_hz     gains from the mass matrix's joint block at q_d (the whole block):
+//                    kp = ω² M_jj, kd = 2ω M_jj
 //                    (critically damped), ω = 2π bandwidth (default 5 Hz); or
 //   kp, kd           explicit gains, one per joint (both or neither)
 //   controller       name on the commands (default: the instance name)
