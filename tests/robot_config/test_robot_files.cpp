@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <string>
+#include <tuple>
 
 #include <Eigen/Geometry>
 
@@ -123,6 +124,30 @@ TEST(RobotFiles, Talos) {
   EXPECT_EQ(c.force_torque.size(), 4u);
   expect_soles_at(c, {"left_sole_link"}, "left_sole_link");
   expect_soles_at(c, {"right_sole_link"}, "right_sole_link");
+}
+
+// The fixed-base variants (deploy/icub3_pd.yaml, talos_pd.yaml) repeat their
+// standing robot's joint dynamics: they must move as it does.
+TEST(RobotFiles, FixedBaseVariantsHaveTheStandingRobotsJoints) {
+  for (const auto& [standing, fixed, urdf] :
+       {std::tuple{"icub3.yaml", "icub3_fixed_base.yaml", "iCubGenova09/model.urdf"},
+        std::tuple{"talos.yaml", "talos_fixed_base.yaml", "talos/talos_reduced.urdf"}}) {
+    const std::string standing_file = real_robot_file(standing, urdf);
+    if (standing_file.empty()) {
+      GTEST_SKIP() << wbi::test::kSharedMissing << " (expected ../shared/models/" << urdf << ")";
+    }
+    const RobotConfig a = load_robot_config(standing_file);
+    const RobotConfig b = load_robot_config(robot_file(fixed));
+    EXPECT_FALSE(a.fixed_base) << standing;
+    EXPECT_TRUE(b.fixed_base) << fixed;
+    ASSERT_EQ(a.joints.size(), b.joints.size()) << fixed;
+    for (const auto& [name, joint] : a.joints) {
+      const auto& other = b.joints.at(name);
+      EXPECT_EQ(joint.armature, other.armature) << fixed << ": " << name;
+      EXPECT_EQ(joint.damping, other.damping) << fixed << ": " << name;
+      EXPECT_EQ(joint.friction, other.friction) << fixed << ": " << name;
+    }
+  }
 }
 
 // A real robot's file whose ../shared is missing fails with one line naming the
