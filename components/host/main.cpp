@@ -2,7 +2,8 @@
 // wbi/runtime/host.hpp) in this process until SIGINT or SIGTERM, then stops
 // them cleanly (deactivate, cleanup, shutdown, in reverse order); started by
 // `wbi launch`, also when the launcher dies.
-// Exit codes: 0 after SIGTERM, 130 after SIGINT, 1 on error (one line on stderr).
+// Exit codes: 0 after SIGTERM, 130 after SIGINT, 1 on error (one line on stderr);
+// a component that ends the process (wbi/runtime/process_exit.hpp) gives its code.
 #include <csignal>
 #include <cstring>
 #include <iostream>
@@ -15,6 +16,7 @@
 #include <wbi/launch/launcher.hpp>
 #include <wbi/runtime/builtin.hpp>
 #include <wbi/runtime/host.hpp>
+#include <wbi/runtime/process_exit.hpp>
 
 #include "components.hpp"
 
@@ -56,6 +58,9 @@ int main(int argc, char** argv) {
   sigaddset(&signals, SIGINT);
   sigaddset(&signals, SIGTERM);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  // A component that ends the process (its run is over, or a fault): stop the
+  // components as SIGTERM does, then exit with its code.
+  wbi::runtime::set_process_exit_handler([](int) { ::kill(::getpid(), SIGTERM); });
   try {
     auto host_ptr = from_deploy ? std::make_unique<wbi::runtime::Host>(argv[1], argv[3], registry)
                                 : std::make_unique<wbi::runtime::Host>(argv[1], registry);
@@ -69,10 +74,19 @@ int main(int argc, char** argv) {
     for (const auto& error : errors) {
       std::cerr << "wbi_host: " << error << "\n";
     }
-    std::cout << "wbi_host: stopped (" << (signal_number == SIGINT ? "SIGINT" : "SIGTERM") << ")"
-              << std::endl;
+    const int requested = wbi::runtime::requested_process_exit_code();
+    if (requested >= 0) {
+      std::cout << "wbi_host: stopped (a component ended the process, exit code " << requested
+                << ")" << std::endl;
+    } else {
+      std::cout << "wbi_host: stopped (" << (signal_number == SIGINT ? "SIGINT" : "SIGTERM") << ")"
+                << std::endl;
+    }
     if (!errors.empty()) {
       return 1;
+    }
+    if (requested >= 0) {
+      return requested;
     }
     return signal_number == SIGINT ? 130 : 0;
   } catch (const std::exception& error) {

@@ -2,7 +2,7 @@
 // monitor: a command for an unknown joint or of the wrong size is rejected
 // (counter and last_error on wbi/status, nothing applied), and a streaming
 // joint left without commands trips the watchdog (on wbi/status) and holds;
-// a simulation that diverges stops stepping with an error, the process lives.
+// a simulation that diverges stops with an error and ends its process (exit 1).
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include <wbi/dds/participant.hpp>
@@ -60,7 +61,17 @@ class RemoteArm {
     EXPECT_TRUE(commands_.wait_for_subscribers(1, 30s)) << host_->output();
     EXPECT_TRUE(sensors_.wait_newer(sample_, 0, 30s)) << host_->output();
   }
-  ~RemoteArm() { EXPECT_EQ(host_->stop(), 0) << host_->output(); }
+  ~RemoteArm() { EXPECT_EQ(host_->stop(), expected_exit_code_) << host_->output(); }
+
+  // A host that ends by itself: its exit code (nullopt while it still runs after `timeout`).
+  std::optional<int> wait_exit(std::chrono::milliseconds timeout) {
+    const auto code = host_->wait(timeout);
+    if (code) {
+      expected_exit_code_ = *code;
+    }
+    return code;
+  }
+  std::string output() { return host_->output(); }
 
   void send(const std::vector<unsigned short>& joints,
             const std::vector<wbi::msg::ControlMode>& modes, const std::vector<double>& values) {
@@ -126,6 +137,7 @@ class RemoteArm {
   wbi::dds::Publisher<wbi::msg::ActuatorCommand> commands_;
   wbi::dds::Received<SensorSample> sample_;
   std::unique_ptr<wbi::test::ChildProcess> host_;
+  int expected_exit_code_ = 0;  // of the SIGTERM the destructor sends
 };
 
 TEST(RobotStatus, RejectedCommandsAreOnTheStatusTopicAndNothingIsApplied) {
@@ -165,7 +177,7 @@ TEST(RobotStatus, WatchdogTripIsOnTheStatusTopicAndTheJointHolds) {
   EXPECT_NEAR(later.encoder_position()[2], tripped.encoder_position()[2], 0.01);
 }
 
-TEST(RobotStatus, DivergedSimulationStopsWithAnErrorAndTheProcessLives) {
+TEST(RobotStatus, DivergedSimulationEndsItsProcessWithTheErrorOnTheStatus) {
   // An absurd push makes the plant's state overflow to inf / NaN within a few steps.
   RemoteArm arm("arm_diverges",
                 "pushes:\n  - {link: link_7, start: 0.2, duration: 0.05, force: [1e300, 0, 0]}\n");
@@ -174,7 +186,14 @@ TEST(RobotStatus, DivergedSimulationStopsWithAnErrorAndTheProcessLives) {
   });
   EXPECT_NE(status.last_error().to_string().find("not finite"), std::string::npos)
       << status.last_error();
-  // The destructor checks that wbi_host still stops cleanly (exit code 0) on SIGTERM.
+  // Then wbi_host shuts its components down and exits 1 (a launch's required
+  // robot process failing), rather than serving a robot that no longer steps.
+  const auto code = arm.wait_exit(30s);
+  ASSERT_TRUE(code.has_value()) << "wbi_host still runs after the divergence\n" << arm.output();
+  EXPECT_EQ(*code, 1) << arm.output();
+  EXPECT_NE(arm.output().find("wbi_host: stopped (a component ended the process, exit code 1)"),
+            std::string::npos)
+      << arm.output();
 }
 
 }  // namespace

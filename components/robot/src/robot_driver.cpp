@@ -13,6 +13,7 @@
 #include "sensor_side.hpp"
 #include "simulation_side.hpp"
 #include "step_clock.hpp"
+#include "wbi/runtime/process_exit.hpp"
 
 namespace wbi::robot {
 
@@ -265,8 +266,10 @@ class RobotDriver final : public runtime::Component {
   }
 
   // The simulation's thread: a diverged simulation (its state no longer
-  // finite) throws; that stops the stepping with an error on the status
-  // topic instead of terminating the process.
+  // finite) throws; that stops the stepping with an error on the status topic,
+  // and the hosting process ends with exit code 1 (under wbi_host: the robot's
+  // components shut down in order and `wbi launch` sees a required process
+  // fail) instead of leaving controllers to run on a robot that is gone.
   void run_simulation() {
     try {
       step_until_stopped();
@@ -275,6 +278,7 @@ class RobotDriver final : public runtime::Component {
           "simulation stopped at t = " + std::to_string(simulation_->time()) + " s: " + e.what();
       report().set_error(what);
       std::cerr << who_ << ": " << what << std::endl;
+      runtime::request_process_exit(1);
     }
   }
 

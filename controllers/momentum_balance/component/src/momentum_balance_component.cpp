@@ -1,8 +1,5 @@
 #include "wbi/controllers/momentum_balance_component.hpp"
 
-#include <signal.h>
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -12,6 +9,7 @@
 #include <wbi/controllers/com_sinusoid.hpp>
 #include <wbi/controllers/momentum_balance.hpp>
 #include <wbi/dds_interface.hpp>
+#include <wbi/runtime/process_exit.hpp>
 
 namespace wbi::controllers {
 
@@ -128,10 +126,10 @@ class MomentumBalanceComponent final : public runtime::Component {
       ++samples_;
     }
     if (exit_after_s_ > 0.0 && t >= exit_after_s_ && !exit_requested_) {
-      // The run is over: stop this process as SIGTERM would (wbi_host shuts the
-      // components down, so the summary is printed), and `wbi launch` ends with it.
+      // The run is over: end the hosting process (wbi_host shuts the components
+      // down, so the summary is printed), and `wbi launch` ends with it.
       exit_requested_ = true;
-      ::kill(::getpid(), SIGTERM);
+      runtime::request_process_exit(0);
     }
     if (progress_period_s_ > 0 && stamp.source_ns >= next_progress_ns_) {
       next_progress_ns_ += static_cast<std::int64_t>(progress_period_s_ * 1e9);

@@ -26,9 +26,10 @@
 //   max_age_s          oldest state accepted (default 0.05 s)
 //   init_timeout_s     wait for the robot's components (default 30 s)
 //   progress_period_s  a progress line every so often, robot time (default 1 s; 0: none)
-//   exit_after_s       > 0: after this robot time, stop the hosting process (SIGTERM to
-//                      itself: a clean shutdown with the summary), so that a deploy file
-//                      with shutdown_on_exit ends the launch (default 0: run until stopped)
+//   exit_after_s       > 0: after this robot time, end the hosting process
+//                      (runtime::request_process_exit: under wbi_host a clean shutdown
+//                      with the summary, exit code 0), so that a deploy file with
+//                      shutdown_on_exit ends the launch (default 0: run until stopped)
 // At shutdown it prints the stale cycles, QP failures, the largest CoM error
 // and, last, "com tracking rms: X m" (from the start of the sinusoid).
 #pragma once

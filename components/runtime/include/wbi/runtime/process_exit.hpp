@@ -1,0 +1,23 @@
+// How a component ends the process that hosts it: at the end of its run
+// (exit code 0) or on a fault it cannot recover from (non-zero), e.g. a
+// simulation that diverged. The component asks; the host decides how: wbi_host
+// installs a handler that shuts its components down as SIGTERM would and then
+// exits with the code, so that `wbi launch` sees the process end. Without a
+// handler (components run in a test or a program of one's own) the request is
+// only recorded: a library never signals the process it is linked into.
+#pragma once
+
+#include <functional>
+
+namespace wbi::runtime {
+
+// Installed once by the host program, before its components start.
+void set_process_exit_handler(std::function<void(int exit_code)> handler);
+
+// The first request wins; later ones are ignored. Thread-safe.
+void request_process_exit(int exit_code);
+
+// The code of the first request (a negative request counts as 1); -1 when none.
+int requested_process_exit_code();
+
+}  // namespace wbi::runtime
