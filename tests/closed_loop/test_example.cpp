@@ -1,4 +1,4 @@
-// The README's 25-line PD + gravity controller (controllers/examples) against
+// The README's PD + gravity controller in one main() (controllers/examples) against
 // the demo's robot and estimator, each in its own process: it brings the arm
 // to its target.
 #include <gtest/gtest.h>
@@ -14,7 +14,7 @@ namespace {
 using namespace std::chrono_literals;
 using wbi::test::ChildProcess;
 
-TEST(Example, TwentyFiveLinePdGravityReachesItsTarget) {
+TEST(Example, ReadmePdGravityReachesItsTarget) {
   const auto bin = wbi::test::binary_dir() / "bin";
   const auto demo = (wbi::test::source_dir() / "deploy" / "demo.yaml").string();
   ChildProcess robot(bin / "wbi_host", {demo, "--process", "robot"});
