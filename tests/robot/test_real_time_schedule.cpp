@@ -1,6 +1,6 @@
 // The real-time clock's schedule on given times: jitter is caught up, a stall
 // is not (the simulation pauses with its process instead of stepping the
-// missed time in a burst).
+// missed time in a burst); a stall's line on stderr at most once a period.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -57,6 +57,38 @@ TEST(RealTimeSchedule, ZeroMaxLagCatchesNothingUp) {
   EXPECT_EQ(schedule.due(0, kStart + 3ms, dropped), kStart + 3ms);
   EXPECT_EQ(dropped, std::chrono::nanoseconds(2ms));
   EXPECT_EQ(schedule.due(1, kStart + 3ms, dropped), kStart + 4ms);
+}
+
+using wbi::robot::StallLines;
+
+constexpr auto kJitter = std::chrono::nanoseconds(25ms);
+
+TEST(StallLines, TheFirstStallIsPrintedThenAtMostOneLineAPeriod) {
+  StallLines lines(10s, 100ms);
+  std::uint64_t unprinted = 99;
+  EXPECT_TRUE(lines.print(kStart, kJitter, unprinted));
+  EXPECT_EQ(unprinted, 0u);
+  // Three more within 10 s: counted, not printed.
+  EXPECT_FALSE(lines.print(kStart + 1s, kJitter, unprinted));
+  EXPECT_FALSE(lines.print(kStart + 5s, kJitter, unprinted));
+  EXPECT_FALSE(lines.print(kStart + 9999ms, kJitter, unprinted));
+  // The next one after 10 s is printed and says how many were not.
+  EXPECT_TRUE(lines.print(kStart + 10s, kJitter, unprinted));
+  EXPECT_EQ(unprinted, 3u);
+  // The count starts again from there.
+  EXPECT_FALSE(lines.print(kStart + 11s, kJitter, unprinted));
+  EXPECT_TRUE(lines.print(kStart + 30s, kJitter, unprinted));
+  EXPECT_EQ(unprinted, 1u);
+}
+
+TEST(StallLines, AStoppedProcessIsAlwaysPrinted) {
+  StallLines lines(10s, 100ms);
+  std::uint64_t unprinted = 0;
+  EXPECT_TRUE(lines.print(kStart, kJitter, unprinted));
+  EXPECT_FALSE(lines.print(kStart + 1s, kJitter, unprinted));
+  // A 1 s stop right after: printed at once, with the jitter it follows.
+  EXPECT_TRUE(lines.print(kStart + 2s, std::chrono::nanoseconds(1s), unprinted));
+  EXPECT_EQ(unprinted, 1u);
 }
 
 }  // namespace

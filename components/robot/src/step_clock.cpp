@@ -24,16 +24,34 @@ void RealTimeClock::start() {
   schedule_.start(std::chrono::steady_clock::now());
 }
 
+bool StallLines::print(TimePoint now, std::chrono::nanoseconds length, std::uint64_t& unprinted) {
+  if (length < always_from_ && last_ && now - *last_ < period_) {
+    ++unprinted_;
+    return false;
+  }
+  last_ = now;
+  unprinted = unprinted_;
+  unprinted_ = 0;
+  return true;
+}
+
 void RealTimeClock::wait(std::uint64_t tick) {
   std::chrono::nanoseconds dropped;
-  const auto due = schedule_.due(tick, std::chrono::steady_clock::now(), dropped);
+  const auto now = std::chrono::steady_clock::now();
+  const auto due = schedule_.due(tick, now, dropped);
+  std::uint64_t unprinted = 0;
   if (dropped.count() > 0) {
-    stalls_.add();
-    std::cerr << who_ << ": tick " << tick << " came "
-              << std::chrono::duration<double>(dropped).count()
-              << " s late (the process stalled?): the simulation paused with it, the time "
-                 "is not caught up"
-              << std::endl;
+    stalls_.add();  // every stall, printed or not: the status counter real_time_stalls
+    if (stall_lines_.print(now, dropped, unprinted)) {
+      std::cerr << who_ << ": tick " << tick << " came "
+                << std::chrono::duration<double>(dropped).count()
+                << " s late (the process stalled?): the simulation paused with it, the time "
+                   "is not caught up";
+      if (unprinted > 0) {
+        std::cerr << " (" << unprinted << " more stall(s) since the last such line)";
+      }
+      std::cerr << std::endl;
+    }
   }
   std::unique_lock lock(mutex_);
   stopped_changed_.wait_until(lock, due, [this] { return stopped_; });

@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -64,6 +65,26 @@ class RealTimeSchedule {
   TimePoint anchor_;  // tick k is due at anchor_ + (k + 1)·period_
 };
 
+// Whether a stall gets its line on stderr: one of at least `always_from` (the
+// process was stopped, not jittering) always does; shorter ones at most one a
+// `period` (a VM that stalls 20-30 ms every few seconds would otherwise fill
+// the log), the ones between counted into the next line. Tested on given times.
+class StallLines {
+ public:
+  using TimePoint = std::chrono::steady_clock::time_point;
+  StallLines(std::chrono::nanoseconds period, std::chrono::nanoseconds always_from)
+      : period_(period), always_from_(always_from) {}
+  // True when the stall of `length` seen at `now` is to be printed; then
+  // `unprinted` is the number of stalls since the last printed one that were not.
+  bool print(TimePoint now, std::chrono::nanoseconds length, std::uint64_t& unprinted);
+
+ private:
+  const std::chrono::nanoseconds period_;
+  const std::chrono::nanoseconds always_from_;
+  std::optional<TimePoint> last_;
+  std::uint64_t unprinted_ = 0;
+};
+
 class RealTimeClock final : public StepClock {
  public:
   // who: names the robot in the stall message; stalls: the status counter of
@@ -78,6 +99,7 @@ class RealTimeClock final : public StepClock {
 
  private:
   RealTimeSchedule schedule_;  // the driver's loop only
+  StallLines stall_lines_{std::chrono::seconds(10), std::chrono::milliseconds(100)};  // loop only
   const std::string who_;
   runtime::StatusCounter& stalls_;
   std::mutex mutex_;  // guards stopped_
