@@ -56,7 +56,12 @@ int main(int argc, char** argv) {
     }
     for (long seq = 0; seq < count && !stop_requested; ++seq) {
       wbi::test::fill_pattern(sample, robot, static_cast<std::uint64_t>(seq));
-      if (!publisher.publish(sample) || !publisher.wait_acknowledged(std::chrono::seconds(5))) {
+      // 15 s (the listener of test_dds_transport waits 20 s for ten): once in an
+      // ASan CI run, a talker started after two SIGKILLed ones over shared
+      // memory had its first sample received but not acknowledged within 5 s
+      // (not reproduced in 20 runs); Fast DDS recovers a port left locked by a
+      // killed process only after its health check.
+      if (!publisher.publish(sample) || !publisher.wait_acknowledged(std::chrono::seconds(15))) {
         std::cerr << "talker: sample " << seq << " not delivered\n";
         return 1;
       }
