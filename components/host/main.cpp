@@ -74,19 +74,16 @@ int main(int argc, char** argv) {
     for (const auto& error : errors) {
       std::cerr << "wbi_host: " << error << "\n";
     }
-    const int requested = wbi::runtime::requested_process_exit_code();
-    if (requested >= 0) {
-      std::cout << "wbi_host: stopped (a component ended the process, exit code " << requested
-                << ")" << std::endl;
-    } else {
-      std::cout << "wbi_host: stopped (" << (signal_number == SIGINT ? "SIGINT" : "SIGTERM") << ")"
-                << std::endl;
-    }
+    const auto requested = wbi::runtime::requested_process_exit_code();
+    const std::string why =
+        requested ? "a component ended the process, exit code " + std::to_string(*requested)
+                  : (signal_number == SIGINT ? "SIGINT" : "SIGTERM");
+    std::cout << "wbi_host: stopped (" << why << ")" << std::endl;
     if (!errors.empty()) {
       return 1;
     }
-    if (requested >= 0) {
-      return requested;
+    if (requested) {
+      return *requested;
     }
     return signal_number == SIGINT ? 130 : 0;
   } catch (const std::exception& error) {

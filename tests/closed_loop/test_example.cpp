@@ -7,6 +7,7 @@
 #include <string>
 
 #include "child_process.hpp"
+#include "progress_lines.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -27,10 +28,9 @@ TEST(Example, ReadmePdGravityReachesItsTarget) {
   const std::string out = controller.output();
   ASSERT_TRUE(code.has_value()) << out;
   EXPECT_EQ(*code, 0) << out;
-  const std::string marker = "final max joint error: ";
-  const auto at = out.rfind(marker);
-  ASSERT_NE(at, std::string::npos) << out;
-  EXPECT_LT(std::stod(out.substr(at + marker.size())), 0.02) << out;
+  const auto error = wbi::test::last_value_after(out, "final max joint error: ");
+  ASSERT_TRUE(error.has_value()) << out;
+  EXPECT_LT(*error, 0.02) << out;
 }
 
 }  // namespace

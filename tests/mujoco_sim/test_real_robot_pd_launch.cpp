@@ -10,6 +10,7 @@
 #include <string>
 
 #include "child_process.hpp"
+#include "progress_lines.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -38,12 +39,10 @@ TEST_P(RealRobotPdLaunch, EveryTorsoAndArmJointReachesItsNewPosture) {
         << process << " did not stop cleanly\n"
         << out;
   }
-  const std::string marker = "\nfinal max joint error: ";
-  const auto at = out.rfind(marker);
-  ASSERT_NE(at, std::string::npos) << out;
-  const double error = std::stod(out.substr(at + marker.size()));
-  EXPECT_LT(error, 0.01) << out;
-  std::cout << GetParam() << ": final max joint error " << error << " rad\n";
+  const auto error = wbi::test::last_value_after(out, "\nfinal max joint error: ");
+  ASSERT_TRUE(error.has_value()) << out;
+  EXPECT_LT(*error, 0.01) << out;
+  std::cout << GetParam() << ": final max joint error " << *error << " rad\n";
 #endif
 }
 

@@ -1,8 +1,10 @@
 // The times of a controller's progress lines ("[controller] t =  10.00 s  …")
 // in a launch's output: tests check that the run got there, not the exact
 // text of one line (a controller on its own timer prints "t =   1.01" under load).
+// And the number a run ends with ("final max joint error: 0.0006 rad").
 #pragma once
 
+#include <optional>
 #include <regex>
 #include <string>
 #include <vector>
@@ -18,6 +20,17 @@ inline std::vector<double> progress_times(const std::string& output,
     times.push_back(std::stod((*it)[1].str()));
   }
   return times;
+}
+
+// The number after the last `marker` in `output` ("final max joint error: "),
+// none when the marker is missing.
+inline std::optional<double> last_value_after(const std::string& output,
+                                              const std::string& marker) {
+  const auto at = output.rfind(marker);
+  if (at == std::string::npos) {
+    return std::nullopt;
+  }
+  return std::stod(output.substr(at + marker.size()));
 }
 
 }  // namespace wbi::test

@@ -8,7 +8,7 @@ namespace {
 
 std::mutex mutex;
 std::function<void(int)> handler;
-int requested = -1;
+std::optional<int> requested;
 
 }  // namespace
 
@@ -19,20 +19,22 @@ void set_process_exit_handler(std::function<void(int exit_code)> new_handler) {
 
 void request_process_exit(int exit_code) {
   std::function<void(int)> call;
+  int code = 0;
   {
     std::lock_guard lock(mutex);
-    if (requested >= 0) {
+    if (requested) {
       return;
     }
-    requested = exit_code < 0 ? 1 : exit_code;
+    code = exit_code < 0 ? 1 : exit_code;
+    requested = code;
     call = handler;
   }
   if (call) {
-    call(exit_code);
+    call(code);
   }
 }
 
-int requested_process_exit_code() {
+std::optional<int> requested_process_exit_code() {
   std::lock_guard lock(mutex);
   return requested;
 }

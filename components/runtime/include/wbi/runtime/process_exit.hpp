@@ -8,6 +8,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 
 namespace wbi::runtime {
 
@@ -17,7 +18,7 @@ void set_process_exit_handler(std::function<void(int exit_code)> handler);
 // The first request wins; later ones are ignored. Thread-safe.
 void request_process_exit(int exit_code);
 
-// The code of the first request (a negative request counts as 1); -1 when none.
-int requested_process_exit_code();
+// The code of the first request (a negative one counts as 1); none before it.
+std::optional<int> requested_process_exit_code();
 
 }  // namespace wbi::runtime
