@@ -56,7 +56,7 @@ contacts:
   - {link: r_hand, capsule: {radius: 0.01, length: 0.1}}
 joints:
   default: {armature: 0.01}
-  l_knee: {armature: 0.2, damping: 3, friction: 0.4}
+  l_knee: {armature: 0.2, damping: 3, friction: 0.4, kp: 80, kd: 2}
 imus: [{name: imu, frame: imu_frame, gyro_noise: 0.01, accel_noise: 0.05}]
 force_torque: [{name: l_ft, joint: l_foot_ft_sensor, force_noise: 0.5, torque_noise: 0.05}]
 pushes: [{link: root_link, start: 1.0, duration: 0.2, force: [50, 0, 0], point: [0, 0, 0.1]}]
@@ -99,6 +99,9 @@ mujoco: {timestep: 0.001, substeps: 1, integrator: RK4, solref: [0.01, 0.9],
   EXPECT_EQ(c.joints.at("r_knee").armature, 0.01);  // default
   EXPECT_EQ(c.joints.at("r_knee").damping, 0.5);    // URDF <dynamics>
   EXPECT_EQ(c.joints.at("r_knee").friction, 0.3);
+  EXPECT_EQ(c.joints.at("l_knee").kp, 80.0);
+  EXPECT_EQ(c.joints.at("l_knee").kd, 2.0);
+  EXPECT_EQ(c.joints.at("r_knee").kp, 0.0);  // not given: the joint controller's default
   EXPECT_EQ(armature_by_joint(c).at("l_knee"), 0.2);
   EXPECT_EQ(armature_by_joint(c).size(), 30u);
   ASSERT_EQ(c.imus.size(), 1u);
@@ -192,7 +195,7 @@ TEST(RobotConfigErrors, UnknownKey) {
   expect_error(humanoid("contacts:\n  - {link: l_foot, sphere: {radius: 0.1}, pos: [0, 0, 0]}\n"),
                3, "contacts[0].pos", "unknown key");
   expect_error(humanoid("joints: {l_knee: {inertia: 1}}\n"), 2, "joints.l_knee.inertia",
-               "unknown key (allowed: armature, damping, friction)");
+               "unknown key (allowed: armature, damping, friction, kp, kd)");
   expect_error(humanoid("mujoco: {time_step: 0.001}\n"), 2, "mujoco.time_step", "unknown key");
 }
 
@@ -234,6 +237,7 @@ TEST(RobotConfigErrors, WrongVectorSize) {
 }
 
 TEST(RobotConfigErrors, NegativeOrOutOfRangeValues) {
+  expect_error(humanoid("joints:\n  l_knee: {kd: -1}\n"), 3, "joints.l_knee.kd", "must be >= 0");
   expect_error(humanoid("joints:\n  default: {armature: -0.1}\n"), 3, "joints.default.armature",
                "must be >= 0");
   expect_error(humanoid("joints: {l_knee: {damping: -1}}\n"), 2, "joints.l_knee.damping",

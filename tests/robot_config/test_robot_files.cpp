@@ -146,6 +146,8 @@ TEST(RobotFiles, FixedBaseVariantsHaveTheStandingRobotsJoints) {
       EXPECT_EQ(joint.armature, other.armature) << fixed << ": " << name;
       EXPECT_EQ(joint.damping, other.damping) << fixed << ": " << name;
       EXPECT_EQ(joint.friction, other.friction) << fixed << ": " << name;
+      EXPECT_EQ(joint.kp, other.kp) << fixed << ": " << name;
+      EXPECT_EQ(joint.kd, other.kd) << fixed << ": " << name;
     }
   }
 }

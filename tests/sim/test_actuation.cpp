@@ -81,6 +81,29 @@ TEST(SimActuation, ArmPositionModeReachesTargets) {
 }
 
 // τ = G(q) from the model library, computed on the encoder readings each tick.
+// The robot config's kp/kd reach the joint controller through the backend's
+// description; a joint without them keeps the default from its effort limit.
+TEST(SimActuation, RobotConfigGainsAreTheJointControllersDefaults) {
+  RobotConfig c = arm_config(false);
+  robot_config::complete_from_urdf(c);
+  c.joints.at("joint_2").kp = 123.0;
+  c.joints.at("joint_2").kd = 4.5;
+  c.joints.at("joint_3").kp = 50.0;  // kd not given: kp/200
+  SimBackend sim(c);
+  sim.configure();
+  const JointController ctl(sim.description(), JointControllerConfig{});
+  const auto& d = sim.description();
+  const int j2 = d.joint_index("joint_2");
+  const int j3 = d.joint_index("joint_3");
+  const int j1 = d.joint_index("joint_1");
+  EXPECT_EQ(ctl.gains(j2).kp, 123.0);
+  EXPECT_EQ(ctl.gains(j2).kd, 4.5);
+  EXPECT_EQ(ctl.gains(j3).kp, 50.0);
+  EXPECT_EQ(ctl.gains(j3).kd, 0.25);
+  const double effort = d.effort_limit[static_cast<std::size_t>(j1)];
+  EXPECT_EQ(ctl.gains(j1).kp, std::isfinite(effort) ? 10.0 * effort : 100.0);
+}
+
 TEST(SimActuation, ArmTorqueModeGravityCompensationHoldsStill) {
   SimBackend sim(arm_config(true));
   sim.configure();

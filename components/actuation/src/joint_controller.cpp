@@ -42,6 +42,25 @@ bool is_streaming(ControlMode mode) {
 
 namespace {
 double seconds(Duration d) { return static_cast<double>(d.count()) * 1e-9; }
+// The description's position PD where it gives one, else kp from the effort
+// limit and kd = kp/200.
+PidGains default_gains(const BackendDescription& d, std::size_t joint) {
+  auto given = [joint](const std::vector<double>& gains) {
+    return joint < gains.size() && gains[joint] > 0.0 ? gains[joint] : 0.0;
+  };
+  PidGains g;
+  const double effort = d.effort_limit[joint];
+  g.kp = given(d.position_kp);
+  if (g.kp == 0.0) {
+    g.kp = std::isfinite(effort) ? 10.0 * effort : 100.0;
+  }
+  g.kd = given(d.position_kd);
+  if (g.kd == 0.0) {
+    g.kd = g.kp / 200.0;
+  }
+  return g;
+}
+
 }  // namespace
 
 JointController::JointController(const BackendDescription& description,
@@ -58,9 +77,7 @@ JointController::JointController(const BackendDescription& description,
     if (!config_.gains.empty()) {
       gains_[i] = config_.gains[i];
     } else {
-      const double effort = description_.effort_limit[i];
-      gains_[i].kp = std::isfinite(effort) ? 10.0 * effort : 100.0;
-      gains_[i].kd = gains_[i].kp / 200.0;
+      gains_[i] = default_gains(description_, i);
     }
   }
   joints_.resize(n);

@@ -64,6 +64,8 @@ void RobotBackend::configure() {
   const std::size_t n = d.joint_names.size();
   if (d.position_lower.size() != n || d.position_upper.size() != n ||
       d.velocity_limit.size() != n || d.effort_limit.size() != n ||
+      !(d.position_kp.empty() || d.position_kp.size() == n) ||
+      !(d.position_kd.empty() || d.position_kd.size() == n) ||
       d.imu_frames.size() != d.imu_names.size() || d.ft_frames.size() != d.ft_names.size()) {
     throw std::logic_error("robot backend '" + d.robot +
                            "': on_configure() returned a description with inconsistent sizes");

@@ -183,7 +183,7 @@ actuation::BackendDescription MujocoBackend::on_configure() {
   truth_.contact_links = written.contact_links;
   truth_.contact_wrenches.assign(truth_.contact_links.size(), Vector6d::Zero());
 
-  actuation::BackendDescription desc = sim::joint_description(model, c.urdf);
+  actuation::BackendDescription desc = sim::joint_description(model, c);
   for (const auto& imu : c.imus) {
     desc.imu_names.push_back(imu.name);
     desc.imu_frames.push_back(imu.frame);

@@ -24,7 +24,7 @@ struct Urdf {
 
 // A "joints:" entry before resolution: only the values it gives.
 struct JointOverride {
-  std::optional<double> armature, damping, friction;
+  std::optional<double> armature, damping, friction, kp, kd;
 };
 
 class Parser {
@@ -193,18 +193,19 @@ class Parser {
   }
 
   JointOverride joint_values(const YAML::Node& n, const std::string& p) const {
-    r_.check_keys(n, p, {"armature", "damping", "friction"});
+    r_.check_keys(n, p, {"armature", "damping", "friction", "kp", "kd"});
     JointOverride o;
-    double v = 0.0;
-    if (r_.get_positive(n, p, "armature", v, true)) {
-      o.armature = v;
-    }
-    if (r_.get_positive(n, p, "damping", v, true)) {
-      o.damping = v;
-    }
-    if (r_.get_positive(n, p, "friction", v, true)) {
-      o.friction = v;
-    }
+    auto read = [&](const char* key, std::optional<double>& out) {
+      double v = 0.0;
+      if (r_.get_positive(n, p, key, v, true)) {
+        out = v;
+      }
+    };
+    read("armature", o.armature);
+    read("damping", o.damping);
+    read("friction", o.friction);
+    read("kp", o.kp);
+    read("kd", o.kd);
     return o;
   }
 
@@ -216,7 +217,7 @@ class Parser {
       return out;
     }
     if (!n.IsMap()) {
-      r_.fail(n, "joints", "expected a map joint: {armature, damping, friction}");
+      r_.fail(n, "joints", "expected a map joint: {armature, damping, friction, kp, kd}");
     }
     if (const auto d = n["default"]) {
       out.emplace_back("", joint_values(d, "joints.default"));
@@ -238,6 +239,8 @@ class Parser {
       j.armature = o.armature.value_or(j.armature);
       j.damping = o.damping.value_or(j.damping);
       j.friction = o.friction.value_or(j.friction);
+      j.kp = o.kp.value_or(j.kp);
+      j.kd = o.kd.value_or(j.kd);
     };
     for (const auto& [name, o] : overrides) {
       if (name.empty()) {

@@ -313,7 +313,7 @@ actuation::BackendDescription SimBackend::on_configure() {
   s.wrenches.assign(truth_.contact_links.size() + s.pushes.size(), model::ExternalWrench{});
 
   // ---- sensors ----
-  actuation::BackendDescription d = joint_description(m, c.urdf);
+  actuation::BackendDescription d = joint_description(m, c);
   for (const auto& imu : c.imus) {
     Impl::Imu x;
     x.frame = frame_of(imu.frame, "imus '" + imu.name + "'");

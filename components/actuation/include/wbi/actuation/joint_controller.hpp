@@ -89,8 +89,9 @@ struct PidGains {
 enum class WatchdogAction : std::uint8_t { kHold, kDamp };
 
 struct JointControllerConfig {
-  // Gains per joint (size n) or empty: defaults kp = 10·effort_limit [N·m/rad],
-  // kd = kp/200 [s], ki = 0 (kp = 100 N·m/rad when the effort is unlimited).
+  // Gains per joint (size n) or empty: the description's position_kp and
+  // position_kd where given (> 0), else kp = 10·effort_limit [N·m/rad] (100 when
+  // the effort is unlimited) and kd = kp/200 [s]; ki = 0.
   // Tune them: explicit PD at rate 1/h is stable for kd ≲ m_eff/h.
   std::vector<PidGains> gains;
   double reference_speed = 0.5;       // POSITION default peak speed [rad/s]

@@ -71,10 +71,14 @@ struct BackendDescription {
   std::string urdf;            // the robot's URDF file when the backend knows it, else ""
   bool floating_base = false;  // free-floating base (humanoid) or fixed to the world (arm)
   std::vector<std::string> joint_names;
-  std::vector<double> position_lower;   // [rad]; −inf when unlimited
-  std::vector<double> position_upper;   // [rad]; +inf when unlimited
-  std::vector<double> velocity_limit;   // [rad/s]; +inf when none
-  std::vector<double> effort_limit;     // [N·m]; +inf when none
+  std::vector<double> position_lower;  // [rad]; −inf when unlimited
+  std::vector<double> position_upper;  // [rad]; +inf when unlimited
+  std::vector<double> velocity_limit;  // [rad/s]; +inf when none
+  std::vector<double> effort_limit;    // [N·m]; +inf when none
+  // The joint controller's position PD per joint, or empty; an entry ≤ 0 takes
+  // its default (JointController). A simulation's come from its robot config.
+  std::vector<double> position_kp;      // [N·m/rad]
+  std::vector<double> position_kd;      // [N·m·s/rad]
   std::vector<std::string> imu_names;   // order of SensorReadings::imus
   std::vector<std::string> imu_frames;  // frame (link) each IMU sits in
   std::vector<std::string> ft_names;    // order of SensorReadings::force_torque

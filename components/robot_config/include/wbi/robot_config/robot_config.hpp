@@ -32,11 +32,17 @@ struct ContactGeometry {
   double friction = -1.0;
 };
 
-// Passive joint dynamics, referred to the joint (after the gearbox).
+// One joint: its passive dynamics, referred to the joint (after the gearbox),
+// and the gains of its position loop (what a motor-control board is set to).
 struct JointDynamics {
   double armature = 0.0;  // rotor inertia × gear ratio² [kg·m²] (kg for a prismatic joint)
   double damping = 0.0;   // viscous [N·m·s/rad]
   double friction = 0.0;  // Coulomb [N·m]
+  // Position PD of the joint controller (modes POSITION, POSITION_DIRECT,
+  // VELOCITY and the hold of uncommanded joints); 0: its default
+  // (wbi::actuation::JointController, from the effort limit).
+  double kp = 0.0;  // [N·m/rad]
+  double kd = 0.0;  // [N·m·s/rad]
 };
 
 struct GroundConfig {

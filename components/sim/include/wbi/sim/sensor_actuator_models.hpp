@@ -86,10 +86,11 @@ struct DcMotor {
   }
 };
 
-// The joints every engine offers: the model's names, order and limits (the
-// sensors are filled by the engine).
+// The joints every engine offers: the model's names, order and limits, and the
+// config's position gains (the sensors are filled by the engine).
 inline actuation::BackendDescription joint_description(const model::Model& m,
-                                                       const std::string& urdf) {
+                                                       const robot_config::RobotConfig& config) {
+  const std::string& urdf = config.urdf;
   actuation::BackendDescription d;
   d.robot = m.name;
   d.urdf = urdf;
@@ -99,6 +100,12 @@ inline actuation::BackendDescription joint_description(const model::Model& m,
   d.position_upper = m.joint_upper;
   d.velocity_limit = m.joint_velocity_limit;
   d.effort_limit = m.joint_effort_limit;
+  for (const auto& name : m.joint_name) {
+    const auto joint = config.joints.find(name);
+    const bool given = joint != config.joints.end();
+    d.position_kp.push_back(given ? joint->second.kp : 0.0);
+    d.position_kd.push_back(given ? joint->second.kd : 0.0);
+  }
   return d;
 }
 
