@@ -15,6 +15,12 @@
 //                         the host file
 //   lockstep, lockstep_controllers, lockstep_timeout_s, lockstep_start_timeout_s,
 //   real_time, duration_s, watchdog_timeout_s, reference_speed, hold_at_start: robot_driver.hpp
+//   push_link, push_force, push_start_s, push_duration_s, push_point
+//                         one push more than the config's `pushes:` (an experiment's
+//                         scenario, so that one robot file serves every experiment):
+//                         force [N, world axes] on the link from push_start_s [s] for
+//                         push_duration_s (default 0.1 s) at push_point (link frame,
+//                         default its origin)
 //
 // Status (wbi/status): rejected_commands, rejected_parameters, watchdog_trips,
 // limit_clamps, lockstep_timeouts; the last rejection or trip in words.
