@@ -85,6 +85,7 @@ MomentumBalance::MomentumBalance(WholeBodyInterface& robot, MomentumBalanceParam
   const double omega = 2.0 * M_PI * p_.posture_bandwidth_hz;
   posture_kp_ = omega * omega * M_.diagonal().tail(n_);
   posture_kd_ = 2.0 * omega * M_.diagonal().tail(n_);
+  joint_inertia_ = M_.diagonal().tail(n_);
 
   build_constraints();
 }
@@ -143,7 +144,8 @@ Stamp MomentumBalance::read_state(ReadMode mode) {
 // τ(f) = τ_c − T f from  M ν̇ + h = Bτ + Jcᵀ f,  Jc ν̇ + J̇ν = 0  (both feet fixed):
 //   Λ τ = Jc M⁻¹ (h − Jcᵀ f) − J̇ν,   Λ = Jc M⁻¹ B,
 //   τ = Λ† (Jc M⁻¹ (h − Jcᵀ f) − J̇ν) + N_Λ τ₀,   τ₀ = h_j − J_jᵀ f + u₀,
-// u₀ the postural PD, N_Λ = I − Λ†Λ the null space of the contact constraints.
+// u₀ the postural PD, N_Λ = I − Λ†Λ the null space of the contact constraints,
+// Λ† the inverse of Λ weighted by the joints' inertia at the posture.
 void MomentumBalance::compute_torque_map() {
   mass_llt_.compute(M_);
   Minv_Jct_ = Jc_.transpose();
@@ -154,10 +156,14 @@ void MomentumBalance::compute_torque_map() {
   constraint_bias_ -= dj_nu_;
 
   // Λ† = Λᵀ (Λ Λᵀ)⁻¹, slightly damped against a near-singular leg.
-  gram_.noalias() = Lambda_ * Lambda_.transpose();
+  // Λ† = W⁻¹Λᵀ (Λ W⁻¹ Λᵀ)⁻¹, W⁻¹ = diag(M_jj): of the torques that keep the
+  // feet still, the one of least Σ τ_j² / M_jj, slightly damped against a
+  // near-singular leg. Unweighted (least Σ τ_j²), a light joint is a cheap place
+  // for torque: iCub 3's arms swung by ±1 rad and a hand hit its limit.
+  gram_solve_.noalias() = Lambda_ * joint_inertia_.asDiagonal();
+  gram_.noalias() = gram_solve_ * Lambda_.transpose();
   gram_.diagonal().array() += 1e-9;
   gram_llt_.compute(gram_);
-  gram_solve_ = Lambda_;
   gram_llt_.solveInPlace(gram_solve_);
   Lambda_pinv_ = gram_solve_.transpose();
   null_.noalias() = -Lambda_pinv_ * Lambda_;

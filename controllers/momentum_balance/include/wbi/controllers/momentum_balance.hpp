@@ -86,6 +86,7 @@ class MomentumBalance {
   int n_;
   int left_, right_;
   Eigen::VectorXd q_posture_, posture_kp_, posture_kd_;
+  Eigen::VectorXd joint_inertia_;  // M_jj at the posture: the weights of Λ†
   double mass_ = 0.0;
 
   // state
