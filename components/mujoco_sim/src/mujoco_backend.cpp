@@ -182,6 +182,7 @@ actuation::BackendDescription MujocoBackend::on_configure() {
   truth_ = actuation::GroundTruth{};
   truth_.contact_links = written.contact_links;
   truth_.contact_wrenches.assign(truth_.contact_links.size(), Vector6d::Zero());
+  truth_.contact_positions.assign(truth_.contact_links.size(), Vector3d::Zero());
 
   actuation::BackendDescription desc = sim::joint_description(model, c);
   for (const auto& imu : c.imus) {
@@ -499,6 +500,9 @@ void MujocoBackend::collect_state() {
     truth_.base_position = truth_.q.head<3>();
     truth_.base_orientation = truth_.q.segment<4>(3);
     truth_.base_velocity = truth_.nu.head<6>();
+  }
+  for (std::size_t l = 0; l < truth_.contact_positions.size(); ++l) {
+    truth_.contact_positions[l] = Eigen::Map<const Vector3d>(d->site_xpos + 3 * s.link_site[l]);
   }
 }
 

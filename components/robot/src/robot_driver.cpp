@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "actuator_side.hpp"
+#include "ground_truth_summary.hpp"
 #include "robot_name.hpp"
 #include "sensor_side.hpp"
 #include "simulation_side.hpp"
@@ -272,7 +273,9 @@ class RobotDriver final : public runtime::Component {
   // fail) instead of leaving controllers to run on a robot that is gone.
   void run_simulation() {
     try {
-      step_until_stopped();
+      GroundTruthSummary summary(backend_->description(), simulation_->ground_truth());
+      step_until_stopped(summary);
+      summary.print(std::cout, who_);
     } catch (const std::exception& e) {
       const std::string what =
           "simulation stopped at t = " + std::to_string(simulation_->time()) + " s: " + e.what();
@@ -282,7 +285,7 @@ class RobotDriver final : public runtime::Component {
     }
   }
 
-  void step_until_stopped() {
+  void step_until_stopped(GroundTruthSummary& summary) {
     const Duration period = simulation_->step_period();
     while (running_) {
       if (duration_s_ > 0.0 && simulation_->time() >= duration_s_) {
@@ -299,6 +302,7 @@ class RobotDriver final : public runtime::Component {
       control(now, period);
       actuate(now, period);
       simulation_->step();
+      summary.add(simulation_->ground_truth());
     }
   }
 

@@ -265,6 +265,7 @@ actuation::BackendDescription SimBackend::on_configure() {
     }
   }
   truth_.contact_wrenches.assign(truth_.contact_links.size(), Vector6d::Zero());
+  truth_.contact_positions.assign(truth_.contact_links.size(), Vector3d::Zero());
 
   // place on the ground: lowest contact point on the ground
   if (c.place_on_ground && m.floating_base && !truth_.contact_points.empty()) {
@@ -596,6 +597,11 @@ void SimBackend::compute_sensors_after_step() {
     truth_.base_orientation = truth_.q.segment<4>(3);
     truth_.base_velocity = truth_.nu.head<6>();
     truth_.base_acceleration = truth_.dnu.head<6>();
+  }
+  for (std::size_t i = 0; i < truth_.contact_links.size(); ++i) {
+    const auto fi = static_cast<std::size_t>(s.contact_link_frame[i]);
+    const auto b = static_cast<std::size_t>(m.frame_body[fi]);
+    truth_.contact_positions[i] = d.p_WB[b] + d.R_WB[b] * m.frame_p_BF[fi];
   }
   // F/T: wrench transmitted through the fixed joint = Newton–Euler of the part
   // beyond it:  f_J = Σ_b (I_b a_b + v_b ×* I_b v_b) − Σ w_ext   (world origin,

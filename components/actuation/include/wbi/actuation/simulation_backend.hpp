@@ -45,6 +45,9 @@ struct GroundTruth {
   // [n_contact_links] total ground wrench on each contact link: (force, moment
   // about the link frame origin), world axes.
   std::vector<Vector6d> contact_wrenches;
+  // [n_contact_links] each contact link's frame origin, world [m] (where a foot is:
+  // its slip on the ground).
+  std::vector<Eigen::Vector3d> contact_positions;
 };
 
 class SimulationBackend : public RobotBackend {
