@@ -31,7 +31,7 @@ void joint_state(std::int64_t k, Eigen::VectorXd& q, Eigen::VectorXd& dq) {
 void BM_LeggedBaseEstimator(benchmark::State& state) {
   const auto joints = humanoid_joints();
   wbi::estimator::LeggedBaseOptions options;
-  options.force_frames = {"l_foot", "r_foot"};
+  options.force_frames = {{{"l_foot"}, {"r_foot"}}};
   wbi::estimator::LeggedBaseEstimator estimator(kUrdf, joints, options);
   const auto n = static_cast<Eigen::Index>(joints.size());
   Eigen::VectorXd q(n), dq(n), ddq = Eigen::VectorXd::Zero(n);

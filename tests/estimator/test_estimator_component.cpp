@@ -353,6 +353,10 @@ TEST(EstimatorComponent, BadParametersAreNamed) {
   EXPECT_NE(configure("robot: r\nbase: legged\n").find("urdf"), std::string::npos);
   EXPECT_NE(configure("robot: r\nbase: legged\nurdf: x.urdf\nfeet: [l_sole]\n").find("feet"),
             std::string::npos);
+  EXPECT_NE(configure("robot: r\nbase: legged\nurdf: x.urdf\n"
+                      "foot_force_torque: [l_front+, r_ft]\n")
+                .find("foot_force_torque: an empty sensor name in 'l_front+'"),
+            std::string::npos);
   EXPECT_NE(configure("robot: r\nvelocity_windw: 3\n").find("velocity_windw"), std::string::npos);
 }
 

@@ -28,7 +28,7 @@ using wbi::sim::SimBackend;
 LeggedBaseOptions humanoid_options() {
   LeggedBaseOptions options;
   options.imu_frame = "imu_frame";
-  options.force_frames = {"l_foot", "r_foot"};  // the F/T sensors' child links
+  options.force_frames = {{{"l_foot"}, {"r_foot"}}};  // the F/T sensors' child links
   return options;
 }
 
@@ -247,6 +247,36 @@ TEST(LeggedBaseEstimator, FlatGroundKeepsTheHeightOfAFootPutDown) {
   s.base(320.0, 0.0);
   s.base(160.0, 160.0);
   EXPECT_NEAR(s.estimator.anchor(1).z(), 0.0, 1e-12);
+}
+
+// A foot on two F/T sensors (iCub 3's front and rear plates) carries their sum:
+// 25 N on each of the left foot's sensors loads it (50 N > load_force 40 N),
+// which neither sensor alone would.
+TEST(LeggedBaseEstimator, AFootOnTwoSensorsCarriesTheirSum) {
+  auto options = humanoid_options();
+  options.force_frames[0] = {"l_foot", "l_foot"};  // the left foot's two sensors
+  Stepper s(options);
+  ASSERT_EQ(s.estimator.force_sensors(), 3);
+  Eigen::Matrix3Xd forces = Eigen::Matrix3Xd::Zero(3, 3);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(s.q.size());
+  auto update = [&](double left_front, double left_rear, double right) {
+    forces.row(2) << left_front, left_rear, right;
+    s.stamp_ns += 1'000'000;
+    s.estimator.update(s.stamp_ns, s.q, zero, zero, wbi::estimator::ImuInput{}, forces);
+  };
+  update(25.0, 25.0, 200.0);
+  EXPECT_TRUE(s.estimator.loaded(0)) << "50 N on two sensors";
+  update(5.0, 10.0, 300.0);
+  EXPECT_FALSE(s.estimator.loaded(0)) << "15 N < unload_force";
+  update(25.0, 0.0, 300.0);
+  EXPECT_FALSE(s.estimator.loaded(0)) << "25 N < load_force";
+  update(25.0, 25.0, 300.0);
+  EXPECT_TRUE(s.estimator.loaded(0));
+  // Fewer forces than sensors: named.
+  const Eigen::Matrix<double, 3, 2> two = Eigen::Matrix<double, 3, 2>::Zero();
+  EXPECT_THROW(
+      s.estimator.update(s.stamp_ns + 1'000'000, s.q, zero, zero, wbi::estimator::ImuInput{}, two),
+      std::invalid_argument);
 }
 
 TEST(LeggedBaseEstimator, BadInputIsNamed) {

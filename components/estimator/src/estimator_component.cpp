@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -23,6 +24,18 @@
 namespace wbi::estimator {
 
 namespace {
+
+// "a+b+c" → {a, b, c}; "a" → {a}.
+std::vector<std::string> split_at_plus(const std::string& text) {
+  std::vector<std::string> parts;
+  std::size_t begin = 0;
+  for (auto plus = text.find('+'); plus != std::string::npos; plus = text.find('+', begin)) {
+    parts.push_back(text.substr(begin, plus - begin));
+    begin = plus + 1;
+  }
+  parts.push_back(text.substr(begin));
+  return parts;
+}
 
 enum class BaseSource { fixed, fixed_link, legged, topic };
 
@@ -173,10 +186,21 @@ class EstimatorComponent final : public runtime::Component {
       throw runtime::ParameterError(
           parameters.where(feet.size() != 2 ? "feet" : "foot_force_torque") +
           ": base: legged needs two feet (left, right), and none or "
-          "two foot F/T sensor names");
+          "two entries of foot F/T sensor names (one foot's several sensors joined by '+')");
     }
     legged_options_.feet = {feet[0], feet[1]};
-    foot_sensors_ = sensors;
+    // "a+b": a foot on several sensors (iCub 3's front and rear plates), their loads summed.
+    foot_sensors_ = {};
+    for (std::size_t foot = 0; foot < sensors.size(); ++foot) {
+      foot_sensors_[foot] = split_at_plus(sensors[foot]);
+      for (const auto& name : foot_sensors_[foot]) {
+        if (name.empty()) {
+          throw runtime::ParameterError(parameters.where("foot_force_torque") +
+                                        ": foot_force_torque: an empty sensor name in '" +
+                                        sensors[foot] + "'");
+        }
+      }
+    }
     imu_sensor_ = parameters.get<std::string>("imu", "");
     legged_options_.load_force = parameters.get<double>("load_force", legged_options_.load_force);
     legged_options_.unload_force =
@@ -192,8 +216,10 @@ class EstimatorComponent final : public runtime::Component {
                       const std::vector<std::string>& joints) {
     int imus = 0;
     int force_torques = 0;
+    std::map<std::string, std::pair<int, std::string>> sensor_index;  // F/T: index, frame
     imu_index_ = -1;
-    foot_sensor_index_ = {-1, -1};
+    foot_sensor_index_.clear();
+    legged_options_.force_frames = {};
     for (const auto& sensor : description.sensors()) {
       const std::string name = sensor.name().to_string();
       if (sensor.kind() == wbi::msg::SensorKind::IMU) {
@@ -203,12 +229,7 @@ class EstimatorComponent final : public runtime::Component {
         }
         ++imus;
       } else if (sensor.kind() == wbi::msg::SensorKind::FORCE_TORQUE) {
-        for (std::size_t foot = 0; foot < foot_sensors_.size(); ++foot) {
-          if (name == foot_sensors_[foot]) {
-            foot_sensor_index_[foot] = force_torques;
-            legged_options_.force_frames[foot] = sensor.frame().to_string();
-          }
-        }
+        sensor_index[name] = {force_torques, sensor.frame().to_string()};
         ++force_torques;
       }
     }
@@ -216,12 +237,18 @@ class EstimatorComponent final : public runtime::Component {
       throw std::invalid_argument("base: legged: robot '" + robot_ + "' has no IMU" +
                                   (imu_sensor_.empty() ? "" : " named '" + imu_sensor_ + "'"));
     }
-    for (std::size_t foot = 0; foot < foot_sensors_.size(); ++foot) {
-      if (foot_sensor_index_[foot] < 0) {
-        throw std::invalid_argument("base: legged: robot '" + robot_ + "' has no F/T sensor '" +
-                                    foot_sensors_[foot] + "'");
+    for (std::size_t foot = 0; foot < 2; ++foot) {  // the left foot's sensors first
+      for (const auto& name : foot_sensors_[foot]) {
+        const auto found = sensor_index.find(name);
+        if (found == sensor_index.end()) {
+          throw std::invalid_argument("base: legged: robot '" + robot_ + "' has no F/T sensor '" +
+                                      name + "'");
+        }
+        foot_sensor_index_.push_back(found->second.first);
+        legged_options_.force_frames[foot].push_back(found->second.second);
       }
     }
+    foot_forces_.setZero(3, static_cast<Eigen::Index>(foot_sensor_index_.size()));
     legged_options_.initial_position = base_pose_.topRightCorner<3, 1>();
     legged_options_.initial_yaw = std::atan2(base_pose_(1, 0), base_pose_(0, 0));
     legged_estimator_ = std::make_unique<LeggedBaseEstimator>(urdf_, joints, legged_options_);
@@ -435,7 +462,10 @@ class EstimatorComponent final : public runtime::Component {
   }
 
   bool has_legged_inputs(const wbi::msg::SensorSample& sample) const {
-    const auto needed_ft = std::max(foot_sensor_index_[0], foot_sensor_index_[1]) + 1;
+    int needed_ft = 0;
+    for (const int index : foot_sensor_index_) {
+      needed_ft = std::max(needed_ft, index + 1);
+    }
     return static_cast<int>(sample.imus().size()) > imu_index_ &&
            static_cast<int>(sample.force_torque().size()) >= needed_ft;
   }
@@ -452,17 +482,14 @@ class EstimatorComponent final : public runtime::Component {
     return input;
   }
 
-  Eigen::Matrix<double, 3, 2> foot_forces() const {
-    Eigen::Matrix<double, 3, 2> forces = Eigen::Matrix<double, 3, 2>::Zero();
-    for (Eigen::Index foot = 0; foot < 2; ++foot) {
-      const int index = foot_sensor_index_[static_cast<std::size_t>(foot)];
-      if (index >= 0) {
-        const auto& f =
-            current_sample_->force_torque()[static_cast<std::size_t>(index)].wrench().force();
-        forces.col(foot) << f.x(), f.y(), f.z();
-      }
+  // The feet's F/T forces, in the order of the legged estimator's force_frames.
+  const Eigen::Matrix3Xd& foot_forces() {
+    for (std::size_t i = 0; i < foot_sensor_index_.size(); ++i) {
+      const auto index = static_cast<std::size_t>(foot_sensor_index_[i]);
+      const auto& f = current_sample_->force_torque()[index].wrench().force();
+      foot_forces_.col(static_cast<Eigen::Index>(i)) << f.x(), f.y(), f.z();
     }
-    return forces;
+    return foot_forces_;
   }
 
   void fill_base(const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq) {
@@ -542,10 +569,12 @@ class EstimatorComponent final : public runtime::Component {
   std::unique_ptr<FixedLinkBaseEstimator> base_estimator_;
   std::unique_ptr<LeggedBaseEstimator> legged_estimator_;
   LeggedBaseOptions legged_options_;
-  std::string imu_sensor_;                        // base: legged; empty: the first IMU
-  std::vector<std::string> foot_sensors_;         // base: legged; the feet's F/T sensors, or none
-  int imu_index_ = -1;                            // among the sample's IMU readings
-  std::array<int, 2> foot_sensor_index_{-1, -1};  // among the sample's F/T readings
+  std::string imu_sensor_;  // base: legged; empty: the first IMU
+  // base: legged; each foot's F/T sensors (none: unmeasured feet)
+  std::array<std::vector<std::string>, 2> foot_sensors_;
+  int imu_index_ = -1;                  // among the sample's IMU readings
+  std::vector<int> foot_sensor_index_;  // among the sample's F/T readings, the left foot's first
+  Eigen::Matrix3Xd foot_forces_;        // their forces, one column each
   const wbi::msg::SensorSample* current_sample_ = nullptr;  // while publishing its estimate
   bool have_base_sample_ = false;                           // base: topic
   bool failed_ = false;                            // the description did not fit the base estimator

@@ -38,9 +38,9 @@ LeggedBaseEstimator::LeggedBaseEstimator(const std::string& urdf,
   }
   imu_ = frame_of(model_, options.imu_frame, "IMU");
   for (std::size_t i = 0; i < 2; ++i) {
-    force_frames_[i] = options.force_frames[i].empty()
-                           ? -1
-                           : frame_of(model_, options.force_frames[i], "force/torque sensor");
+    for (const auto& frame : options.force_frames[i]) {
+      force_frames_[i].push_back(frame_of(model_, frame, "force/torque sensor"));
+    }
   }
   if (!(options.unload_force >= 0.0 && options.load_force >= options.unload_force)) {
     throw std::invalid_argument(
@@ -110,20 +110,22 @@ Eigen::Vector3d LeggedBaseEstimator::blend_velocity(std::int64_t stamp_ns,
   return velocity;
 }
 
-const BaseState& LeggedBaseEstimator::update(std::int64_t stamp_ns,
-                                             const Eigen::Ref<const Eigen::VectorXd>& q,
-                                             const Eigen::Ref<const Eigen::VectorXd>& dq,
-                                             const Eigen::Ref<const Eigen::VectorXd>& ddq,
-                                             const ImuInput& imu,
-                                             const Eigen::Matrix<double, 3, 2>& foot_force) {
+const BaseState& LeggedBaseEstimator::update(
+    std::int64_t stamp_ns, const Eigen::Ref<const Eigen::VectorXd>& q,
+    const Eigen::Ref<const Eigen::VectorXd>& dq, const Eigen::Ref<const Eigen::VectorXd>& ddq,
+    const ImuInput& imu, const Eigen::Ref<const Eigen::Matrix3Xd>& sensor_force) {
   const auto n = model_.n_joints;
   if (q.size() != n || dq.size() != n || ddq.size() != n) {
     throw std::invalid_argument("legged base estimate: joint vectors must have size " +
                                 std::to_string(n));
   }
+  if (sensor_force.cols() < force_sensors()) {
+    throw std::invalid_argument("legged base estimate: " + std::to_string(sensor_force.cols()) +
+                                " F/T forces for " + std::to_string(force_sensors()) + " sensors");
+  }
   if (!q.allFinite() || !dq.allFinite() || !ddq.allFinite() ||
       !imu.orientation.coeffs().allFinite() || imu.orientation.norm() < 0.5 ||
-      !imu.gyro.allFinite() || !imu.accelerometer.allFinite() || !foot_force.allFinite()) {
+      !imu.gyro.allFinite() || !imu.accelerometer.allFinite() || !sensor_force.allFinite()) {
     return state_;  // a broken reading: the estimate stays as it was
   }
 
@@ -144,11 +146,14 @@ const BaseState& LeggedBaseEstimator::update(std::int64_t stamp_ns,
 
   // Which feet carry weight (hysteresis on the world-vertical force); unmeasured: loaded.
   Eigen::Vector2d weights;
+  Eigen::Index sensor = 0;  // columns of sensor_force, the left foot's first
   std::array<bool, 2> touched_down{};
   for (std::size_t i = 0; i < 2; ++i) {
     const auto k = static_cast<Eigen::Index>(i);
-    const double f = force_frames_[i] < 0 ? std::numeric_limits<double>::quiet_NaN()
-                                          : force_world_z(foot_force.col(k), force_frames_[i]);
+    double f = force_frames_[i].empty() ? std::numeric_limits<double>::quiet_NaN() : 0.0;
+    for (const int frame : force_frames_[i]) {
+      f += force_world_z(sensor_force.col(sensor++), frame);
+    }
     const bool was_loaded = loaded_[i];
     loaded_[i] = std::isnan(f) || f > (was_loaded ? options_.unload_force : options_.load_force);
     weights[k] = !loaded_[i] ? 0.0 : std::isnan(f) ? 1.0 : f;

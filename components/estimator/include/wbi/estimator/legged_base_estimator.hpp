@@ -29,9 +29,10 @@ namespace wbi::estimator {
 struct LeggedBaseOptions {
   std::array<std::string, 2> feet{"l_sole", "r_sole"};  // frames at the soles' contact plane
   std::string imu_frame = "imu_frame";                  // the IMU's frame in the model
-  // Each foot's F/T sensor frame (the force is given in its axes); empty: not measured,
-  // the foot counts as loaded with weight 1.
-  std::array<std::string, 2> force_frames{"", ""};
+  // Each foot's F/T sensor frames (each force is given in its sensor's axes; a
+  // foot on several sensors, as iCub 3's front and rear plates, carries their
+  // sum); none: not measured, the foot counts as loaded with weight 1.
+  std::array<std::vector<std::string>, 2> force_frames{};
   // The first base position; unset: x, y = 0 and z such that the (weighted) soles are at z = 0.
   bool has_initial_position = false;
   Eigen::Vector3d initial_position = Eigen::Vector3d::Zero();
@@ -65,14 +66,19 @@ class LeggedBaseEstimator {
 
   // stamp_ns: the sample's source stamp; q, dq, ddq: joint state in the robot's
   // order; imu: the IMU reading;
-  // foot_force: the force each foot's F/T sensor measures [N] (the foot on the
-  // leg, in the sensor's axes; its world-vertical part is the foot's load), ignored
-  // for a foot without force frame. A non-finite input (or a zero quaternion)
-  // leaves the estimate as it was. Throws std::invalid_argument on wrong sizes.
+  // sensor_force: the force each F/T sensor of force_frames measures [N], the left
+  // foot's sensors first, then the right's, one column each (the foot on the leg,
+  // in the sensor's axes; the world-vertical parts of a foot's sensors add up to
+  // its load). A non-finite input (or a zero quaternion) leaves the estimate as it
+  // was. Throws std::invalid_argument on wrong sizes.
   const BaseState& update(std::int64_t stamp_ns, const Eigen::Ref<const Eigen::VectorXd>& q,
                           const Eigen::Ref<const Eigen::VectorXd>& dq,
                           const Eigen::Ref<const Eigen::VectorXd>& ddq, const ImuInput& imu,
-                          const Eigen::Matrix<double, 3, 2>& foot_force);
+                          const Eigen::Ref<const Eigen::Matrix3Xd>& sensor_force);
+  // The number of F/T sensors, columns of update()'s sensor_force.
+  int force_sensors() const {
+    return static_cast<int>(force_frames_[0].size() + force_frames_[1].size());
+  }
 
   bool loaded(int foot) const { return loaded_[static_cast<std::size_t>(foot)]; }
   // Where each foot is anchored in the world (valid once it has been loaded).
@@ -92,7 +98,7 @@ class LeggedBaseEstimator {
   LeggedBaseOptions options_;
   std::array<int, 2> feet_{};
   int imu_ = 0;
-  std::array<int, 2> force_frames_{-1, -1};
+  std::array<std::vector<int>, 2> force_frames_{};  // per foot, its sensors' frames
   bool started_ = false;
   Eigen::Matrix3d yaw_offset_ = Eigen::Matrix3d::Identity();
   std::array<bool, 2> loaded_{};
