@@ -1,0 +1,65 @@
+// `wbi launch deploy/icub3_balance.yaml`, `icub3_balance_legs.yaml` and
+// `talos_balance.yaml`: the paper's momentum-based balancing, one controller,
+// on two real robots' models in MuJoCo (three processes in lockstep, the base
+// estimated from the IMU and the legs). The CoM follows a lateral sinusoid
+// (3 cm on iCub 3, 4 cm on TALOS, 0.2 Hz) for 20 s, with a push on the torso at
+// t = 10 s (40 N / 80 N for 0.1 s). Asserted, the bounds: com tracking
+// rms < 1 cm (the controller's line), and from the simulator's ground truth
+// (sim_robot's summary): the feet slip ≤ 2 mm, no joint at a limit for more
+// than 1 % of the ticks, every torque within its effort limit. The runs give
+// 1.6-1.9 mm rms and 0.3-1.0 mm slip (deploy/README.md).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <string>
+
+#include "child_process.hpp"
+#include "progress_lines.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+
+class RealRobotBalanceLaunch : public testing::TestWithParam<std::string> {};
+
+TEST_P(RealRobotBalanceLaunch, TracksTheSinusoidThroughThePushWithoutSlipOrLimits) {
+#ifndef WBI_WITH_MUJOCO
+  GTEST_SKIP() << "skipped: this build has no MuJoCo (install libmujoco-dev: scripts/install-deps)";
+#else
+  if (!wbi::test::shared_models_dir()) {
+    GTEST_SKIP() << wbi::test::kSharedMissing;
+  }
+  // The controller ends the run after 21 s of robot time (exit_after_s); the
+  // launch's --duration is only a safety net.
+  wbi::test::ChildProcess launch(
+      wbi::test::binary_dir() / "bin" / "wbi",
+      {"launch", (wbi::test::source_dir() / "deploy" / GetParam()).string(), "--duration", "250"});
+  const auto code = launch.wait(270s);
+  ASSERT_TRUE(code.has_value()) << launch.output();
+  const std::string out = launch.output();
+  EXPECT_EQ(*code, 0) << out;
+  const auto times = wbi::test::progress_times(out);
+  ASSERT_FALSE(times.empty()) << out;
+  EXPECT_GE(times.back(), 20.0) << "the run ended early\n" << out;
+  EXPECT_NE(out.find("[controller] qp failures: 0\n"), std::string::npos) << out;
+
+  const auto rms = wbi::test::last_value_after(out, "\ncom tracking rms: ");
+  const auto slip = wbi::test::last_value_after(out, "': contact slip: ");
+  const auto at_limit = wbi::test::last_value_after(out, "': joint at a limit: ");
+  const auto effort = wbi::test::last_value_after(out, "': torque: ");
+  ASSERT_TRUE(rms && slip && at_limit && effort) << "a summary line is missing\n" << out;
+  EXPECT_LT(*rms, 0.01) << out;
+  EXPECT_LE(*slip, 2.0) << "mm\n" << out;
+  EXPECT_LE(*at_limit, 1.0) << "% of ticks\n" << out;
+  EXPECT_LE(*effort, 1.0) << "of the effort limit\n" << out;
+  std::cout << GetParam() << ": com tracking rms " << *rms << " m, slip " << *slip
+            << " mm, joint at a limit " << *at_limit << " % of ticks\n";
+#endif
+}
+
+INSTANTIATE_TEST_SUITE_P(Deploys, RealRobotBalanceLaunch,
+                         testing::Values("icub3_balance.yaml", "icub3_balance_legs.yaml",
+                                         "talos_balance.yaml"));
+
+}  // namespace
