@@ -1,14 +1,18 @@
-// Compute time of one momentum-balance control tick on the project humanoid
-// (30 joints, every one controlled): model quantities through the DDS
-// whole-body interface's local model, the torque map, the wrench QP and the
-// command publish — everything after the state read. The robot is the
-// simulated humanoid in lockstep with the estimator, in this process, so each
-// timed tick sees a fresh, realistic state.
+// Compute time of one momentum-balance control tick: model quantities through
+// the DDS whole-body interface's local model, the torque map, the wrench QP and
+// the command publish — everything after the state read. Two robots, every
+// joint controlled: the project humanoid (30 joints, the own plant) and iCub 3
+// (32 joints, MuJoCo, its model from ../shared/models; skipped when missing).
+// The robot is simulated in lockstep with the estimator, in this process, so
+// each timed tick sees a fresh, realistic state.
 //   build/bin/wbi_bench_balance --benchmark_format=json
 #include <benchmark/benchmark.h>
 
 #include <chrono>
+#include <filesystem>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include <wbi/controllers/com_sinusoid.hpp>
 #include <wbi/controllers/momentum_balance.hpp>
@@ -20,34 +24,72 @@ namespace {
 
 using namespace std::chrono_literals;
 
-void BM_MomentumBalanceTick(benchmark::State& state) {
+struct BalancedRobot {
+  std::string sim_parameters;  // sim_robot's, after robot:
+  std::string urdf;
+  std::vector<std::string> joints;
+  wbi::controllers::MomentumBalanceParameters parameters;
+  double com_amplitude = 0.05;  // [m]
+};
+
+BalancedRobot humanoid() {
   const std::string source = WBI_SOURCE_DIR;
-  const std::string robot = "bench_balance";
+  BalancedRobot r;
+  r.sim_parameters = "config: " + source + "/deploy/robots/humanoid.yaml\n";
+  r.urdf = source + "/models/humanoid.urdf";
+  r.joints = {
+      "l_hip_pitch",      "l_hip_roll",       "l_hip_yaw",       "l_knee",         "l_ankle_pitch",
+      "l_ankle_roll",     "r_hip_pitch",      "r_hip_roll",      "r_hip_yaw",      "r_knee",
+      "r_ankle_pitch",    "r_ankle_roll",     "torso_pitch",     "torso_roll",     "torso_yaw",
+      "l_shoulder_pitch", "l_shoulder_roll",  "l_shoulder_yaw",  "l_elbow",        "l_wrist_yaw",
+      "l_wrist_pitch",    "r_shoulder_pitch", "r_shoulder_roll", "r_shoulder_yaw", "r_elbow",
+      "r_wrist_yaw",      "r_wrist_pitch",    "neck_pitch",      "neck_roll",      "neck_yaw"};
+  return r;
+}
+
+// As deploy/icub3_balance.yaml.
+BalancedRobot icub3() {
+  const std::string source = WBI_SOURCE_DIR;
+  BalancedRobot r;
+  r.sim_parameters = "engine: mujoco\nconfig: " + source + "/deploy/robots/icub3.yaml\n";
+  r.urdf = source + "/../shared/models/iCubGenova09/model.urdf";
+  r.joints = {"torso_roll",      "torso_pitch",    "torso_yaw",        "l_shoulder_pitch",
+              "l_shoulder_roll", "l_shoulder_yaw", "l_elbow",          "l_wrist_prosup",
+              "l_wrist_pitch",   "l_wrist_yaw",    "r_shoulder_pitch", "r_shoulder_roll",
+              "r_shoulder_yaw",  "r_elbow",        "r_wrist_prosup",   "r_wrist_pitch",
+              "r_wrist_yaw",     "neck_pitch",     "neck_roll",        "neck_yaw",
+              "l_hip_pitch",     "l_hip_roll",     "l_hip_yaw",        "l_knee",
+              "l_ankle_pitch",   "l_ankle_roll",   "r_hip_pitch",      "r_hip_roll",
+              "r_hip_yaw",       "r_knee",         "r_ankle_pitch",    "r_ankle_roll"};
+  r.parameters.foot_x_min = -0.08;
+  r.parameters.foot_x_max = 0.08;
+  r.parameters.foot_y_min = -0.03;
+  r.parameters.foot_y_max = 0.03;
+  r.com_amplitude = 0.03;
+  return r;
+}
+
+void run_ticks(benchmark::State& state, const BalancedRobot& balanced, const std::string& robot) {
   wbi::sim_rig::InProcessRobot rig(
-      "bench_balance",
-      "robot: " + robot + "\nconfig: " + source +
-          "/deploy/robots/humanoid.yaml\nlockstep: true\nlockstep_controllers: [balance]\n",
+      robot,
+      "robot: " + robot + "\n" + balanced.sim_parameters +
+          "lockstep: true\nlockstep_controllers: [balance]\n",
       "robot: " + robot + "\nbase: topic\nmethod: backward-difference\ncutoff: 50\n");
   wbi::DdsInterfaceOptions options;
   options.robot = robot;
   options.controller = "balance";
-  options.urdf = source + "/models/humanoid.urdf";
+  options.urdf = balanced.urdf;
   options.max_age_s = 5.0;
-  auto humanoid = wbi::make_dds_interface(options);
-  humanoid->add_joints(
-      {"l_hip_pitch",      "l_hip_roll",       "l_hip_yaw",       "l_knee",         "l_ankle_pitch",
-       "l_ankle_roll",     "r_hip_pitch",      "r_hip_roll",      "r_hip_yaw",      "r_knee",
-       "r_ankle_pitch",    "r_ankle_roll",     "torso_pitch",     "torso_roll",     "torso_yaw",
-       "l_shoulder_pitch", "l_shoulder_roll",  "l_shoulder_yaw",  "l_elbow",        "l_wrist_yaw",
-       "l_wrist_pitch",    "r_shoulder_pitch", "r_shoulder_roll", "r_shoulder_yaw", "r_elbow",
-       "r_wrist_yaw",      "r_wrist_pitch",    "neck_pitch",      "neck_roll",      "neck_yaw"});
+  auto interface = wbi::make_dds_interface(options);
+  interface->add_joints(balanced.joints);
   rig.start_simulation();
-  humanoid->init(20s);
-  Eigen::VectorXd q_posture(humanoid->dofs());
-  humanoid->read_estimates(wbi::EstimateKind::joint_position, q_posture);
-  wbi::controllers::MomentumBalance balance(*humanoid, {}, q_posture);
+  interface->init(20s);
+  Eigen::VectorXd q_posture(interface->dofs());
+  interface->read_estimates(wbi::EstimateKind::joint_position, q_posture);
+  wbi::controllers::MomentumBalance balance(*interface, balanced.parameters, q_posture);
   balance.start();
   wbi::controllers::ComSinusoid reference;
+  reference.amplitude = balanced.com_amplitude;
   std::int64_t start_ns = -1;
 
   for (auto _ : state) {
@@ -68,11 +110,30 @@ void BM_MomentumBalanceTick(benchmark::State& state) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
   }
   state.counters["qp_failures"] = static_cast<double>(balance.qp_failures());
+  state.counters["joints"] = static_cast<double>(balanced.joints.size());
   rig.sim().shutdown();
   rig.estimator().shutdown();
 }
+
+void BM_MomentumBalanceTick(benchmark::State& state) {
+  run_ticks(state, humanoid(), "bench_balance");
+}
+
+void BM_MomentumBalanceTickIcub3(benchmark::State& state) {
+  const BalancedRobot robot = icub3();
+  if (!std::filesystem::exists(robot.urdf)) {
+    state.SkipWithError(("skipped: ../shared not found (expected " + robot.urdf + ")").c_str());
+    return;
+  }
+  run_ticks(state, robot, "bench_balance_icub3");
+}
+
 // 3000 ticks: 3 s of robot time, half a sinusoid period.
 BENCHMARK(BM_MomentumBalanceTick)->UseManualTime()->Iterations(3000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MomentumBalanceTickIcub3)
+    ->UseManualTime()
+    ->Iterations(3000)
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
