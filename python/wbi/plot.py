@@ -4,8 +4,13 @@
     wbi-plot run.mcap --list                 # topics, their types and fields
 
 One panel per field, all against the recording's log time [s]; a vector field
-draws one line per element (FIELD[i] picks one). Uses matplotlib's Agg
-backend (no display needed). Exit codes: 0 success, 1 error (one line on stderr).
+draws one line per element (FIELD[i] picks one, FIELD[i,j] several in one panel). Elements are named where the
+recording says what they are: `values` of a Signals topic by its `names`
+(`wbi-plot run.mcap wbi/icub3/signals/balance values[4,1]`: the CoM reference
+and the CoM along y, in one panel), and the joint vectors of a robot's topics (q, dq,
+ddq, tau, encoder_position, …: one element per joint) by the joint names of
+its recorded `wbi/<robot>/description`. Uses matplotlib's Agg backend (no
+display needed). Exit codes: 0 success, 1 error (one line on stderr).
 """
 
 import argparse
@@ -15,11 +20,29 @@ import sys
 from .mcap import McapError
 from .recording import Recording, RecordingError
 
-_FIELD = re.compile(r"^(?P<path>[A-Za-z_][\w.]*)(?:\[(?P<index>\d+)\])?$")
+_FIELD = re.compile(r"^(?P<path>[A-Za-z_][\w.]*)(?:\[(?P<index>\d+(?:,\d+)*)\])?$")
 
 
-def _series(data, spec):
-    """(label, values as (N,) or (N, k) floats) of one FIELD or FIELD[i] argument."""
+def element_names(recording, data, path):
+    """What the elements of a vector field are, or None: a Signals topic's names for
+    its values, the robot's joint names (from its recorded description) for a field
+    with one element per joint."""
+    if path == "values" and "names" in data.fields and len(data):
+        return [str(name) for name in data["names"][0]]
+    parts = data.topic.split("/")
+    description = "/".join(parts[:2] + ["description"]) if len(parts) >= 3 else None
+    if description is None or description == data.topic or description not in recording.topics:
+        return None
+    joints = [str(name) for name in recording.topic(description)["joint_names"][0]]
+    values = data.field(path)
+    if values.dtype != object and values.ndim == 2 and values.shape[1] == len(joints):
+        return joints
+    return None
+
+
+def _series(data, spec, recording=None):
+    """(label, values as (N,) or (N, k) floats, a label per column or None) of one
+    FIELD, FIELD[i] or FIELD[i,j,...] argument."""
     match = _FIELD.match(spec)
     if not match:
         raise RecordingError(f"field '{spec}' is not a field path or FIELD[index]")
@@ -27,14 +50,20 @@ def _series(data, spec):
     if values.dtype == object:
         raise RecordingError(f"{data.topic}: field '{spec}' is text, not numbers")
     values = values.astype(float)
-    if match.group("index") is not None:
-        index = int(match.group("index"))
-        if values.ndim != 2 or index >= values.shape[1]:
-            width = values.shape[1] if values.ndim == 2 else 1
+    names = element_names(recording, data, match.group("path")) if recording else None
+    if match.group("index") is None:
+        return spec, values, names
+    indices = [int(index) for index in match.group("index").split(",")]
+    width = values.shape[1] if values.ndim == 2 else 1
+    for index in indices:
+        if values.ndim != 2 or index >= width:
             raise RecordingError(f"{data.topic}: field '{match.group('path')}' has {width} "
                                  f"element(s); index {index} is out of range")
-        values = values[:, index]
-    return spec, values
+    labels = [f"{match.group('path')}[{index}]" + (f" {names[index]}" if names else "")
+              for index in indices]
+    if len(indices) == 1:
+        return labels[0], values[:, indices[0]], None
+    return spec, values[:, indices], labels
 
 
 def _list(recording, out):
@@ -53,19 +82,20 @@ def _list(recording, out):
 def plot(recording, topic, fields, output, title=None):
     """Writes the PNG; returns the TopicData plotted."""
     data = recording.topic(topic)
-    series = [_series(data, spec) for spec in fields]
+    series = [_series(data, spec, recording) for spec in fields]
     import matplotlib  # here: slow to import, and not needed for --list or a bad field
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     figure, axes = plt.subplots(len(series), 1, sharex=True, squeeze=False,
                                 figsize=(10, 2.2 + 2.0 * len(series)))
-    for ax, (label, values) in zip(axes[:, 0], series):
+    for ax, (label, values, names) in zip(axes[:, 0], series):
         if values.ndim == 1:
             ax.plot(data.t, values, linewidth=1.0, label=label)
         else:
             for column in range(values.shape[1]):
-                ax.plot(data.t, values[:, column], linewidth=1.0, label=f"{label}[{column}]")
+                name = names[column] if names else f"{label}[{column}]"
+                ax.plot(data.t, values[:, column], linewidth=1.0, label=name)
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
         if values.ndim == 1 or values.shape[1] <= 12:

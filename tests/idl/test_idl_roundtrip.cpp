@@ -230,6 +230,15 @@ TEST(IdlRoundTrip, StatusAndClock) {
   EXPECT_EQ(round_trip(c), c);
 }
 
+TEST(IdlRoundTrip, Signals) {
+  wbi::msg::Signals s;
+  s.header(header("icub3"));
+  s.source("balance");
+  s.names({"com_y", "com_ref_y"});
+  s.values({0.0123, -0.5});
+  EXPECT_EQ(round_trip(s), s);
+}
+
 TEST(IdlRoundTrip, PlaybackCommand) {
   wbi::msg::PlaybackCommand p;
   p.header(header("arm"));

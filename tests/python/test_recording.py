@@ -41,7 +41,8 @@ class RecordingValues(unittest.TestCase):
 
     def check(self, path):
         rec = wbi.Recording(path)
-        self.assertEqual(rec.topics, ["wbi/arm/commands", "wbi/arm/sensors", "wbi/arm/state",
+        self.assertEqual(rec.topics, ["wbi/arm/commands", "wbi/arm/description",
+                                      "wbi/arm/sensors", "wbi/arm/signals/pd", "wbi/arm/state",
                                       "wbi/arm/status"])
         self.assertFalse(rec.truncated)
         self.assertAlmostEqual(rec.duration_s, 0.049)
@@ -129,7 +130,7 @@ class RecordingValues(unittest.TestCase):
     def test_messages_in_log_time_order_across_chunks(self):
         reader = McapReader(self.write("none"))
         times = [message.log_time for message in reader.messages()]
-        self.assertEqual(len(times), 50 + 20 + 3 + 10)
+        self.assertEqual(len(times), 50 + 20 + 3 + 10 + 1 + 5)
         self.assertEqual(times, sorted(times))
 
     def test_unknown_topic_and_field_are_named(self):
@@ -175,6 +176,20 @@ class RecordingValues(unittest.TestCase):
         self.assertRegex(str(caught.exception),
                          r"corrupt.mcap: byte \d+: Chunk record: CRC mismatch")
 
+    def test_plot_names_the_elements(self):
+        from wbi.plot import element_names
+        rec = wbi.Recording(self.write("zstd"))
+        signals = rec.topic("wbi/arm/signals/pd")
+        np.testing.assert_array_equal(signals["values"], np.stack([np.arange(5),
+                                                                   -2 * np.arange(5)], axis=1))
+        self.assertEqual(element_names(rec, signals, "values"), ["error", "effort"])
+        joints = [f"joint_{j}" for j in range(1, 8)]
+        self.assertEqual(element_names(rec, rec.topic("wbi/arm/state"), "q"), joints)
+        self.assertEqual(element_names(rec, rec.topic("wbi/arm/sensors"), "encoder_position"),
+                         joints)
+        self.assertIsNone(element_names(rec, rec.topic("wbi/arm/state"), "base_velocity"))
+        self.assertIsNone(element_names(rec, rec.topic("wbi/arm/state"), "header.seq"))
+
     def test_plot_writes_a_png(self):
         path = self.write("zstd")
         png = os.path.join(self.dir, "scope.png")
@@ -189,6 +204,9 @@ class RecordingValues(unittest.TestCase):
                            "dq[9]", "-o", png], timeout_s=60)
         self.assertEqual(bad.returncode, 1)
         self.assertIn("index 9 is out of range", bad.stderr)
+        both = support.run([support.BINARY_DIR / "bin" / "wbi-plot", path, "wbi/arm/signals/pd",
+                            "values[1,0]", "-o", png], timeout_s=120)
+        self.assertEqual(both.returncode, 0, both.stderr)
         listing = support.run([support.BINARY_DIR / "bin" / "wbi-plot", path, "--list"],
                               timeout_s=60)
         self.assertEqual(listing.returncode, 0, listing.stderr)

@@ -19,6 +19,10 @@
 //   wbi/arm/sensors (SensorSample), k = 0..9, log time 1e9 + 5k·1e6 + 1 ns:
 //     encoder_position[j] = j − k, imus: one, orientation (1, 0, 0, 0),
 //     angular_velocity (k, 0, 0), linear_acceleration (0, 0, 9.81)
+//   wbi/arm/description (RobotDescription), one at log time 1e9 ns: joint_names
+//     joint_1 … joint_7
+//   wbi/arm/signals/pd (Signals), k = 0..4, log time 1e9 + 10k·1e6 + 2 ns: source "pd",
+//     names (error, effort), values (k, −2k)
 #include <cstdint>
 #include <cstdio>
 #include <exception>
@@ -145,6 +149,25 @@ wbi::msg::SensorSample sensors(std::uint64_t k) {
   return s;
 }
 
+wbi::msg::RobotDescription description() {
+  wbi::msg::RobotDescription d;
+  d.header(header(0));
+  for (int j = 1; j <= 7; ++j) {
+    d.joint_names().emplace_back("joint_" + std::to_string(j));
+  }
+  return d;
+}
+
+wbi::msg::Signals signals(std::uint64_t k) {
+  wbi::msg::Signals s;
+  s.header(header(k));
+  s.source("pd");
+  s.names().emplace_back("error");
+  s.names().emplace_back("effort");
+  s.values({static_cast<double>(k), -2.0 * static_cast<double>(k)});
+  return s;
+}
+
 wbi::mcap::Compression compression_from(const std::string& name) {
   if (name == "none") {
     return wbi::mcap::Compression::none;
@@ -174,6 +197,9 @@ int main(int argc, char** argv) {
     Topic<wbi::msg::ActuatorCommand> command_topic(writer, "wbi/arm/commands");
     Topic<wbi::msg::ComponentStatus> status_topic(writer, "wbi/arm/status");
     Topic<wbi::msg::SensorSample> sensor_topic(writer, "wbi/arm/sensors");
+    Topic<wbi::msg::RobotDescription> description_topic(writer, "wbi/arm/description");
+    Topic<wbi::msg::Signals> signals_topic(writer, "wbi/arm/signals/pd");
+    description_topic.write(description(), 0, kStart);
     for (std::uint64_t k = 0; k < 50; ++k) {
       const auto kk = static_cast<std::uint32_t>(k);
       state_topic.write(state(k), kk, kStart + k * kMs);
@@ -185,6 +211,9 @@ int main(int argc, char** argv) {
       }
       if (k < 10) {
         sensor_topic.write(sensors(k), kk, kStart + 5 * k * kMs + 1);
+      }
+      if (k < 5) {
+        signals_topic.write(signals(k), kk, kStart + 10 * k * kMs + 2);
       }
     }
     writer.close();

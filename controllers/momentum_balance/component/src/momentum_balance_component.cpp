@@ -8,6 +8,8 @@
 
 #include <wbi/controllers/com_sinusoid.hpp>
 #include <wbi/controllers/momentum_balance.hpp>
+#include <wbi/dds/publisher.hpp>
+#include <wbi/dds/topics.hpp>
 #include <wbi/dds_interface.hpp>
 #include <wbi/runtime/process_exit.hpp>
 
@@ -40,6 +42,11 @@ MomentumBalanceParameters read_parameters(const runtime::Parameters& parameters)
   return p;
 }
 
+// What the signals topic carries, in this order.
+const std::vector<std::string> kSignalNames = {"com_x",     "com_y",     "com_z",
+                                               "com_ref_x", "com_ref_y", "com_ref_z",
+                                               "com_error", "left_f_z",  "right_f_z"};
+
 class MomentumBalanceComponent final : public runtime::Component {
  public:
   void on_configure(const runtime::Parameters& parameters,
@@ -71,6 +78,17 @@ class MomentumBalanceComponent final : public runtime::Component {
     }
     reference_.direction = Eigen::Vector3d(direction.data()).normalized();
     const MomentumBalanceParameters balance = read_parameters(parameters);
+    if (parameters.get<bool>("signals", true)) {
+      signals_publisher_ = std::make_unique<dds::Publisher<wbi::msg::Signals>>(
+          *context.participant, dds::topics::signals(options.robot, context.instance),
+          dds::qos::kStream);
+      signals_.header().robot(options.robot);
+      signals_.source(context.instance);
+      for (const auto& name : kSignalNames) {
+        signals_.names().emplace_back(name);
+      }
+      signals_.values(std::vector<double>(kSignalNames.size(), 0.0));
+    }
 
     robot_ = make_dds_interface(options);
     robot_->add_joints(joints);
@@ -125,6 +143,7 @@ class MomentumBalanceComponent final : public runtime::Component {
       max_error_ = std::max(max_error_, error);
       ++samples_;
     }
+    publish_signals(stamp);
     if (exit_after_s_ > 0.0 && t >= exit_after_s_ && !exit_requested_) {
       // The run is over: end the hosting process (wbi_host shuts the components
       // down, so the summary is printed), and `wbi launch` ends with it.
@@ -152,12 +171,30 @@ class MomentumBalanceComponent final : public runtime::Component {
       std::fflush(stdout);
     }
     controller_.reset();
+    signals_publisher_.reset();
     if (robot_) {
       robot_->close();
     }
   }
 
  private:
+  void publish_signals(const Stamp& stamp) {
+    if (!signals_publisher_) {
+      return;
+    }
+    const Eigen::Vector3d& c = controller_->com();
+    const Eigen::Vector3d& r = controller_->com_reference();
+    const auto& w = controller_->wrenches();
+    auto& v = signals_.values();  // sized at configure: filled in place
+    v[0] = c.x(), v[1] = c.y(), v[2] = c.z();
+    v[3] = r.x(), v[4] = r.y(), v[5] = r.z();
+    v[6] = (c - r).norm();
+    v[7] = w[2], v[8] = w[8];
+    signals_.header().stamp_ns(stamp.source_ns);
+    signals_.header().seq(signals_seq_++);
+    signals_publisher_->publish(signals_);
+  }
+
   void set_reference(double t) {
     if (reference_.settling(t)) {
       reference_.origin = controller_->com_of_state();
@@ -180,6 +217,9 @@ class MomentumBalanceComponent final : public runtime::Component {
   std::uint64_t stale_ = 0;
   double squared_error_ = 0.0, max_error_ = 0.0;
   std::uint64_t samples_ = 0;
+  std::unique_ptr<dds::Publisher<wbi::msg::Signals>> signals_publisher_;
+  wbi::msg::Signals signals_;
+  std::uint64_t signals_seq_ = 0;
 };
 
 }  // namespace

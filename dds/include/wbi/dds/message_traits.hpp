@@ -9,6 +9,7 @@
 #include <wbi/msg/modelPubSubTypes.h>
 #include <wbi/msg/playbackPubSubTypes.h>
 #include <wbi/msg/sensorsPubSubTypes.h>
+#include <wbi/msg/signalsPubSubTypes.h>
 #include <wbi/msg/statePubSubTypes.h>
 #include <wbi/msg/statusPubSubTypes.h>
 
@@ -36,6 +37,7 @@ WBI_DDS_MESSAGE(ModelReply)
 WBI_DDS_MESSAGE(ComponentStatus)
 WBI_DDS_MESSAGE(SimulationClock)
 WBI_DDS_MESSAGE(PlaybackCommand)
+WBI_DDS_MESSAGE(Signals)
 
 #undef WBI_DDS_MESSAGE
 

@@ -40,6 +40,11 @@ inline std::string model_reply(const std::string& robot) {
   return robot_topic(robot, "model/reply");
 }
 
+// A controller's named signals (wbi::msg::Signals): wbi/<robot>/signals/<controller>.
+inline std::string signals(const std::string& robot, const std::string& controller) {
+  return "wbi/" + robot + "/signals/" + controller;
+}
+
 inline const char* kStatus = "wbi/status";
 inline const char* kClock = "wbi/clock";
 

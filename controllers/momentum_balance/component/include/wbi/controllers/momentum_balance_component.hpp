@@ -26,6 +26,9 @@
 //   max_age_s          oldest state accepted (default 0.05 s)
 //   init_timeout_s     wait for the robot's components (default 30 s)
 //   progress_period_s  a progress line every so often, robot time (default 1 s; 0: none)
+//   signals            publish wbi/<robot>/signals/<instance> (wbi::msg::Signals) every
+//                      tick: com_x/y/z, com_ref_x/y/z, com_error [m], left_f_z,
+//                      right_f_z [N] (default true; false: none)
 //   exit_after_s       > 0: after this robot time, end the hosting process
 //                      (runtime::request_process_exit: under wbi_host a clean shutdown
 //                      with the summary, exit code 0), so that a deploy file with
