@@ -1,11 +1,19 @@
 // The balancing demo as a user runs it: `wbi launch deploy/balance.yaml` starts
 // the simulated humanoid, the estimator and the momentum-based balancing
 // controller as three processes in lockstep; the CoM follows the lateral
-// sinusoid for 20 s and the launch ends with "com tracking rms: X m".
+// sinusoid for 20 s and the launch ends with "com tracking rms: X m". The
+// controller's signals (wbi/humanoid/signals/balance) reach this process: named,
+// one per tick, the CoM reference swinging by the sinusoid's ±5 cm.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <mutex>
 #include <string>
+
+#include <wbi/dds/participant.hpp>
+#include <wbi/dds/subscriber.hpp>
+#include <wbi/dds/topics.hpp>
 
 #include "child_process.hpp"
 #include "progress_lines.hpp"
@@ -16,6 +24,27 @@ namespace {
 using namespace std::chrono_literals;
 
 TEST(BalanceLaunch, ThreeProcessesTrackTheSinusoidFor20Seconds) {
+  // The controller's signals, as a recorder would see them.
+  std::mutex mutex;
+  std::size_t signals = 0;
+  std::vector<std::string> names;
+  double ref_y_min = 0.0, ref_y_max = 0.0;
+  wbi::dds::Participant participant("balance_launch_signals");
+  wbi::dds::Subscriber<wbi::msg::Signals> subscriber(
+      participant, wbi::dds::topics::signals("humanoid", "balance"), wbi::dds::qos::kStream,
+      [&](const wbi::msg::Signals& s, const wbi::dds::detail::SampleInfo&) {
+        std::lock_guard lock(mutex);
+        if (signals++ == 0) {
+          for (const auto& name : s.names()) {
+            names.emplace_back(name.to_string());
+          }
+        }
+        if (s.values().size() > 4) {
+          ref_y_min = std::min(ref_y_min, s.values()[4]);
+          ref_y_max = std::max(ref_y_max, s.values()[4]);
+        }
+      });
+
   // The controller ends the run after 21 s of robot time (exit_after_s); --duration
   // is only a safety net.
   wbi::test::ChildProcess launch(
@@ -37,6 +66,13 @@ TEST(BalanceLaunch, ThreeProcessesTrackTheSinusoidFor20Seconds) {
   ASSERT_EQ(out.find('\n', end), out.size() - 1) << "the rms is not the last line:\n" << out;
   // The bound; the run gives about 1.5 mm.
   EXPECT_LT(std::stod(out.substr(at + marker.size())), 0.01) << out;
+
+  std::lock_guard lock(mutex);
+  EXPECT_GE(signals, 10000u) << "one sample per tick over 21 s (a reliable stream may skip some)";
+  ASSERT_GE(names.size(), 5u);
+  EXPECT_EQ(names[1], "com_y");
+  EXPECT_EQ(names[4], "com_ref_y");
+  EXPECT_NEAR(ref_y_max - ref_y_min, 0.10, 0.005) << "the reference's swing, 2 × 5 cm";
 }
 
 }  // namespace
