@@ -1,9 +1,14 @@
 // The real-time clock's schedule on given times: jitter is caught up, a stall
 // is not (the simulation pauses with its process instead of stepping the
-// missed time in a burst); a stall's line on stderr at most once a period.
+// missed time in a burst); a stall's line on stderr at most once a period; the
+// clock's end-of-run line counts the ticks behind their deadline.
 #include <gtest/gtest.h>
 
 #include <chrono>
+
+#include <string>
+
+#include <wbi/runtime/status_report.hpp>
 
 #include "step_clock.hpp"
 
@@ -89,6 +94,23 @@ TEST(StallLines, AStoppedProcessIsAlwaysPrinted) {
   // A 1 s stop right after: printed at once, with the jitter it follows.
   EXPECT_TRUE(lines.print(kStart + 2s, std::chrono::nanoseconds(1s), unprinted));
   EXPECT_EQ(unprinted, 1u);
+}
+
+// Tick 4 is waited for (due 5 ms after the start); tick 1, due 2 ms after the
+// start, comes when those 5 ms have passed: behind its deadline, caught up.
+TEST(RealTimeClock, CountsTheTicksBehindTheirDeadline) {
+  wbi::runtime::StatusCounter stalls;
+  wbi::robot::RealTimeClock clock(kPeriod, kMaxLag, "sim_robot 'arm'", stalls);
+  clock.start();
+  clock.wait(4);
+  clock.wait(1);
+  const std::string line = clock.summary();
+  EXPECT_NE(line.find("real time: "), std::string::npos) << line;
+  EXPECT_NE(line.find(" of 2 ticks behind their deadline ("), std::string::npos) << line;
+  EXPECT_EQ(line.find("real time: 0 of"), std::string::npos) << "tick 1 came late: " << line;
+  EXPECT_NE(line.find("0 stall(s) not caught up"), std::string::npos) << line;
+  clock.start();  // a new activation counts anew
+  EXPECT_NE(clock.summary().find("real time: 0 of 0 ticks"), std::string::npos);
 }
 
 }  // namespace

@@ -276,6 +276,11 @@ class RobotDriver final : public runtime::Component {
       GroundTruthSummary summary(backend_->description(), simulation_->ground_truth());
       step_until_stopped(summary);
       summary.print(std::cout, who_);
+      for (const auto& clock : step_clocks_) {
+        if (const std::string line = clock->summary(); !line.empty()) {
+          std::cout << who_ << ": " << line << std::endl;
+        }
+      }
     } catch (const std::exception& e) {
       const std::string what =
           "simulation stopped at t = " + std::to_string(simulation_->time()) + " s: " + e.what();

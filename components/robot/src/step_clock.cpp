@@ -1,6 +1,7 @@
 #include "step_clock.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <iostream>
 
 namespace wbi::robot {
@@ -21,7 +22,20 @@ RealTimeSchedule::TimePoint RealTimeSchedule::due(std::uint64_t tick, TimePoint 
 void RealTimeClock::start() {
   std::lock_guard lock(mutex_);
   stopped_ = false;
+  ticks_ = behind_ = stalls_seen_ = 0;
   schedule_.start(std::chrono::steady_clock::now());
+}
+
+std::string RealTimeClock::summary() const {
+  char line[160];
+  std::snprintf(
+      line, sizeof line,
+      "real time: %llu of %llu ticks behind their deadline (%.2f %%), %llu stall(s) "
+      "not caught up",
+      static_cast<unsigned long long>(behind_), static_cast<unsigned long long>(ticks_),
+      ticks_ > 0 ? 100.0 * static_cast<double>(behind_) / static_cast<double>(ticks_) : 0.0,
+      static_cast<unsigned long long>(stalls_seen_));
+  return line;
 }
 
 bool StallLines::print(TimePoint now, std::chrono::nanoseconds length, std::uint64_t& unprinted) {
@@ -39,8 +53,13 @@ void RealTimeClock::wait(std::uint64_t tick) {
   std::chrono::nanoseconds dropped;
   const auto now = std::chrono::steady_clock::now();
   const auto due = schedule_.due(tick, now, dropped);
+  ++ticks_;
+  if (due < now || dropped.count() > 0) {
+    ++behind_;
+  }
   std::uint64_t unprinted = 0;
   if (dropped.count() > 0) {
+    ++stalls_seen_;
     stalls_.add();  // every stall, printed or not: the status counter real_time_stalls
     if (stall_lines_.print(now, dropped, unprinted)) {
       std::cerr << who_ << ": tick " << tick << " came "

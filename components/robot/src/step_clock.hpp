@@ -44,6 +44,9 @@ class StepClock {
   // Every command that reached the actuator side, accepted or not (a DDS thread).
   virtual void observe(const wbi::msg::ActuatorCommand& /*command*/) {}
   virtual bool lockstep() const = 0;
+  // What the clock saw since start(), one line for the end of a run, or "" (the
+  // loop's thread).
+  virtual std::string summary() const { return ""; }
 };
 
 // When a real-time tick is due: the arithmetic of RealTimeClock, on times given
@@ -96,9 +99,14 @@ class RealTimeClock final : public StepClock {
   void wait(std::uint64_t tick) override;
   void stop() override;
   bool lockstep() const override { return false; }
+  // "real time: B of N ticks behind their deadline (P %), S stall(s) not caught up":
+  // a tick is behind when its time had passed before the loop got to wait for it
+  // (the previous tick's work, or the scheduler, overran the period).
+  std::string summary() const override;
 
  private:
-  RealTimeSchedule schedule_;  // the driver's loop only
+  RealTimeSchedule schedule_;                               // the driver's loop only
+  std::uint64_t ticks_ = 0, behind_ = 0, stalls_seen_ = 0;  // since start(); loop only
   StallLines stall_lines_{std::chrono::seconds(10), std::chrono::milliseconds(100)};  // loop only
   const std::string who_;
   runtime::StatusCounter& stalls_;
