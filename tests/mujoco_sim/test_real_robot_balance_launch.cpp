@@ -13,9 +13,8 @@
 #include <chrono>
 #include <string>
 
-#include "child_process.hpp"
 #include "progress_lines.hpp"
-#include "test_support.hpp"
+#include "real_robot_launch.hpp"
 
 namespace {
 
@@ -24,17 +23,11 @@ using namespace std::chrono_literals;
 class RealRobotBalanceLaunch : public testing::TestWithParam<std::string> {};
 
 TEST_P(RealRobotBalanceLaunch, TracksTheSinusoidThroughThePushWithoutSlipOrLimits) {
-#ifndef WBI_WITH_MUJOCO
-  GTEST_SKIP() << "skipped: this build has no MuJoCo (install libmujoco-dev: scripts/install-deps)";
-#else
-  if (!wbi::test::shared_models_dir()) {
-    GTEST_SKIP() << wbi::test::kSharedMissing;
+  if (const std::string skip = wbi::test::real_robot_skip_reason(); !skip.empty()) {
+    GTEST_SKIP() << skip;
   }
-  // The controller ends the run after 21 s of robot time (exit_after_s); the
-  // launch's --duration is only a safety net.
-  wbi::test::ChildProcess launch(
-      wbi::test::binary_dir() / "bin" / "wbi",
-      {"launch", (wbi::test::source_dir() / "deploy" / GetParam()).string(), "--duration", "250"});
+  // The controller ends the run after 21 s of robot time (exit_after_s).
+  auto launch = wbi::test::launch_deploy_file(GetParam(), 250);
   const auto code = launch.wait(270s);
   ASSERT_TRUE(code.has_value()) << launch.output();
   const std::string out = launch.output();
@@ -55,7 +48,6 @@ TEST_P(RealRobotBalanceLaunch, TracksTheSinusoidThroughThePushWithoutSlipOrLimit
   EXPECT_LE(*effort, 1.0) << "of the effort limit\n" << out;
   std::cout << GetParam() << ": com tracking rms " << *rms << " m, slip " << *slip
             << " mm, joint at a limit " << *at_limit << " % of ticks\n";
-#endif
 }
 
 INSTANTIATE_TEST_SUITE_P(Deploys, RealRobotBalanceLaunch,

@@ -9,9 +9,8 @@
 #include <chrono>
 #include <string>
 
-#include "child_process.hpp"
 #include "progress_lines.hpp"
-#include "test_support.hpp"
+#include "real_robot_launch.hpp"
 
 namespace {
 
@@ -20,17 +19,12 @@ using namespace std::chrono_literals;
 class RealRobotPdLaunch : public testing::TestWithParam<std::string> {};
 
 TEST_P(RealRobotPdLaunch, EveryTorsoAndArmJointReachesItsNewPosture) {
-#ifndef WBI_WITH_MUJOCO
-  GTEST_SKIP() << "skipped: this build has no MuJoCo (install libmujoco-dev: scripts/install-deps)";
-#else
-  if (!wbi::test::shared_models_dir()) {
-    GTEST_SKIP() << wbi::test::kSharedMissing;
+  if (const std::string skip = wbi::test::real_robot_skip_reason(); !skip.empty()) {
+    GTEST_SKIP() << skip;
   }
-  // The launch's own --duration is only a safety net: the run is over when the
-  // robot has stepped its 4 s (lockstep: as fast as the machine allows).
-  wbi::test::ChildProcess launch(
-      wbi::test::binary_dir() / "bin" / "wbi",
-      {"launch", (wbi::test::source_dir() / "deploy" / GetParam()).string(), "--duration", "150"});
+  // The run is over when the robot has stepped its 4 s (lockstep: as fast as
+  // the machine allows).
+  auto launch = wbi::test::launch_deploy_file(GetParam(), 150);
   ASSERT_TRUE(launch.wait_for_output("duration_s 4 reached", 150s)) << launch.output();
   launch.stop();
   const std::string out = launch.output();
@@ -43,7 +37,6 @@ TEST_P(RealRobotPdLaunch, EveryTorsoAndArmJointReachesItsNewPosture) {
   ASSERT_TRUE(error.has_value()) << out;
   EXPECT_LT(*error, 0.01) << out;
   std::cout << GetParam() << ": final max joint error " << *error << " rad\n";
-#endif
 }
 
 INSTANTIATE_TEST_SUITE_P(Deploys, RealRobotPdLaunch,

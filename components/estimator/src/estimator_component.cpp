@@ -249,6 +249,10 @@ class EstimatorComponent final : public runtime::Component {
       }
     }
     foot_forces_.setZero(3, static_cast<Eigen::Index>(foot_sensor_index_.size()));
+    needed_force_torques_ = 0;
+    for (const int index : foot_sensor_index_) {
+      needed_force_torques_ = std::max(needed_force_torques_, index + 1);
+    }
     legged_options_.initial_position = base_pose_.topRightCorner<3, 1>();
     legged_options_.initial_yaw = std::atan2(base_pose_(1, 0), base_pose_(0, 0));
     legged_estimator_ = std::make_unique<LeggedBaseEstimator>(urdf_, joints, legged_options_);
@@ -462,12 +466,8 @@ class EstimatorComponent final : public runtime::Component {
   }
 
   bool has_legged_inputs(const wbi::msg::SensorSample& sample) const {
-    int needed_ft = 0;
-    for (const int index : foot_sensor_index_) {
-      needed_ft = std::max(needed_ft, index + 1);
-    }
     return static_cast<int>(sample.imus().size()) > imu_index_ &&
-           static_cast<int>(sample.force_torque().size()) >= needed_ft;
+           static_cast<int>(sample.force_torque().size()) >= needed_force_torques_;
   }
 
   ImuInput sample_imu() const {
@@ -575,6 +575,7 @@ class EstimatorComponent final : public runtime::Component {
   int imu_index_ = -1;                  // among the sample's IMU readings
   std::vector<int> foot_sensor_index_;  // among the sample's F/T readings, the left foot's first
   Eigen::Matrix3Xd foot_forces_;        // their forces, one column each
+  int needed_force_torques_ = 0;        // F/T readings a sample must have for them
   const wbi::msg::SensorSample* current_sample_ = nullptr;  // while publishing its estimate
   bool have_base_sample_ = false;                           // base: topic
   bool failed_ = false;                            // the description did not fit the base estimator

@@ -1,5 +1,6 @@
 #include "wbi/controllers/momentum_balance_component.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -43,9 +44,8 @@ MomentumBalanceParameters read_parameters(const runtime::Parameters& parameters)
 }
 
 // What the signals topic carries, in this order.
-const std::vector<std::string> kSignalNames = {"com_x",     "com_y",     "com_z",
-                                               "com_ref_x", "com_ref_y", "com_ref_z",
-                                               "com_error", "left_f_z",  "right_f_z"};
+constexpr std::array kSignalNames = {"com_x",     "com_y",     "com_z",    "com_ref_x", "com_ref_y",
+                                     "com_ref_z", "com_error", "left_f_z", "right_f_z"};
 
 class MomentumBalanceComponent final : public runtime::Component {
  public:
