@@ -14,6 +14,7 @@
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 
 #include "participant_impl.hpp"
+#include "producer_binding.hpp"
 
 namespace wbi::dds::detail {
 
@@ -173,13 +174,71 @@ struct ReaderImpl : fdds::DataReaderListener {
   ReaderSink& sink;
   fdds::DataReader* reader = nullptr;
   MatchCounter matches;
+  std::unique_ptr<ProducerBinding> binding;  // ProducerPolicy::one_producer only
+  std::function<void(const ProducerEvent&)> on_producer_event;
+  std::function<Guid()> owner_of;
 
-  ReaderImpl(ParticipantImpl& p, std::string name, ReaderSink& s)
-      : participant(p), topic_name(std::move(name)), sink(s) {}
+  ReaderImpl(ParticipantImpl& p, std::string name, ReaderSink& s, ProducerPolicy policy)
+      : participant(p),
+        topic_name(std::move(name)),
+        sink(s),
+        binding(policy.one_producer ? std::make_unique<ProducerBinding>() : nullptr),
+        on_producer_event(std::move(policy.on_event)),
+        owner_of(std::move(policy.owner)) {}
 
   void on_subscription_matched(fdds::DataReader* /*reader*/,
                                const fdds::SubscriptionMatchedStatus& status) override {
+    if (binding && status.current_count_change < 0) {
+      binding->on_unmatched(
+          to_guid(eprosima::fastrtps::rtps::iHandle2GUID(status.last_publication_handle)));
+    }
     matches.set(status.current_count);
+  }
+
+  // Whether a sample of `writer` goes to the sink (always, unless bound to one producer).
+  bool admitted(const Guid& writer, std::int64_t received_ns) {
+    if (!binding) {
+      return true;
+    }
+    Guid previous{};
+    Guid owner{};
+    if (owner_of) {
+      owner = owner_of();
+    }
+    const auto ended = [&](const Guid& bound) { return participant.writer_has_ended(bound); };
+    switch (binding->admit(writer, received_ns, ended, previous, owner_of ? &owner : nullptr)) {
+      case ProducerBinding::Verdict::take:
+        return true;
+      case ProducerBinding::Verdict::rebound:
+        tell(ProducerEvent::Kind::rebound, writer,
+             "wbi: '" + topic_name + "': now taking the samples of " +
+                 participant.describe_writer(writer) + ", in place of writer " +
+                 guid_hex(previous));
+        return true;
+      case ProducerBinding::Verdict::first_foreign:
+        tell(ProducerEvent::Kind::foreign_sample, writer,
+             "wbi: '" + topic_name + "': dropping the samples of a second writer, " +
+                 participant.describe_writer(writer) + "; this reader takes those of " +
+                 (previous != Guid{}
+                      ? participant.describe_writer(previous)
+                      : "the participant of its owner, " + participant.describe_writer(owner)) +
+                 " only (one producer per stream)");
+        return false;
+      case ProducerBinding::Verdict::foreign:
+        if (on_producer_event) {
+          on_producer_event({ProducerEvent::Kind::foreign_sample, &writer, {}});
+        }
+        return false;
+    }
+    return false;
+  }
+
+  // Says a binding event on stderr (once per writer: not per sample) and to the owner.
+  void tell(ProducerEvent::Kind kind, const Guid& writer, const std::string& text) {
+    std::fprintf(stderr, "%s\n", text.c_str());
+    if (on_producer_event) {
+      on_producer_event({kind, &writer, text});
+    }
   }
 
   // A writer on this topic that cannot serve this reader — typically a
@@ -222,15 +281,19 @@ struct ReaderImpl : fdds::DataReaderListener {
       if (!info.valid_data) {
         continue;  // a dispose or unregister notice, not a sample
       }
-      sink.on_sample({info.source_timestamp.to_ns(), steady_now_ns(),
-                      to_guid(info.sample_identity.writer_guid())});
+      const SampleInfo sample{info.source_timestamp.to_ns(), steady_now_ns(),
+                              to_guid(info.sample_identity.writer_guid())};
+      if (admitted(sample.writer, sample.received_ns)) {
+        sink.on_sample(sample);
+      }
     }
   }
 };
 
 Reader::Reader(Participant& participant, const std::string& topic, fdds::TopicDataType* type,
-               const std::string& profile, ReaderSink& sink, ReaderOverrides overrides)
-    : impl_(std::make_unique<ReaderImpl>(participant.impl(), topic, sink)) {
+               const std::string& profile, ReaderSink& sink, ReaderOverrides overrides,
+               ProducerPolicy producers)
+    : impl_(std::make_unique<ReaderImpl>(participant.impl(), topic, sink, std::move(producers))) {
   fdds::DataReaderQos qos = impl_->participant.reader_qos(profile);
   if (overrides.set) {
     qos.reliability().kind =
@@ -257,6 +320,10 @@ Reader::~Reader() {
 }
 
 int Reader::matched() const { return impl_->matches.get(); }
+
+ProducerCounts Reader::producers() const {
+  return impl_->binding ? impl_->binding->counts() : ProducerCounts{};
+}
 
 int Reader::incompatible_writers() const { return impl_->incompatible_writers.load(); }
 

@@ -11,6 +11,8 @@
 #include <stdexcept>
 
 #include <unistd.h>
+#include <cerrno>
+#include <csignal>
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
@@ -232,6 +234,13 @@ fdds::DataReaderQos ParticipantImpl::reader_qos(const std::string& profile) cons
 }
 
 namespace {
+Guid guid_of(const eprosima::fastrtps::rtps::GUID_t& rtps) {
+  Guid guid{};
+  std::copy(std::begin(rtps.guidPrefix.value), std::end(rtps.guidPrefix.value), guid.begin());
+  std::copy(std::begin(rtps.entityId.value), std::end(rtps.entityId.value), guid.begin() + 12);
+  return guid;
+}
+
 std::string guid_text(const eprosima::fastrtps::rtps::GUID_t& guid) {
   std::ostringstream out;
   out << guid;
@@ -265,6 +274,61 @@ void ParticipantImpl::on_participant_discovery(
     }
   }
   remote_participants_[prefix] = std::move(remote);
+}
+
+bool ended_on_host(const ParticipantInfo& other, const std::string& host) {
+  return !other.host.empty() && other.host == host && other.pid > 0 &&
+         kill(static_cast<pid_t>(other.pid), 0) != 0 && errno == ESRCH;
+}
+
+std::optional<ParticipantInfo> ParticipantImpl::participant_of(const Guid& writer) const {
+  std::string prefix = guid_hex(writer).substr(0, 24);
+  if (prefix == self.guid_prefix) {
+    return self;
+  }
+  std::lock_guard lock(discovery_mutex_);
+  const auto known = remote_participants_.find(prefix);
+  if (known == remote_participants_.end()) {
+    return std::nullopt;
+  }
+  return known->second;
+}
+
+bool ParticipantImpl::writer_has_ended(const Guid& writer) const {
+  const auto owner = participant_of(writer);
+  return owner && ended_on_host(*owner, self.host);
+}
+
+std::string ParticipantImpl::describe_writer(const Guid& writer) const {
+  const auto owner = participant_of(writer);
+  std::string text = !owner                ? std::string("a participant not discovered")
+                     : owner->name.empty() ? std::string("a participant")
+                                           : "participant '" + owner->name + "'";
+  if (owner && !owner->host.empty()) {
+    text += " on host " + owner->host;
+  }
+  if (owner && owner->pid > 0) {
+    text += ", pid " + std::to_string(owner->pid);
+  }
+  return text + " (writer " + guid_hex(writer) + ")";
+}
+
+Guid ParticipantImpl::oldest_writer_of(const std::string& topic) const {
+  std::lock_guard lock(discovery_mutex_);
+  Guid oldest{};
+  std::int64_t oldest_start = 0;
+  for (const auto& [key, endpoint] : remote_endpoints_) {
+    const auto owner = remote_participants_.find(endpoint.participant);
+    if (!endpoint.writer || endpoint.topic != topic || owner == remote_participants_.end() ||
+        ended_on_host(owner->second, self.host)) {
+      continue;
+    }
+    if (oldest == Guid{} || owner->second.start_ns < oldest_start) {
+      oldest = endpoint.guid;
+      oldest_start = owner->second.start_ns;
+    }
+  }
+  return oldest;
 }
 
 std::vector<ParticipantInfo> ParticipantImpl::publishers_of(const std::string& topic) const {
@@ -302,7 +366,8 @@ void ParticipantImpl::on_publisher_discovery(fdds::DomainParticipant* /*particip
                                 true,
                                 qos.m_reliability.kind == fdds::RELIABLE_RELIABILITY_QOS,
                                 qos.m_durability.kind == fdds::TRANSIENT_LOCAL_DURABILITY_QOS,
-                                prefix_text(info.info.guid().guidPrefix)};
+                                prefix_text(info.info.guid().guidPrefix),
+                                guid_of(info.info.guid())};
     }
   }
   discovery_changed_.notify_all();
@@ -389,6 +454,14 @@ const ParticipantInfo& Participant::info() const { return impl_->self; }
 
 std::vector<ParticipantInfo> Participant::publishers_of(const std::string& topic) const {
   return impl_->publishers_of(topic);
+}
+
+detail::Guid Participant::oldest_writer_of(const std::string& topic) const {
+  return impl_->oldest_writer_of(topic);
+}
+
+bool Participant::has_ended(const ParticipantInfo& other) const {
+  return detail::ended_on_host(other, impl_->self.host);
 }
 
 int Participant::domain_id() const { return impl_->domain_id; }

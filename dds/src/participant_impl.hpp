@@ -4,6 +4,7 @@
 #include <condition_variable>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
@@ -15,11 +16,16 @@
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TopicDataType.hpp>
 
+#include "wbi/dds/detail/endpoints.hpp"
 #include "wbi/dds/participant.hpp"
 
 namespace wbi::dds::detail {
 
 namespace fdds = eprosima::fastdds::dds;
+
+// Whether `other` is a participant of a process of `host` that has ended (its
+// announcement stays until its lease ends).
+bool ended_on_host(const ParticipantInfo& other, const std::string& host);
 
 class ParticipantImpl : public fdds::DomainParticipantListener {
  public:
@@ -43,6 +49,16 @@ class ParticipantImpl : public fdds::DomainParticipantListener {
 
   std::vector<ParticipantInfo> publishers_of(const std::string& topic) const;
 
+  // Whether the process of `writer`'s participant is known to have ended
+  // (a participant of this host whose pid is gone). Allocates: once per new writer.
+  bool writer_has_ended(const Guid& writer) const;
+  // "participant 'robot' on host h, pid 12 (writer <32 hex digits>)", as far
+  // as discovery knows it, for log lines.
+  std::string describe_writer(const Guid& writer) const;
+  // The remote writer of `topic` whose participant is the oldest of those
+  // alive (the rule of a robot's name claim); all zero when none is known.
+  Guid oldest_writer_of(const std::string& topic) const;
+
   int domain_id;
   std::string name;
   ParticipantInfo self;  // announced by participant_qos()
@@ -56,6 +72,8 @@ class ParticipantImpl : public fdds::DomainParticipantListener {
                                eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) override;
 
   std::vector<TopicInfo> collect_topics() const;  // caller holds discovery_mutex_
+  // The participant of `writer`: this one, a remote one discovery knows, or none.
+  std::optional<ParticipantInfo> participant_of(const Guid& writer) const;
 
   struct SharedTopic {
     fdds::Topic* topic = nullptr;
@@ -69,6 +87,7 @@ class ParticipantImpl : public fdds::DomainParticipantListener {
     bool reliable = false;
     bool transient_local = false;
     std::string participant;  // its participant's GUID prefix (ParticipantInfo::guid_prefix)
+    Guid guid{};
   };
 
   fdds::DomainParticipant* participant_ = nullptr;

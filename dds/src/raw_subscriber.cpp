@@ -21,12 +21,15 @@ struct RawSubscriber::Impl : detail::ReaderSink {
   }
 };
 
-RawSubscriber::RawSubscriber(Participant& participant, const TopicInfo& topic, Callback callback)
+RawSubscriber::RawSubscriber(Participant& participant, const TopicInfo& topic, Callback callback,
+                             ProducerPolicy producers)
     : impl_(std::make_unique<Impl>(std::move(callback))) {
-  impl_->reader =
-      std::make_unique<detail::Reader>(participant, topic.name, new detail::RawType(topic.type),
-                                       qos::kStream, *impl_, detail::matching_writers_of(topic));
+  impl_->reader = std::make_unique<detail::Reader>(
+      participant, topic.name, new detail::RawType(topic.type), qos::kStream, *impl_,
+      detail::matching_writers_of(topic), std::move(producers));
 }
+
+ProducerCounts RawSubscriber::producers() const { return impl_->reader->producers(); }
 
 RawSubscriber::~RawSubscriber() = default;
 

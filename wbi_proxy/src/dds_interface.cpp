@@ -68,8 +68,9 @@ struct Stream {
   std::string what;  // e.g. "sensor samples of robot 'arm' on wbi/arm/sensors"
 
   Stream(dds::Participant& participant, const std::string& topic, const char* profile,
-         std::string description)
-      : subscriber(participant, topic, profile), what(std::move(description)) {}
+         std::string description, dds::ProducerPolicy producers)
+      : subscriber(participant, topic, profile, nullptr, std::move(producers)),
+        what(std::move(description)) {}
 
   // Brings `received` up to date for a read of `kind`; throws when there is no
   // usable sample.
@@ -102,13 +103,17 @@ class DdsInterface final : public WholeBodyInterface {
   explicit DdsInterface(const DdsInterfaceOptions& options)
       : options_(options),
         participant_(options.participant),
-        description_(participant_, dds::topics::description(options.robot), dds::qos::kLatched),
+        description_(participant_, dds::topics::description(options.robot), dds::qos::kLatched,
+                     nullptr, dds::ProducerPolicy::one(options.on_producer_event)),
         sensors_(participant_, dds::topics::sensors(options.robot), dds::qos::kStream,
                  "sensor samples of robot '" + options.robot + "' on " +
-                     dds::topics::sensors(options.robot)),
+                     dds::topics::sensors(options.robot),
+                 dds::ProducerPolicy::owned_by(dds::description_owner(participant_, description_),
+                                               options.on_producer_event)),
         state_(participant_, dds::topics::state(options.robot), dds::qos::kStream,
                "state estimates of robot '" + options.robot + "' on " +
-                   dds::topics::state(options.robot)),
+                   dds::topics::state(options.robot),
+               dds::ProducerPolicy::one(options.on_producer_event)),
         commands_(participant_, dds::topics::commands(options.robot), dds::qos::kCommand),
         parameters_(participant_, dds::topics::control_parameters(options.robot),
                     dds::qos::kCommand),

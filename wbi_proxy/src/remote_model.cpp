@@ -21,14 +21,23 @@ IdList frames_of(const std::string& urdf, const msg::RobotDescription& descripti
   }
 }
 
+// The replies of one model service: a second service of the same robot is dropped.
+dds::ClientOptions one_server(std::function<void(const dds::ProducerEvent&)> on_event) {
+  dds::ClientOptions options;
+  options.producers = dds::ProducerPolicy::one(std::move(on_event));
+  return options;
+}
+
 }  // namespace
 
 RemoteModel::RemoteModel(dds::Participant& participant, const DdsInterfaceOptions& options)
     : robot_(options.robot),
       timeout_(options.model_timeout),
       urdf_(options.urdf),
-      description_(participant, dds::topics::model_description(options.robot), dds::qos::kLatched),
-      client_(participant, dds::topics::model_service(options.robot)) {}
+      description_(participant, dds::topics::model_description(options.robot), dds::qos::kLatched,
+                   nullptr, dds::ProducerPolicy::one(options.on_producer_event)),
+      client_(participant, dds::topics::model_service(options.robot),
+              one_server(options.on_producer_event)) {}
 
 std::string RemoteModel::wait_ready(std::chrono::steady_clock::time_point deadline) {
   const auto left = [&] {

@@ -48,6 +48,9 @@ std::string progress_text(const recording::RecorderProgress& now,
   if (now.dropped > 0) {
     out << "  DROPPED " << now.dropped;
   }
+  if (now.foreign > 0) {
+    out << "  FOREIGN " << now.foreign;
+  }
   return out.str();
 }
 
@@ -159,6 +162,12 @@ int run_record(Args raw_args) {
     std::cerr << "warning: " << done.dropped
               << " samples were dropped (the writer could not keep up; try --queue or "
                  "--compression none)"
+              << std::endl;
+  }
+  if (done.foreign > 0) {
+    std::cerr << "warning: " << done.foreign
+              << " samples of a second writer of a robot stream were not recorded (two robots "
+                 "of one name on this domain? each robot stream is recorded from one writer)"
               << std::endl;
   }
   return kExitOk;

@@ -17,6 +17,7 @@
 #include <wbi/dds/topics.hpp>
 #include <wbi/estimation/estimator_factory.hpp>
 #include <wbi/estimation/low_pass_filter.hpp>
+#include <wbi/runtime/producer_counters.hpp>
 
 #include "wbi/estimator/base_estimator.hpp"
 #include "wbi/estimator/legged_base_estimator.hpp"
@@ -124,13 +125,19 @@ class EstimatorComponent final : public runtime::Component {
     non_finite_ = &report().counter("non_finite_samples");
     wrong_size_ = &report().counter("wrong_size_samples");
     new_producers_ = &report().counter("new_producers");
+    // The robot's streams come from one writer each: a second robot of the same
+    // name, or a rogue, is dropped and counted, not mixed into the estimate.
+    // Its sensors come from the participant whose description was taken.
+    const auto producer_events = runtime::count_producer_events(report());
+    const auto one_producer = dds::ProducerPolicy::one(producer_events);
 
     auto& participant = *context.participant;
     description_ = std::make_unique<dds::Subscriber<wbi::msg::RobotDescription>>(
         participant, dds::topics::description(robot_), dds::qos::kLatched,
         [this](const wbi::msg::RobotDescription&, const dds::detail::SampleInfo&) {
           on_description();
-        });
+        },
+        one_producer);
     state_publisher_ = std::make_unique<dds::Publisher<wbi::msg::StateEstimate>>(
         participant, dds::topics::state(robot_), dds::qos::kStream);
     if (base_source_ == BaseSource::topic) {
@@ -139,7 +146,8 @@ class EstimatorComponent final : public runtime::Component {
           participant, base_topic, dds::qos::kStream,
           [this](const wbi::msg::GroundTruth&, const dds::detail::SampleInfo&) {
             on_base_sample();
-          });
+          },
+          one_producer);
     }
     parameter_subscriber_ = std::make_unique<dds::Subscriber<wbi::msg::EstimatorParameter>>(
         participant, dds::topics::estimator_parameters(robot_), dds::qos::kCommand,
@@ -150,7 +158,9 @@ class EstimatorComponent final : public runtime::Component {
         participant, dds::topics::sensors(robot_), dds::qos::kStream,
         [this](const wbi::msg::SensorSample& s, const dds::detail::SampleInfo& info) {
           on_sample(s, info.writer);
-        });
+        },
+        dds::ProducerPolicy::owned_by(dds::description_owner(participant, *description_),
+                                      producer_events));
   }
 
   void on_activate() override {
@@ -354,10 +364,11 @@ class EstimatorComponent final : public runtime::Component {
   }
 
   // Samples from another writer than the last one: the robot restarted (a new
-  // process, whose stamps and sequence numbers start again). Every filter starts
-  // afresh from its samples, sized again from its description: continued, they
-  // would ignore its samples as out of order until its stamps passed the old
-  // ones, or differentiate across the jump. Allocates: an event, not a tick.
+  // process, whose stamps and sequence numbers start again; the sensor reader
+  // moves to a new writer only when the one it took is gone, dds/producers.hpp). Every filter
+  // starts afresh from its samples, sized again from its description: continued, they would ignore
+  // its samples as out of order until its stamps passed the old ones, or differentiate across the
+  // jump. Allocates: an event, not a tick.
   void on_new_producer(const dds::detail::Guid& writer) {  // caller holds mutex_
     const bool first = producer_ == dds::detail::Guid{};
     producer_ = writer;

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include <wbi/dds/raw_subscriber.hpp>
+#include <wbi/dds/topics.hpp>
 #include <wbi/mcap/writer.hpp>
 #include <wbi/msg/idl_text.hpp>
 
@@ -54,6 +55,8 @@ struct Recorder::Impl {
   std::deque<Subscription> subscriptions;
   std::set<std::string> seen_topics;  // subscribed or filtered out
   std::uint64_t closed_files_bytes = 0;
+
+  std::atomic<std::uint64_t> foreign{0};  // samples of a second writer of a robot stream
 
   std::thread thread;
   std::atomic<bool> stop_requested{false};
@@ -127,7 +130,8 @@ struct Recorder::Impl {
     add_channel(subscription);
     const auto index = static_cast<std::uint32_t>(subscriptions.size() - 1);
     subscription.subscriber = std::make_unique<dds::RawSubscriber>(
-        participant, topic, [this, index, has_header](const dds::RawSample& sample) {
+        participant, topic,
+        [this, index, has_header](const dds::RawSample& sample) {
           const std::uint64_t received = system_now_ns();
           std::uint64_t published = received;
           if (has_header) {
@@ -136,13 +140,27 @@ struct Recorder::Impl {
             }
           }
           queue.push(index, received, published, sample.cdr);
-        });
+        },
+        producer_policy(topic.name));
     {
       std::lock_guard lock(progress_mutex);
       progress.topics = subscriptions.size();
     }
     log("recording " + topic.name + " [" + topic.type + "] " +
         subscription.metadata.at("reliability") + ", " + subscription.metadata.at("durability"));
+  }
+
+  // A robot's stream is recorded from one writer; a restarted producer is
+  // taken once the one before is gone, so both incarnations are in the file.
+  dds::ProducerPolicy producer_policy(const std::string& topic) {
+    if (!dds::topics::is_single_producer_stream(topic)) {
+      return {};
+    }
+    return dds::ProducerPolicy::one([this](const dds::ProducerEvent& event) {
+      if (event.kind == dds::ProducerEvent::Kind::foreign_sample) {
+        foreign.fetch_add(1, std::memory_order_relaxed);
+      }
+    });
   }
 
   void write(const QueuedSample& sample) {
@@ -157,6 +175,7 @@ struct Recorder::Impl {
     std::lock_guard lock(progress_mutex);
     progress.file_bytes = closed_files_bytes + stats.file_bytes;
     progress.dropped = queue.dropped();
+    progress.foreign = foreign.load(std::memory_order_relaxed);
     progress.queue_high_water = queue.high_water();
   }
 

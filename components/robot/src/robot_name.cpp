@@ -1,8 +1,6 @@
 #include "robot_name.hpp"
 
-#include <cerrno>
 #include <chrono>
-#include <csignal>
 #include <stdexcept>
 #include <thread>
 
@@ -12,13 +10,6 @@
 namespace wbi::robot {
 
 namespace {
-
-// A participant of a process on this host that has ended (its announcement
-// stays until its lease ends).
-bool ended_here(const dds::ParticipantInfo& other, const dds::ParticipantInfo& self) {
-  return !other.host.empty() && other.host == self.host && other.pid > 0 &&
-         kill(static_cast<pid_t>(other.pid), 0) != 0 && errno == ESRCH;
-}
 
 // Whether `other` claimed first: older, or (the same instant) the lower GUID
 // prefix. A participant that does not announce its start (another vendor's
@@ -65,7 +56,7 @@ RobotNameClaim::RobotNameClaim(dds::Participant& participant, const std::string&
     // participant: the first 16 hex digits equal means this very process
     // (its own endpoints are reported by discovery too).
     const bool this_process = other.guid_prefix.compare(0, 16, self.guid_prefix, 0, 16) == 0;
-    if (this_process || ended_here(other, self) || !claimed_first(other, self)) {
+    if (this_process || participant.has_ended(other) || !claimed_first(other, self)) {
       continue;
     }
     throw std::runtime_error("robot '" + robot + "' is already running on DDS domain " +

@@ -5,11 +5,13 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
 
 #include <wbi/dds/participant.hpp>
+#include <wbi/dds/producers.hpp>
 
 #include "wbi/whole_body_interface.hpp"
 
@@ -42,6 +44,12 @@ struct DdsInterfaceOptions {
   std::chrono::milliseconds model_timeout{200};
 
   dds::ParticipantOptions participant;  // domain, discovery, QoS file
+
+  // The robot's streams (description, sensors, state, model replies) are each
+  // taken from one writer (wbi/dds/producers.hpp); this hears the samples of
+  // any other writer being dropped, e.g. to count them in a component's status
+  // (runtime::count_producer_events). Called on DDS threads.
+  std::function<void(const dds::ProducerEvent&)> on_producer_event;
 };
 
 // Throws Error naming what is wrong in the options (e.g. no robot name, no URDF

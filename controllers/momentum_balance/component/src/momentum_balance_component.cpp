@@ -13,6 +13,7 @@
 #include <wbi/dds/topics.hpp>
 #include <wbi/dds_interface.hpp>
 #include <wbi/runtime/process_exit.hpp>
+#include <wbi/runtime/producer_counters.hpp>
 
 namespace wbi::controllers {
 
@@ -90,6 +91,7 @@ class MomentumBalanceComponent final : public runtime::Component {
       signals_.values(std::vector<double>(kSignalNames.size(), 0.0));
     }
 
+    options.on_producer_event = runtime::count_producer_events(report());
     robot_ = make_dds_interface(options);
     robot_->add_joints(joints);
     robot_->init(std::chrono::milliseconds(static_cast<std::int64_t>(init_timeout_s * 1000)));

@@ -8,6 +8,7 @@
 
 #include <wbi/controllers/pd_gravity.hpp>
 #include <wbi/dds_interface.hpp>
+#include <wbi/runtime/producer_counters.hpp>
 
 namespace wbi::controllers {
 
@@ -66,6 +67,7 @@ class PdGravityComponent final : public runtime::Component {
                                     std::to_string(bandwidth_hz));
     }
 
+    options.on_producer_event = runtime::count_producer_events(report());
     robot_ = make_dds_interface(options);
     robot_->add_joints(joints);
     robot_->init(std::chrono::milliseconds(static_cast<std::int64_t>(init_timeout_s * 1000)));

@@ -53,6 +53,9 @@ struct ClientOptions {
   // else most calls are sent twice. 0: never resend (probes are still resent).
   std::chrono::nanoseconds resend_period = std::chrono::milliseconds(2);
   std::chrono::nanoseconds resend_period_max = std::chrono::milliseconds(100);
+  // ProducerPolicy::one(): take the replies of the first server heard only (a
+  // second server of the same service is dropped, see producers.hpp).
+  ProducerPolicy producers;
 };
 
 template <class Req, class Rep>
@@ -67,7 +70,8 @@ class Client : private detail::ReaderSink {
         request_writer_(participant, topics::service_request(service_),
                         new typename MessageTraits<Req>::TypeSupport(), options.qos_profile),
         reply_reader_(participant, topics::service_reply(service_),
-                      new typename MessageTraits<Rep>::TypeSupport(), options.qos_profile, *this) {
+                      new typename MessageTraits<Rep>::TypeSupport(), options.qos_profile, *this,
+                      {}, options.producers) {
     std::lock_guard lock(mutex_);
     const std::string id = detail::guid_hex(reply_reader_.guid());
     std::memcpy(client_id_, id.c_str(), id.size() + 1);
@@ -221,6 +225,11 @@ class Client : private detail::ReaderSink {
 
   bool matched() const { return request_writer_.matched() > 0 && reply_reader_.matched() > 0; }
 
+ public:
+  // With ClientOptions::producers one: the server taken and what was dropped.
+  ProducerCounts producers() const { return reply_reader_.producers(); }
+
+ private:
   bool wait_connected_until(std::chrono::steady_clock::time_point deadline) {
     const auto left = [&] { return deadline - std::chrono::steady_clock::now(); };
     {

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "detail/guid.hpp"
+
 #include "wbi/dds/network_options.hpp"
 
 namespace wbi::dds {
@@ -105,6 +107,13 @@ class Participant {
   // discovery knows them now; a killed process's stay until their lease
   // (5 s) ends.
   std::vector<ParticipantInfo> publishers_of(const std::string& topic) const;
+  // Whether `other` belongs to a process of this host that has ended (it
+  // stays in discovery until its lease ends): a killed robot, before its respawn.
+  bool has_ended(const ParticipantInfo& other) const;
+  // The remote writer of `topic` whose participant is the oldest alive (the
+  // robot that holds its name, for wbi/<robot>/description); all zero when
+  // discovery knows none. Allocates: for start-up, not for a loop.
+  detail::Guid oldest_writer_of(const std::string& topic) const;
 
   detail::ParticipantImpl& impl() { return *impl_; }
 

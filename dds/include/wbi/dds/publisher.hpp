@@ -40,6 +40,7 @@ class Publisher {
     return writer_.wait_matched(count, timeout);
   }
   const std::string& topic() const { return writer_.topic(); }
+  detail::Guid guid() const { return writer_.guid(); }
 
  private:
   detail::Writer writer_;

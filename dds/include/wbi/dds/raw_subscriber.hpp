@@ -8,6 +8,7 @@
 #include <span>
 
 #include "participant.hpp"
+#include "producers.hpp"
 
 namespace wbi::dds {
 
@@ -24,10 +25,14 @@ class RawSubscriber {
 
   // topic: as discovered. The reader's reliability and durability follow the
   // topic's writers, so that it matches every one of them.
-  RawSubscriber(Participant& participant, const TopicInfo& topic, Callback callback);
+  // producers: ProducerPolicy::one() takes one writer's samples (producers.hpp).
+  RawSubscriber(Participant& participant, const TopicInfo& topic, Callback callback,
+                ProducerPolicy producers = {});
   ~RawSubscriber();
   RawSubscriber(const RawSubscriber&) = delete;
   RawSubscriber& operator=(const RawSubscriber&) = delete;
+
+  ProducerCounts producers() const;
 
  private:
   struct Impl;

@@ -13,6 +13,7 @@
 #include "detail/endpoints.hpp"
 #include "message_traits.hpp"
 #include "participant.hpp"
+#include "producers.hpp"
 
 namespace wbi::dds {
 
@@ -33,11 +34,13 @@ class Subscriber : private detail::ReaderSink {
   // Called on a DDS thread for every sample, once it is the latest.
   using Callback = std::function<void(const T& sample, const detail::SampleInfo& info)>;
 
+  // producers: ProducerPolicy::one() for a robot's stream, so that a second
+  // writer of the topic is dropped, not mixed in (see producers.hpp).
   Subscriber(Participant& participant, const std::string& topic, const std::string& qos_profile,
-             Callback callback = nullptr)
+             Callback callback = nullptr, ProducerPolicy producers = {})
       : callback_(std::move(callback)),
         reader_(participant, topic, new typename MessageTraits<T>::TypeSupport(), qos_profile,
-                *this) {}
+                *this, {}, std::move(producers)) {}
 
   ~Subscriber() override = default;
   Subscriber(const Subscriber&) = delete;
@@ -80,6 +83,8 @@ class Subscriber : private detail::ReaderSink {
   }
 
   int matched() const { return reader_.matched(); }
+  // With ProducerPolicy::one: the writer taken and what was dropped.
+  ProducerCounts producers() const { return reader_.producers(); }
   // Writers of the topic this subscriber cannot match (e.g. best effort, while
   // its profile is reliable); the first is also said on stderr.
   int incompatible_writers() const { return reader_.incompatible_writers(); }
@@ -112,5 +117,20 @@ class Subscriber : private detail::ReaderSink {
   Received<T> latest_;
   detail::Reader reader_;  // last: destroyed first, so no callback outlives the members above
 };
+
+// An owner for ProducerPolicy::owned_by: the writer that `description` (a
+// bound reader of a robot's description) took; before its first sample, the
+// description's writer as discovery knows it (the robot holding the name), so
+// that a robot's first sensor samples, which can come before its latched
+// description, are taken and a rogue's are not. Both must outlive the readers
+// that call it.
+template <Message Description>
+std::function<detail::Guid()> description_owner(const Participant& participant,
+                                                const Subscriber<Description>& description) {
+  return [&participant, &description] {
+    const auto bound = description.producers().bound;
+    return bound != detail::Guid{} ? bound : participant.oldest_writer_of(description.topic());
+  };
+}
 
 }  // namespace wbi::dds

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 namespace wbi::dds::topics {
 
@@ -43,6 +44,22 @@ inline std::string model_reply(const std::string& robot) {
 // A controller's named signals (wbi::msg::Signals): wbi/<robot>/signals/<controller>.
 inline std::string signals(const std::string& robot, const std::string& controller) {
   return "wbi/" + robot + "/signals/" + controller;
+}
+
+// The streams of which a robot has one producer: its description, sensors and
+// ground truth, its estimator's state, its model service's description.
+// Readers of them take one writer's samples (producers.hpp).
+inline bool is_single_producer_stream(const std::string& topic) {
+  if (topic.rfind("wbi/", 0) != 0) {
+    return false;
+  }
+  const auto robot_end = topic.find('/', 4);
+  if (robot_end == std::string::npos || robot_end == 4) {
+    return false;
+  }
+  const std::string_view what = std::string_view(topic).substr(robot_end + 1);
+  return what == "description" || what == "sensors" || what == "ground_truth" || what == "state" ||
+         what == "model/description";
 }
 
 inline const char* kStatus = "wbi/status";

@@ -53,6 +53,9 @@ struct RecorderProgress {
   std::uint64_t payload_bytes = 0;  // CDR bytes written
   std::uint64_t file_bytes = 0;     // bytes in the file(s) so far, after compression
   std::uint64_t dropped = 0;        // samples lost to a full queue
+  // Samples of a second writer of a robot's stream, not recorded: a robot
+  // stream is recorded from one producer (wbi/dds/producers.hpp).
+  std::uint64_t foreign = 0;
   std::size_t queue_high_water = 0;
   std::size_t topics = 0;
   std::size_t files = 0;

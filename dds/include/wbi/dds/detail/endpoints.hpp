@@ -8,6 +8,9 @@
 #include <memory>
 #include <string>
 
+#include "../producers.hpp"
+#include "guid.hpp"
+
 namespace eprosima::fastdds::dds {
 class TopicDataType;
 }
@@ -20,9 +23,6 @@ namespace wbi::dds::detail {
 
 struct WriterImpl;
 struct ReaderImpl;
-
-// The 16-byte RTPS GUID of an endpoint (participant prefix, then entity id).
-using Guid = std::array<std::uint8_t, 16>;
 
 // Metadata of a received sample.
 struct SampleInfo {
@@ -85,7 +85,7 @@ class Reader {
   // Takes ownership of type. The sink must outlive the reader; samples arrive on a DDS thread.
   Reader(Participant& participant, const std::string& topic,
          eprosima::fastdds::dds::TopicDataType* type, const std::string& profile, ReaderSink& sink,
-         ReaderOverrides overrides = {});
+         ReaderOverrides overrides = {}, ProducerPolicy producers = {});
   ~Reader();
   Reader(const Reader&) = delete;
   Reader& operator=(const Reader&) = delete;
@@ -94,6 +94,8 @@ class Reader {
   bool wait_matched(int count, std::chrono::nanoseconds timeout) const;
   // Writers found on the topic whose QoS cannot serve this reader (said once on stderr).
   int incompatible_writers() const;
+  // Bound to one producer (ProducerPolicy::one): which, and what it dropped.
+  ProducerCounts producers() const;
   const std::string& topic() const;
   Guid guid() const;
 

@@ -1,0 +1,69 @@
+// One producer per stream, end to end: the lockstep demo run next to a rogue
+// that publishes well-formed sensor samples for 'arm' — started before the
+// robot, so it is the first writer heard — ends exactly as without it (the
+// controller's final error to 9 digits), and the rogue is named in the log of
+// each process that dropped its samples.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <string>
+
+#include "child_process.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using wbi::test::ChildProcess;
+
+struct DemoRun {
+  int code = -1;
+  std::string output;
+  std::string final_error;  // as printed: "%.9g"
+};
+
+DemoRun run_demo() {
+  const auto wbi = wbi::test::binary_dir() / "bin" / "wbi";
+  const auto deploy = wbi::test::source_dir() / "deploy" / "demo_lockstep.yaml";
+  ChildProcess launch(wbi, {"launch", deploy.string(), "--duration", "20"});
+  DemoRun run;
+  const auto code = launch.wait(60s);
+  run.output = launch.output();
+  if (!code) {
+    return run;
+  }
+  run.code = *code;
+  const std::string marker = "final max joint error: ";
+  const auto at = run.output.rfind(marker);
+  if (at != std::string::npos) {
+    run.final_error = run.output.substr(
+        at + marker.size(), run.output.find(' ', at + marker.size()) - at - marker.size());
+  }
+  return run;
+}
+
+TEST(RogueProducer, ARogueSensorPublisherChangesNothingAndIsNamed) {
+  const DemoRun alone = run_demo();
+  ASSERT_EQ(alone.code, 0) << alone.output;
+  ASSERT_FALSE(alone.final_error.empty()) << alone.output;
+
+  ChildProcess rogue(wbi::test::binary_dir() / "tests" / "wbi_test_rogue_sensors", {"arm", "7"});
+  ASSERT_TRUE(rogue.wait_for_output("rogue: publishing", 20s)) << rogue.output();
+  const DemoRun beside = run_demo();
+  EXPECT_TRUE(rogue.running()) << rogue.output();
+  rogue.stop(SIGTERM, 10s);
+
+  ASSERT_EQ(beside.code, 0) << beside.output;
+  EXPECT_EQ(beside.final_error, alone.final_error) << "the rogue's samples changed the run\n"
+                                                   << beside.output;
+  const std::string named = "dropping the samples of a second writer, participant 'rogue'";
+  for (const char* process : {"[estimator]", "[controller]"}) {
+    const auto line =
+        beside.output.find(std::string(process) + " wbi: 'wbi/arm/sensors': " + named);
+    EXPECT_NE(line, std::string::npos) << process << " did not name the rogue\n" << beside.output;
+  }
+  EXPECT_NE(beside.output.find("pid " + std::to_string(rogue.pid())), std::string::npos)
+      << beside.output;
+}
+
+}  // namespace
