@@ -254,7 +254,7 @@ static void wait_matched(dds_entity_t participant, dds_entity_t entity, bool is_
   dds_delete(waitset);
 }
 
-/* Waits for data on any of `readers`; false at the deadline. */
+/* Waits until a reader of `waitset` (data_waitset) has data; false at the deadline. */
 static bool wait_data(dds_entity_t waitset, dds_time_t deadline) {
   return dds_waitset_wait_until(waitset, NULL, 0, deadline) > 0;
 }
@@ -321,8 +321,10 @@ static uint32_t check_description(dds_entity_t participant, const Options* optio
       dds_return_loan(r, samples, n);
     }
     if (!wait_data(waitset, deadline)) {
-      fail("description: nothing on wbi/%s/description within %.0f s", options->robot,
-           options->timeout_s);
+      fail(
+          "description: nothing on wbi/%s/description within %.0f s (no wbi robot on domain "
+          "%d? CYCLONEDDS_URI not cyclonedds_loopback.xml?)",
+          options->robot, options->timeout_s, options->domain);
     }
   }
 }
