@@ -178,6 +178,16 @@ TEST_F(BagCli, CutMidChunkSaysWhichMessagesAreLostAndWhatIsReadable) {
   std::snprintf(span.data(), span.size(), "(%.3f s)",
                 static_cast<double>(lost.message_end_time - lost.message_start_time) / 1e9);
   EXPECT_TRUE(contains(line, span.data())) << span.data() << "\n" << line;
+
+  const auto json_run = wbi_cli({"bag", "info", cut.string(), "--json"});
+  EXPECT_EQ(json_run.code, 1) << json_run.output;
+  const auto truncation = json_of(json_run.output)["truncation"];
+  EXPECT_EQ(truncation["readable_bytes"], lost.offset) << truncation;
+  EXPECT_EQ(truncation["cut_record"], "Chunk") << truncation;
+  EXPECT_EQ(truncation["cut_record_offset"], lost.offset) << truncation;
+  EXPECT_EQ(truncation["cut_record_bytes"], lost.length) << truncation;
+  EXPECT_EQ(truncation["lost_start_ns"], lost.message_start_time) << truncation;
+  EXPECT_EQ(truncation["lost_end_ns"], lost.message_end_time) << truncation;
 }
 
 TEST_F(BagCli, EmptyFileIsAOneLineError) {

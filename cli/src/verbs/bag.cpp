@@ -126,6 +126,19 @@ void print_json(const std::string& file, const mcap::FileInfo& info, const Summa
   out["metadata"] = stats.metadata_count;
   out["from_summary"] = info.from_summary;
   out["truncated"] = info.truncated;
+  if (info.truncated) {
+    const auto& cut = info.truncation;
+    nlohmann::ordered_json truncation;
+    truncation["readable_bytes"] = cut.readable_bytes;
+    truncation["cut_record"] = cut.cut_record;
+    truncation["cut_record_offset"] = cut.cut_record_offset;
+    truncation["cut_record_bytes"] = cut.cut_record_bytes;
+    if (cut.lost_times_known) {
+      truncation["lost_start_ns"] = cut.lost_start_time;
+      truncation["lost_end_ns"] = cut.lost_end_time;
+    }
+    out["truncation"] = std::move(truncation);
+  }
   out["warnings"] = info.warnings;
   auto topics = nlohmann::ordered_json::array();
   for (const auto& topic : s.topics) {
