@@ -1,6 +1,7 @@
 // `wbi bag info` as a user meets it: text and JSON of a good recording, a
-// truncated one (what could be read, a warning, exit 0), a corrupt one (one line,
-// exit 1). Runs build*/bin/wbi; skipped while the verb is not registered there.
+// truncated one (what could be read, then one line on what was lost, exit 1), an
+// empty, a foreign and a corrupt one (one line, exit 1). Runs build*/bin/wbi; skipped while the
+// verb is not registered there.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <chrono>
 #include <cstdio>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -37,14 +39,15 @@ bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
-// The JSON object in the output (warnings on stderr may precede it).
+// The JSON object in the output (lines on stderr may precede or follow it).
 nlohmann::json json_of(const std::string& output) {
   const auto start = output.find("{\n");
-  if (start == std::string::npos) {
+  const auto end = output.rfind("\n}");
+  if (start == std::string::npos || end == std::string::npos || end < start) {
     ADD_FAILURE() << "no JSON object in: " << output;
     return {};
   }
-  return nlohmann::json::parse(output.substr(start));
+  return nlohmann::json::parse(output.substr(start, end + 2 - start));
 }
 
 class BagCli : public ::testing::Test {
@@ -110,22 +113,99 @@ TEST_F(BagCli, InfoJson) {
               1e-6);
 }
 
-TEST_F(BagCli, TruncatedFilePrintsWhatWasReadAndWarns) {
+// The lines of `output` that start with `prefix`.
+std::vector<std::string> lines_starting(const std::string& output, const std::string& prefix) {
+  std::vector<std::string> found;
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind(prefix, 0) == 0) {
+      found.push_back(line);
+    }
+  }
+  return found;
+}
+
+TEST_F(BagCli, TruncatedFilePrintsWhatWasReadThenOneLineOnWhatWasLost) {
   const auto bytes = wbi::test::read_bytes(file_);
   const auto cut = dir_ / "cut.mcap";
   wbi::test::write_bytes(cut, bytes, bytes.size() / 2);
   const auto run = wbi_cli({"bag", "info", cut.string(), "--json"});
-  ASSERT_EQ(run.code, 0) << run.output;
-  EXPECT_TRUE(contains(run.output, "wbi bag: warning: " + cut.string() + ": file truncated"))
-      << run.output;
+  EXPECT_EQ(run.code, 1) << run.output;
+  const auto errors = lines_starting(run.output, "wbi bag: ");
+  ASSERT_EQ(errors.size(), 1u) << run.output;
+  EXPECT_TRUE(contains(errors[0], "wbi bag: " + cut.string() + ": file truncated")) << errors[0];
+  EXPECT_FALSE(contains(run.output, "wbi bag: warning")) << run.output;
   const auto json = json_of(run.output);
   EXPECT_GT(json["messages"].get<int>(), 1000);
   EXPECT_LT(json["messages"].get<int>(), 5000);
   EXPECT_EQ(json["truncated"], true);
 
   const auto text = wbi_cli({"bag", "info", cut.string()});
-  EXPECT_EQ(text.code, 0) << text.output;
+  EXPECT_EQ(text.code, 1) << text.output;
   EXPECT_TRUE(contains(text.output, "index:        none (data section scanned)")) << text.output;
+}
+
+TEST_F(BagCli, CutMidChunkSaysWhichMessagesAreLostAndWhatIsReadable) {
+  const wbi::mcap::Reader whole(file_);
+  const auto& chunks = whole.info().chunks;
+  ASSERT_GE(chunks.size(), 3u);
+  const auto& lost = chunks[chunks.size() / 2];
+  const std::uint64_t end = lost.offset + lost.length / 2;
+  const auto cut = dir_ / "mid_chunk.mcap";
+  wbi::test::write_bytes(cut, wbi::test::read_bytes(file_), end);
+  const wbi::mcap::Reader part(cut);
+  const auto readable = part.info().statistics.message_count;
+  ASSERT_GT(readable, 0u);
+  ASSERT_LT(readable, 5000u);
+
+  const auto run = wbi_cli({"bag", "info", cut.string()});
+  EXPECT_EQ(run.code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "messages:     " + std::to_string(readable))) << run.output;
+  const auto errors = lines_starting(run.output, "wbi bag: ");
+  ASSERT_EQ(errors.size(), 1u) << run.output;
+  const std::string& line = errors[0];
+  for (const std::string& part_text : std::vector<std::string>{
+           "wbi bag: " + cut.string() + ": file truncated: it ends at byte " + std::to_string(end) +
+               " inside a Chunk record that starts at byte " + std::to_string(lost.offset),
+           "lost: its last " + std::to_string(lost.offset + lost.length - end) +
+               " bytes, so all its messages, logged from ",
+           "and whatever was recorded after it",
+           "readable: " + std::to_string(readable) + " messages in " + std::to_string(lost.offset) +
+               " bytes"}) {
+    EXPECT_TRUE(contains(line, part_text)) << part_text << "\n" << line;
+  }
+  std::array<char, 32> span{};
+  std::snprintf(span.data(), span.size(), "(%.3f s)",
+                static_cast<double>(lost.message_end_time - lost.message_start_time) / 1e9);
+  EXPECT_TRUE(contains(line, span.data())) << span.data() << "\n" << line;
+
+  const auto json_run = wbi_cli({"bag", "info", cut.string(), "--json"});
+  EXPECT_EQ(json_run.code, 1) << json_run.output;
+  const auto truncation = json_of(json_run.output)["truncation"];
+  EXPECT_EQ(truncation["readable_bytes"], lost.offset) << truncation;
+  EXPECT_EQ(truncation["cut_record"], "Chunk") << truncation;
+  EXPECT_EQ(truncation["cut_record_offset"], lost.offset) << truncation;
+  EXPECT_EQ(truncation["cut_record_bytes"], lost.length) << truncation;
+  EXPECT_EQ(truncation["lost_start_ns"], lost.message_start_time) << truncation;
+  EXPECT_EQ(truncation["lost_end_ns"], lost.message_end_time) << truncation;
+}
+
+TEST_F(BagCli, EmptyFileIsAOneLineError) {
+  const auto empty = dir_ / "empty.mcap";
+  wbi::test::write_bytes(empty, {}, 0);
+  const auto run = wbi_cli({"bag", "info", empty.string()});
+  EXPECT_EQ(run.code, 1);
+  EXPECT_EQ(run.output,
+            "wbi bag: " + empty.string() + ": empty file (0 bytes), not an MCAP recording\n");
+}
+
+TEST_F(BagCli, AFileWithoutTheMagicIsAOneLineError) {
+  const auto text = dir_ / "notes.mcap";
+  const std::string words = "not a recording, just some words\n";
+  wbi::test::write_bytes(text, std::vector<std::uint8_t>(words.begin(), words.end()), words.size());
+  const auto run = wbi_cli({"bag", "info", text.string()});
+  EXPECT_EQ(run.code, 1);
+  EXPECT_EQ(run.output, "wbi bag: " + text.string() + ": byte 0: not an MCAP file (bad magic)\n");
 }
 
 TEST_F(BagCli, CorruptFileIsAOneLineError) {

@@ -8,6 +8,7 @@
 #include <iterator>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -125,6 +126,19 @@ void print_json(const std::string& file, const mcap::FileInfo& info, const Summa
   out["metadata"] = stats.metadata_count;
   out["from_summary"] = info.from_summary;
   out["truncated"] = info.truncated;
+  if (info.truncated) {
+    const auto& cut = info.truncation;
+    nlohmann::ordered_json truncation;
+    truncation["readable_bytes"] = cut.readable_bytes;
+    truncation["cut_record"] = cut.cut_record;
+    truncation["cut_record_offset"] = cut.cut_record_offset;
+    truncation["cut_record_bytes"] = cut.cut_record_bytes;
+    if (cut.lost_times_known) {
+      truncation["lost_start_ns"] = cut.lost_start_time;
+      truncation["lost_end_ns"] = cut.lost_end_time;
+    }
+    out["truncation"] = std::move(truncation);
+  }
   out["warnings"] = info.warnings;
   auto topics = nlohmann::ordered_json::array();
   for (const auto& topic : s.topics) {
@@ -186,12 +200,35 @@ void print_text(const std::string& file, const mcap::FileInfo& info, const Summa
   }
 }
 
+// The one line that ends `bag info` on a truncated file: where it ends, what of
+// it is lost, what was read (printed above it).
+std::string truncation_line(const std::string& file, const mcap::FileInfo& info) {
+  const auto& cut = info.truncation;
+  std::ostringstream line;
+  line << file << ": " << cut.description;
+  if (!cut.cut_record.empty()) {
+    const std::uint64_t record_end = cut.cut_record_offset + cut.cut_record_bytes;
+    line << "; lost: its last " << record_end - info.file_size << " bytes";
+    if (cut.lost_times_known) {
+      line << std::fixed << std::setprecision(3) << ", so all its messages, logged from "
+           << utc_time(cut.lost_start_time) << " to " << utc_time(cut.lost_end_time) << " ("
+           << static_cast<double>(cut.lost_end_time - cut.lost_start_time) / kNsPerSecond << " s)";
+    }
+    line << ", and whatever was recorded after it";
+  }
+  line << "; readable: " << info.statistics.message_count << " messages in " << cut.readable_bytes
+       << " bytes (above)";
+  return line.str();
+}
+
 int run_info(Args args) {
   Options options("wbi bag info FILE [options]",
                   "Prints what an MCAP recording holds: its duration, start and end, size and\n"
                   "compression, and per topic its type, message count and rate. Uses the file's\n"
                   "summary when it has one, else scans it. A truncated file (e.g. a killed\n"
-                  "recorder) prints what could be read and a warning; a corrupt one is an error.");
+                  "recorder) prints what could be read, then one line saying where it ends and\n"
+                  "what was lost, and exits 1; an empty, foreign or corrupt file is a one-line\n"
+                  "error (exit 1).");
   options.positional("FILE", "the .mcap file");
   options.flag("json", "print one JSON object instead of text");
   options.flag("verify", "also read every chunk and check every CRC (reads the whole file)");
@@ -204,14 +241,28 @@ int run_info(Args args) {
     reader.verify();
   }
   const auto& info = reader.info();
+  // Nothing to summarise: one line, no summary.
+  if (info.file_size == 0) {
+    throw std::runtime_error(file + ": empty file (0 bytes), not an MCAP recording");
+  }
+  if (info.truncated && info.truncation.readable_bytes == 0) {
+    throw std::runtime_error(file + ": " + info.truncation.description);
+  }
   for (const auto& warning : info.warnings) {
-    std::cerr << "wbi bag: warning: " << file << ": " << warning << "\n";
+    if (!info.truncated || warning != info.truncation.description) {
+      std::cerr << "wbi bag: warning: " << file << ": " << warning << "\n";
+    }
   }
   const Summary summary = summarise(info);
   if (options.has("json")) {
     print_json(file, info, summary);
   } else {
     print_text(file, info, summary);
+  }
+  if (info.truncated) {
+    std::cout.flush();
+    std::cerr << "wbi bag: " << truncation_line(file, info) << "\n";
+    return kExitError;
   }
   return kExitOk;
 }

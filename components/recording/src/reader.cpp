@@ -42,6 +42,34 @@ std::string hex32(std::uint32_t value) {
 
 std::uint8_t as_byte(Opcode opcode) { return static_cast<std::uint8_t>(opcode); }
 
+// Marks `info` truncated: the warning, and where the file ends for a caller
+// that reports what was lost. A record the end falls in is named by its
+// opcode (0: none), offset and declared content length.
+void mark_truncated(FileInfo& info, std::span<const std::uint8_t> all, std::string description,
+                    std::uint64_t readable_bytes, std::uint8_t opcode = 0,
+                    std::uint64_t record_offset = 0, std::uint64_t record_length = 0) {
+  info.truncated = true;
+  info.warnings.push_back(description);
+  Truncation& cut = info.truncation;
+  cut.description = std::move(description);
+  cut.readable_bytes = readable_bytes;
+  if (opcode == 0) {
+    return;
+  }
+  cut.cut_record = opcode_name(opcode);
+  cut.cut_record_offset = record_offset;
+  cut.cut_record_bytes = kRecordHeader + record_length;
+  // A Chunk begins with the log times of its first and last messages.
+  const std::uint64_t times_end = record_offset + kRecordHeader + 16;
+  if (opcode == as_byte(Opcode::chunk) && all.size() >= times_end) {
+    cut.lost_times_known = true;
+    cut.lost_start_time =
+        detail::load_le<std::uint64_t>(all.data() + record_offset + kRecordHeader);
+    cut.lost_end_time =
+        detail::load_le<std::uint64_t>(all.data() + record_offset + kRecordHeader + 8);
+  }
+}
+
 // The file, read-only and memory-mapped (nothing mapped for an empty file).
 class MappedFile {
  public:
@@ -379,14 +407,15 @@ void Reader::Impl::scan(std::uint64_t from, FileInfo& out, std::vector<Block>& o
   std::uint64_t pos = from;
   for (;;) {
     if (size - pos < kRecordHeader) {
-      out.truncated = true;
-      out.warnings.push_back(
-          pos == size ? "file truncated: it ends at byte " + std::to_string(size) +
-                            " without a DataEnd record (not closed, e.g. a killed recorder); "
-                            "read everything before it"
-                      : "file truncated: it ends at byte " + std::to_string(size) +
-                            " inside the header of a record that starts at byte " +
-                            std::to_string(pos) + "; read everything before it");
+      mark_truncated(out, all,
+                     pos == size
+                         ? "file truncated: it ends at byte " + std::to_string(size) +
+                               " without a DataEnd record (not closed, e.g. a killed recorder); "
+                               "read everything before it"
+                         : "file truncated: it ends at byte " + std::to_string(size) +
+                               " inside the header of a record that starts at byte " +
+                               std::to_string(pos) + "; read everything before it",
+                     pos);
       break;
     }
     const std::uint8_t opcode = all[pos];
@@ -399,11 +428,12 @@ void Reader::Impl::scan(std::uint64_t from, FileInfo& out, std::vector<Block>& o
         throw error(pos, opcode_name(opcode) + " record length " + std::to_string(length) +
                              " runs past the end of the file (" + std::to_string(size) + " bytes)");
       }
-      out.truncated = true;
-      out.warnings.push_back("file truncated: it ends at byte " + std::to_string(size) +
-                             " inside a " + opcode_name(opcode) + " record that starts at byte " +
-                             std::to_string(pos) + " (" + std::to_string(length) +
-                             " bytes long); read everything before it");
+      mark_truncated(out, all,
+                     "file truncated: it ends at byte " + std::to_string(size) + " inside a " +
+                         opcode_name(opcode) + " record that starts at byte " +
+                         std::to_string(pos) + " (" + std::to_string(length) +
+                         " bytes long); read everything before it",
+                     pos, opcode, pos, length);
       break;
     }
     const auto content = all.subspan(pos + kRecordHeader, length);
@@ -422,10 +452,11 @@ void Reader::Impl::scan(std::uint64_t from, FileInfo& out, std::vector<Block>& o
         });
         check_data_crc(pos, crc);
         if (!complete) {
-          out.truncated = true;
-          out.warnings.push_back("file truncated: it ends at byte " + std::to_string(size) +
-                                 ", after the DataEnd record at byte " + std::to_string(pos) +
-                                 " (summary or footer cut off); all messages are there");
+          mark_truncated(out, all,
+                         "file truncated: it ends at byte " + std::to_string(size) +
+                             ", after the DataEnd record at byte " + std::to_string(pos) +
+                             " (summary or footer cut off); all messages are there",
+                         size);
         }
         stop = true;
         break;
@@ -651,9 +682,10 @@ void Reader::Impl::open() {
     throw error(0, "not an MCAP file (bad magic)");
   }
   if (all.size() < kMagic.size()) {
-    info.truncated = true;
-    info.warnings.push_back("file truncated: " + std::to_string(all.size()) +
-                            " bytes, inside the leading magic; no messages");
+    mark_truncated(info, all,
+                   "file truncated: " + std::to_string(all.size()) +
+                       " bytes, inside the leading magic; no messages",
+                   0);
     return;
   }
   // A complete file ends with Footer and magic.
@@ -665,9 +697,10 @@ void Reader::Impl::open() {
   // Header: profile, library.
   std::uint64_t pos = kMagic.size();
   if (all.size() - pos < kRecordHeader) {
-    info.truncated = true;
-    info.warnings.push_back("file truncated: it ends at byte " + std::to_string(all.size()) +
-                            " inside the Header record; no messages");
+    mark_truncated(info, all,
+                   "file truncated: it ends at byte " + std::to_string(all.size()) +
+                       " inside the Header record; no messages",
+                   pos);
     return;
   }
   const std::uint8_t opcode = all[pos];
@@ -680,9 +713,10 @@ void Reader::Impl::open() {
       throw error(
           pos, "Header record length " + std::to_string(length) + " runs past the end of the file");
     }
-    info.truncated = true;
-    info.warnings.push_back("file truncated: it ends at byte " + std::to_string(all.size()) +
-                            " inside the Header record; no messages");
+    mark_truncated(info, all,
+                   "file truncated: it ends at byte " + std::to_string(all.size()) +
+                       " inside the Header record; no messages",
+                   pos);
     return;
   }
   parse(opcode, all.subspan(pos + kRecordHeader, length), Where{pos, {}}, [&](FieldReader& f) {

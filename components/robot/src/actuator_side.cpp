@@ -112,7 +112,7 @@ void ActuatorSide::handle(const wbi::msg::ControlParameters& message) {
 }
 
 void ActuatorSide::reject(runtime::StatusCounter& counter, std::string_view what,
-                          const wbi::msg::Name& sender, const std::string& error) {
+                          const wbi::msg::BoundedName& sender, const std::string& error) {
   const std::string_view name(sender.c_str(), sender.size());
   const std::string text = RejectionLog::without_control_characters(error);  // may quote the wire
   counter.add();

@@ -74,8 +74,8 @@ class ActuatorSide {
  private:
   void report_new_trips();
   // Counts (in `counter`), reports and logs a refused message (after mutex_ is released).
-  void reject(runtime::StatusCounter& counter, std::string_view what, const wbi::msg::Name& sender,
-              const std::string& error);
+  void reject(runtime::StatusCounter& counter, std::string_view what,
+              const wbi::msg::BoundedName& sender, const std::string& error);
 
   const std::string robot_;  // header.robot every message must carry
   const std::vector<std::string> joint_names_;

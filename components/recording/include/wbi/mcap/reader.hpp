@@ -7,8 +7,8 @@
 //
 // Truncated files (a recorder killed mid-write): the scan stops at the last
 // complete record; everything before it is read and info().warnings says where
-// the file was cut. A file that is only a prefix of the magic is an empty,
-// truncated file.
+// the file was cut (info().truncation: where, and what was lost). A file that
+// is only a prefix of the magic is an empty, truncated file.
 //
 // Corrupt files throw FormatError naming the file and the byte offset: bad
 // magic, a record length that is malformed or runs past the end of a complete
@@ -33,6 +33,20 @@ struct ReaderOptions {
   bool validate_crcs = true;
 };
 
+// Where a truncated file ends, for a caller that reports what was lost.
+struct Truncation {
+  std::string description;           // the same text as its entry in FileInfo::warnings
+  std::uint64_t readable_bytes = 0;  // every record before this offset was read
+  std::string cut_record;            // the record the file ends in, e.g. "Chunk"; empty: none
+  std::uint64_t cut_record_offset = 0;
+  std::uint64_t cut_record_bytes = 0;  // its declared size, record header included
+  // A cut Chunk whose first fields survived: the log times [ns] of its first and
+  // last messages, which are all lost (its records are one compressed block).
+  bool lost_times_known = false;
+  std::uint64_t lost_start_time = 0;
+  std::uint64_t lost_end_time = 0;
+};
+
 // What a file holds, from its summary or from a scan of its data section.
 struct FileInfo {
   std::uint64_t file_size = 0;
@@ -45,6 +59,7 @@ struct FileInfo {
   std::map<std::uint16_t, Channel> channels;
   std::vector<ChunkInfo> chunks;      // in file order
   std::vector<std::string> warnings;  // e.g. where a truncated file was cut
+  Truncation truncation;              // when truncated
 };
 
 // One message as the reader hands it out. channel and data point into the
