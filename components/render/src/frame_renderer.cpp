@@ -1,0 +1,147 @@
+// FrameRenderer (frame_renderer.hpp).
+#include "wbi/render/frame_renderer.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <stdexcept>
+
+#include "robot_scene.hpp"
+#include "wbi/render/offscreen_gl.hpp"
+
+namespace wbi::render {
+
+namespace {
+
+constexpr int kMaxSceneGeoms = 4000;
+constexpr double kAzimuth = 150.0;    // [deg] in front of the robot (x forward), a bit to its left
+constexpr double kElevation = -20.0;  // [deg] slightly from above
+
+}  // namespace
+
+std::pair<int, int> parse_size(const std::string& text) {
+  int w = 0;
+  int h = 0;
+  char x = 0;
+  char extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') ||
+      w < 16 || h < 16 || w > 4096 || h > 4096 || w % 2 != 0 || h % 2 != 0) {
+    throw std::invalid_argument("--size: '" + text +
+                                "' is not WIDTHxHEIGHT with even sides from 16 to 4096");
+  }
+  return {w, h};
+}
+
+struct FrameRenderer::Impl {
+  const PoseTrack& track;
+  FrameOptions options;
+  OffscreenGl gl;  // before anything MuJoCo draws with
+  RobotScene scene;
+  mjvOption vopt;
+  mjvCamera camera;
+  mjvScene scn;
+  mjrContext con;
+  mjvPerturb pert;
+  bool fixed_camera_placed = false;
+  std::vector<std::uint8_t> flipped;
+  std::vector<std::uint8_t> rgb;
+
+  Impl(const PoseTrack& t, const robot_config::RobotConfig& config, FrameOptions o)
+      : track(t),
+        options(std::move(o)),
+        scene(config, t.joint_names, options.width, options.height) {
+    mjv_defaultOption(&vopt);
+    for (int g = 0; g < mjNGROUP; ++g) {
+      vopt.sitegroup[g] = 0;  // the MJCF's sensor and link sites are not for show
+    }
+    mjv_defaultCamera(&camera);
+    mjv_defaultPerturb(&pert);
+    mjv_defaultScene(&scn);
+    mjr_defaultContext(&con);
+    const mjModel* m = scene.model();
+    const double extent = std::max(m->stat.extent, 0.3);
+    camera.distance = 1.5 * extent;
+    camera.azimuth = kAzimuth;
+    camera.elevation = kElevation;
+    if (options.camera == "track") {
+      camera.type = mjCAMERA_TRACKING;
+      camera.trackbodyid = scene.root_body();
+    } else if (options.camera == "fixed") {
+      camera.type = mjCAMERA_FREE;
+    } else {
+      const int id = mj_name2id(m, mjOBJ_CAMERA, options.camera.c_str());
+      if (id < 0) {
+        std::string known;
+        for (int c = 0; c < m->ncam; ++c) {
+          known += std::string(", ") + mj_id2name(m, mjOBJ_CAMERA, c);
+        }
+        throw std::invalid_argument("--camera: unknown camera '" + options.camera +
+                                    "' (track, fixed" + known + ")");
+      }
+      camera.type = mjCAMERA_FIXED;
+      camera.fixedcamid = id;
+    }
+    mjv_makeScene(m, &scn, kMaxSceneGeoms);
+    mjr_makeContext(m, &con, options.height >= 600 ? mjFONTSCALE_150 : mjFONTSCALE_100);
+    mjr_setBuffer(mjFB_OFFSCREEN, &con);
+    if (con.currentBuffer != mjFB_OFFSCREEN || con.offWidth < options.width ||
+        con.offHeight < options.height) {
+      throw RenderUnavailable("MuJoCo's offscreen buffer did not start at " +
+                              std::to_string(options.width) + "x" + std::to_string(options.height));
+    }
+    const auto n =
+        static_cast<std::size_t>(options.width) * static_cast<std::size_t>(options.height) * 3;
+    flipped.resize(n);
+    rgb.resize(n);
+  }
+
+  ~Impl() {
+    mjr_freeContext(&con);
+    mjv_freeScene(&scn);
+  }
+
+  const std::vector<std::uint8_t>& render(double t) {
+    const PoseFrame& frame = track.at(t);
+    scene.set_pose(frame);
+    if (camera.type == mjCAMERA_FREE && !fixed_camera_placed) {
+      const Eigen::Vector3d c = scene.com();
+      for (int i = 0; i < 3; ++i) {
+        camera.lookat[i] = c[i];
+      }
+      fixed_camera_placed = true;
+    }
+    const mjModel* m = scene.model();
+    mjv_updateScene(m, const_cast<mjData*>(scene.data()), &vopt, &pert, &camera, mjCAT_ALL, &scn);
+    scene.add_decorations(&scn, frame.contact_wrenches);
+    const mjrRect viewport{0, 0, options.width, options.height};
+    mjr_render(viewport, &scn, &con);
+    char time[32];
+    std::snprintf(time, sizeof time, "%.2f s", t);
+    mjr_overlay(mjFONT_SHADOW, mjGRID_TOPLEFT, viewport, time, options.label.c_str(), &con);
+    mjr_readPixels(flipped.data(), nullptr, viewport, &con);
+    // OpenGL's rows run bottom-up; images top-down.
+    const auto row = static_cast<std::size_t>(options.width) * 3;
+    for (int y = 0; y < options.height; ++y) {
+      std::copy_n(
+          flipped.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y)), row,
+          rgb.begin() +
+              static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(options.height - 1 - y)));
+    }
+    return rgb;
+  }
+};
+
+FrameRenderer::FrameRenderer(const PoseTrack& track, const robot_config::RobotConfig& config,
+                             FrameOptions options)
+    : impl_(std::make_unique<Impl>(track, config, std::move(options))) {}
+
+FrameRenderer::~FrameRenderer() = default;
+
+const std::vector<std::uint8_t>& FrameRenderer::render(double t) { return impl_->render(t); }
+
+int FrameRenderer::width() const { return impl_->options.width; }
+int FrameRenderer::height() const { return impl_->options.height; }
+std::string FrameRenderer::gl_renderer() const { return impl_->gl.renderer(); }
+
+}  // namespace wbi::render

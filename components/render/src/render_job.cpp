@@ -1,0 +1,117 @@
+// render() (render_job.hpp).
+#include "wbi/render/render_job.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <stdexcept>
+
+#include "wbi/render/frame_renderer.hpp"
+#include "wbi/render/image_output.hpp"
+#include "wbi/robot_config/robot_config.hpp"
+
+namespace wbi::render {
+
+namespace {
+
+void check(const RenderOptions& o) {
+  if (!(o.fps > 0.0) || o.fps > 240.0) {
+    throw std::invalid_argument("--fps: must be in (0, 240]");
+  }
+  if (!(o.speed > 0.0) || o.speed > 1000.0) {
+    throw std::invalid_argument("--speed: must be in (0, 1000]");
+  }
+  if (!(o.start >= 0.0)) {
+    throw std::invalid_argument("--start: must be >= 0");
+  }
+  if (o.end && !(*o.end > o.start)) {
+    throw std::invalid_argument("--end: must be after --start");
+  }
+  if (o.png_time && !(*o.png_time >= 0.0)) {
+    throw std::invalid_argument("--png: must be >= 0");
+  }
+  if (o.output.empty()) {
+    throw std::invalid_argument("-o: missing output file");
+  }
+}
+
+robot_config::RobotConfig config_for(const RenderOptions& o, const PoseTrack& track) {
+  if (o.robot_config) {
+    return robot_config::load_robot_config(o.robot_config->string());
+  }
+  if (track.urdf_path.empty() || !std::filesystem::exists(track.urdf_path)) {
+    throw std::runtime_error(o.recording.string() + ": the description of '" + track.robot +
+                             "' names no URDF found here ('" + track.urdf_path +
+                             "'): give --robot-config");
+  }
+  robot_config::RobotConfig config;
+  config.urdf = track.urdf_path;
+  config.fixed_base = !track.floating_base;
+  robot_config::complete_from_urdf(config);
+  return config;
+}
+
+}  // namespace
+
+int frame_count(double start, double end, double fps, double speed) {
+  // A hair of tolerance so that an end that is a whole number of frames counts its own.
+  return static_cast<int>(std::floor((end - start) * fps / speed + 1e-9)) + 1;
+}
+
+RenderSummary render(const RenderOptions& o,
+                     const std::function<void(const RenderProgress&)>& progress) {
+  check(o);
+  const auto began = std::chrono::steady_clock::now();
+  const PoseTrack track = read_pose_track(o.recording, o.source, o.robot);
+  const robot_config::RobotConfig config = config_for(o, track);
+  FrameOptions frame_options;
+  frame_options.width = o.width;
+  frame_options.height = o.height;
+  frame_options.camera = o.camera;
+  frame_options.label = track.robot + " " + pose_source_name(o.source);
+  FrameRenderer renderer(track, config, frame_options);
+
+  RenderSummary summary;
+  summary.robot = track.robot;
+  summary.gl_renderer = renderer.gl_renderer();
+  const double duration = track.duration();
+  if (o.png_time) {
+    if (*o.png_time > duration + 1e-9) {
+      char text[160];
+      std::snprintf(text, sizeof text, "--png: %.3f s is past the recording's end (%.3f s)",
+                    *o.png_time, duration);
+      throw std::invalid_argument(text);
+    }
+    write_png(o.output, o.width, o.height, renderer.render(*o.png_time));
+    summary.frames = 1;
+    summary.start = summary.end = *o.png_time;
+  } else {
+    if (o.start > duration) {
+      char text[160];
+      std::snprintf(text, sizeof text, "--start: %.3f s is past the recording's end (%.3f s)",
+                    o.start, duration);
+      throw std::invalid_argument(text);
+    }
+    const double end = o.end ? std::min(*o.end, duration) : duration;
+    const int frames = frame_count(o.start, end, o.fps, o.speed);
+    // A dead ffmpeg is reported by write(), not by a SIGPIPE that ends the process.
+    std::signal(SIGPIPE, SIG_IGN);
+    Mp4Writer video(o.output, o.width, o.height, o.fps);
+    for (int k = 0; k < frames; ++k) {
+      const double t = o.start + k * o.speed / o.fps;
+      video.write(renderer.render(t));
+      if (progress) {
+        progress({k + 1, frames});
+      }
+    }
+    video.close();
+    summary.frames = frames;
+    summary.start = o.start;
+    summary.end = o.start + (frames - 1) * o.speed / o.fps;
+  }
+  summary.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  return summary;
+}
+
+}  // namespace wbi::render

@@ -1,0 +1,230 @@
+// RobotScene (robot_scene.hpp).
+#include "robot_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+
+#include <wbi/mjcf/mjcf.hpp>
+#include <wbi/mujoco_sim/robot_mjcf.hpp>
+
+namespace wbi::render {
+
+namespace {
+
+// Colours of the skeleton style (README.md, "What is drawn").
+constexpr float kBone[4] = {0.78f, 0.80f, 0.84f, 1.0f};
+constexpr float kJoint[4] = {0.95f, 0.55f, 0.15f, 1.0f};
+constexpr float kFoot[4] = {0.20f, 0.45f, 0.85f, 1.0f};
+constexpr float kCom[4] = {0.90f, 0.15f, 0.15f, 1.0f};
+constexpr float kForce[4] = {0.15f, 0.75f, 0.30f, 1.0f};
+
+// The floor, sky and light: MJCF elements added to robot_mjcf's text.
+std::string scenery(int width, int height) {
+  return "  <visual>\n"
+         "    <global offwidth=\"" +
+         std::to_string(width) + "\" offheight=\"" + std::to_string(height) +
+         "\"/>\n"
+         "    <quality shadowsize=\"2048\"/>\n"
+         "    <headlight ambient=\"0.45 0.45 0.45\" diffuse=\"0.55 0.55 0.55\" specular=\"0.1 0.1 "
+         "0.1\"/>\n"
+         "  </visual>\n"
+         "  <asset>\n"
+         "    <texture name=\"wbi_render_sky\" type=\"skybox\" builtin=\"gradient\" rgb1=\"0.55 "
+         "0.68 0.82\""
+         " rgb2=\"0.95 0.97 1\" width=\"32\" height=\"512\"/>\n"
+         "    <texture name=\"wbi_render_grid\" type=\"2d\" builtin=\"checker\" rgb1=\"0.93 0.93 "
+         "0.94\""
+         " rgb2=\"0.80 0.82 0.85\" width=\"256\" height=\"256\" mark=\"edge\" markrgb=\"0.5 0.5 "
+         "0.55\"/>\n"
+         "    <material name=\"wbi_render_grid\" texture=\"wbi_render_grid\" texrepeat=\"4 4\""
+         " texuniform=\"true\"/>\n"
+         "  </asset>\n";
+}
+
+std::string floor_and_light(double height) {
+  return "    <geom name=\"wbi_render_floor\" type=\"plane\" size=\"0 0 0.5\" pos=\"0 0 " +
+         std::to_string(height) +
+         "\" material=\"wbi_render_grid\" contype=\"0\" conaffinity=\"0\" group=\"1\"/>\n"
+         "    <light name=\"wbi_render_sun\" directional=\"true\" castshadow=\"true\""
+         " pos=\"1 1 4\" dir=\"-0.3 -0.2 -1\" diffuse=\"0.6 0.6 0.6\" specular=\"0.2 0.2 0.2\"/>\n";
+}
+
+mjModel* load_from_memory(const std::string& xml, const std::string& where) {
+  auto vfs = std::make_unique<mjVFS>();
+  mj_defaultVFS(vfs.get());
+  const char* name = "robot.xml";
+  if (mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(xml.size())) != 0) {
+    throw std::runtime_error(where + ": MuJoCo: cannot make the in-memory MJCF file");
+  }
+  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), name)], xml.data(), xml.size());
+  char error[1000] = "";
+  mjModel* m = mj_loadXML(name, vfs.get(), error, sizeof(error));
+  mj_deleteVFS(vfs.get());
+  if (m == nullptr) {
+    throw std::runtime_error(where + ": MuJoCo rejected the model: " + error);
+  }
+  return m;
+}
+
+mjvGeom* next_geom(mjvScene* scene) {
+  if (scene->ngeom >= scene->maxgeom) {
+    return nullptr;  // full: MuJoCo's own rule is to drop what does not fit
+  }
+  return scene->geoms + scene->ngeom++;
+}
+
+void add_connector(mjvScene* scene, int type, double width, const mjtNum* a, const mjtNum* b,
+                   const float rgba[4]) {
+  const double length = std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                  (a[2] - b[2]) * (a[2] - b[2]));
+  if (length < 1e-6) {
+    return;  // no direction
+  }
+  mjvGeom* g = next_geom(scene);
+  if (g == nullptr) {
+    return;
+  }
+  mjv_initGeom(g, type, nullptr, nullptr, nullptr, rgba);
+  mjv_makeConnector(g, type, width, a[0], a[1], a[2], b[0], b[1], b[2]);
+  g->category = mjCAT_DECOR;
+}
+
+void add_sphere(mjvScene* scene, const mjtNum* p, double radius, const float rgba[4]) {
+  mjvGeom* g = next_geom(scene);
+  if (g == nullptr) {
+    return;
+  }
+  const mjtNum size[3] = {radius, radius, radius};
+  mjv_initGeom(g, mjGEOM_SPHERE, size, p, nullptr, rgba);
+  g->category = mjCAT_DECOR;
+}
+
+}  // namespace
+
+RobotScene::RobotScene(const robot_config::RobotConfig& config,
+                       const std::vector<std::string>& joint_names, int offscreen_width,
+                       int offscreen_height)
+    : ground_height_(config.ground.height) {
+  const std::string where = "robot config (" + config.urdf + ")";
+  const model::Model model = mujoco_sim::robot_model(config);
+  mujoco_sim::RobotMjcf written = mujoco_sim::robot_mjcf(config, model, where);
+  written.options.ground.enabled = false;  // the floor below replaces it
+  std::string xml = mjcf::write_mjcf(model, written.options);
+  const auto world = xml.find("  <worldbody>\n");
+  if (world == std::string::npos) {
+    throw std::logic_error("RobotScene: no <worldbody> in the written MJCF");
+  }
+  xml.insert(world + std::strlen("  <worldbody>\n"), floor_and_light(config.ground.height));
+  xml.insert(world, scenery(offscreen_width, offscreen_height));
+  m_ = load_from_memory(xml, where);
+  d_ = mj_makeData(m_);
+
+  for (const auto& name : joint_names) {
+    const int id = mj_name2id(m_, mjOBJ_JOINT, name.c_str());
+    if (id < 0 || m_->jnt_type[id] == mjJNT_FREE) {
+      throw std::runtime_error(where + ": the recording's joint '" + name +
+                               "' is not a joint of the model");
+    }
+    qpos_of_.push_back(m_->jnt_qposadr[id]);
+  }
+  for (int g = 0; g < m_->ngeom; ++g) {
+    const char* name = mj_id2name(m_, mjOBJ_GEOM, g);
+    if (name != nullptr && std::strncmp(name, "wbi_contact_", 12) == 0) {
+      std::copy(kFoot, kFoot + 4, m_->geom_rgba + 4 * g);
+    }
+  }
+  for (std::size_t l = 0; l < written.contact_links.size(); ++l) {
+    const int site = mj_name2id(m_, mjOBJ_SITE, ("wbi_link_" + std::to_string(l)).c_str());
+    contact_body_.push_back(site >= 0 ? m_->site_bodyid[site] : -1);
+  }
+  // A bone as thick as 1.2 % of the robot's size (0.5 m → 6 mm, 1.8 m → 22 mm); arrows
+  // as long as the robot's extent for its weight.
+  bone_radius_ = std::clamp(0.012 * m_->stat.extent, 0.004, 0.03);
+  double mass = 0.0;
+  for (int b = 1; b < m_->nbody; ++b) {
+    mass += m_->body_mass[b];
+  }
+  newton_length_ = mass > 0.0 ? 0.5 * m_->stat.extent / (mass * 9.81) : 0.001;
+  mj_resetData(m_, d_);
+  mj_kinematics(m_, d_);
+  mj_comPos(m_, d_);
+}
+
+RobotScene::~RobotScene() {
+  mj_deleteData(d_);
+  mj_deleteModel(m_);
+}
+
+void RobotScene::set_pose(const PoseFrame& frame) {
+  if (m_->nq >= 7 && m_->njnt > 0 && m_->jnt_type[0] == mjJNT_FREE) {
+    for (int i = 0; i < 3; ++i) {
+      d_->qpos[i] = frame.base_position[i];
+    }
+    d_->qpos[3] = frame.base_orientation.w();
+    d_->qpos[4] = frame.base_orientation.x();
+    d_->qpos[5] = frame.base_orientation.y();
+    d_->qpos[6] = frame.base_orientation.z();
+  }
+  for (std::size_t j = 0; j < qpos_of_.size() && j < frame.q.size(); ++j) {
+    d_->qpos[qpos_of_[j]] = frame.q[j];
+  }
+  mj_kinematics(m_, d_);
+  mj_comPos(m_, d_);
+}
+
+Eigen::Vector3d RobotScene::com() const {
+  const mjtNum* c = d_->subtree_com + 3 * root_body();
+  return {c[0], c[1], c[2]};
+}
+
+void RobotScene::add_decorations(mjvScene* scene, const std::vector<Vector6d>& wrenches) const {
+  const double r = bone_radius_;
+  // Bones: body origin (the joint's origin) to each child body's origin; a
+  // leaf body (hand, head) also to its centre of mass, so that it has a length.
+  std::vector<int> children(static_cast<std::size_t>(m_->nbody), 0);
+  for (int b = 1; b < m_->nbody; ++b) {
+    const int parent = m_->body_parentid[b];
+    ++children[static_cast<std::size_t>(parent)];
+    if (parent > 0) {
+      add_connector(scene, mjGEOM_CAPSULE, r, d_->xpos + 3 * parent, d_->xpos + 3 * b, kBone);
+    }
+  }
+  for (int b = 1; b < m_->nbody; ++b) {
+    if (children[static_cast<std::size_t>(b)] == 0) {
+      add_connector(scene, mjGEOM_CAPSULE, r, d_->xpos + 3 * b, d_->xipos + 3 * b, kBone);
+    }
+    add_sphere(scene, d_->xpos + 3 * b, 1.5 * r, kJoint);
+  }
+  // The CoM and its projection on the ground.
+  const mjtNum* c = d_->subtree_com + 3 * root_body();
+  const mjtNum ground[3] = {c[0], c[1], ground_height_ + 0.002};
+  add_sphere(scene, c, 2.5 * r, kCom);
+  add_connector(scene, mjGEOM_LINE, 2.0, c, ground, kCom);
+  if (mjvGeom* g = next_geom(scene)) {
+    const mjtNum size[3] = {3.0 * r, 3.0 * r, 0.001};
+    mjv_initGeom(g, mjGEOM_CYLINDER, size, ground, nullptr, kCom);
+    g->category = mjCAT_DECOR;
+  }
+  // Contact forces: an arrow per contact link along its force, from the
+  // centre of pressure on the ground (where the wrench's horizontal moment vanishes).
+  for (std::size_t l = 0; l < wrenches.size() && l < contact_body_.size(); ++l) {
+    const Vector6d& w = wrenches[l];
+    const int body = contact_body_[l];
+    if (body < 0 || w[2] < 1.0) {
+      continue;  // in the air (or a pull): no arrow
+    }
+    const mjtNum* p = d_->xpos + 3 * body;
+    const double dz = p[2] - ground_height_;
+    const double dx = (w[4] + dz * w[0]) / w[2];
+    const double dy = (dz * w[1] - w[3]) / w[2];
+    const mjtNum from[3] = {p[0] - dx, p[1] - dy, ground_height_};
+    const mjtNum to[3] = {from[0] + newton_length_ * w[0], from[1] + newton_length_ * w[1],
+                          from[2] + newton_length_ * w[2]};
+    add_connector(scene, mjGEOM_ARROW, 0.8 * r, from, to, kForce);
+  }
+}
+
+}  // namespace wbi::render
