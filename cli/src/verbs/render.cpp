@@ -57,6 +57,9 @@ int run_render(Args raw_args) {
   options.option("size", "WxH", "image size in pixels", "1280x720");
   options.option("camera", "CAMERA", "track (follows the CoM), fixed, or a camera of the model",
                  "track");
+  options.option("quality", "Q",
+                 "fast (no shadows, 1 sample per pixel) or high (shadows, 4x multisampling); "
+                 "default: high for --png, fast for a video");
   options.option("start", "S", "first recorded second drawn", "0");
   options.option("end", "S", "last recorded second drawn (default: the end)");
   options.option("speed", "X", "recorded seconds per second of video", "1");
@@ -88,6 +91,12 @@ int run_render(Args raw_args) {
   o.fps = options.get_double("fps");
   std::tie(o.width, o.height) = render::parse_size(options.get("size"));
   o.camera = options.get("camera");
+  if (const auto quality = options.get_optional("quality")) {
+    if (*quality != "fast" && *quality != "high") {
+      throw UsageError("--quality: '" + *quality + "' is not fast or high");
+    }
+    o.quality = *quality == "high" ? render::Quality::kHigh : render::Quality::kFast;
+  }
   o.start = options.get_double("start");
   if (options.has("end")) {
     o.end = options.get_double("end");

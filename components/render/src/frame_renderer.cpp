@@ -50,7 +50,8 @@ struct FrameRenderer::Impl {
   Impl(const PoseTrack& t, const robot_config::RobotConfig& config, FrameOptions o)
       : track(t),
         options(std::move(o)),
-        scene(config, t.joint_names, options.width, options.height) {
+        scene(config, t.joint_names, options.width, options.height,
+              options.quality == Quality::kHigh ? 4 : 0) {
     mjv_defaultOption(&vopt);
     for (int g = 0; g < mjNGROUP; ++g) {
       vopt.sitegroup[g] = 0;  // the MJCF's sensor and link sites are not for show
@@ -82,7 +83,11 @@ struct FrameRenderer::Impl {
       camera.type = mjCAMERA_FIXED;
       camera.fixedcamid = id;
     }
+    // Software rasterising pays per sample and per pass: the fast look draws
+    // one sample per pixel and no shadow pass (README.md, "Speed").
+    const bool high = options.quality == Quality::kHigh;
     mjv_makeScene(m, &scn, kMaxSceneGeoms);
+    scn.flags[mjRND_SHADOW] = high ? 1 : 0;
     mjr_makeContext(m, &con, options.height >= 600 ? mjFONTSCALE_150 : mjFONTSCALE_100);
     mjr_setBuffer(mjFB_OFFSCREEN, &con);
     if (con.currentBuffer != mjFB_OFFSCREEN || con.offWidth < options.width ||
@@ -112,7 +117,7 @@ struct FrameRenderer::Impl {
       fixed_camera_placed = true;
     }
     const mjModel* m = scene.model();
-    mjv_updateScene(m, const_cast<mjData*>(scene.data()), &vopt, &pert, &camera, mjCAT_ALL, &scn);
+    mjv_updateScene(m, scene.data(), &vopt, &pert, &camera, mjCAT_ALL, &scn);
     scene.add_decorations(&scn, frame.contact_wrenches);
     const mjrRect viewport{0, 0, options.width, options.height};
     mjr_render(viewport, &scn, &con);

@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "wbi/render/frame_renderer.hpp"
 #include "wbi/render/image_output.hpp"
 #include "wbi/robot_config/robot_config.hpp"
 
@@ -69,6 +68,7 @@ RenderSummary render(const RenderOptions& o,
   frame_options.width = o.width;
   frame_options.height = o.height;
   frame_options.camera = o.camera;
+  frame_options.quality = o.quality.value_or(o.png_time ? Quality::kHigh : Quality::kFast);
   frame_options.label = track.robot + " " + pose_source_name(o.source);
   FrameRenderer renderer(track, config, frame_options);
 

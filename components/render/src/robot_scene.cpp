@@ -22,12 +22,14 @@ constexpr float kCom[4] = {0.90f, 0.15f, 0.15f, 1.0f};
 constexpr float kForce[4] = {0.15f, 0.75f, 0.30f, 1.0f};
 
 // The floor, sky and light: MJCF elements added to robot_mjcf's text.
-std::string scenery(int width, int height) {
+std::string scenery(int width, int height, int samples) {
   return "  <visual>\n"
          "    <global offwidth=\"" +
          std::to_string(width) + "\" offheight=\"" + std::to_string(height) +
          "\"/>\n"
-         "    <quality shadowsize=\"2048\"/>\n"
+         "    <quality shadowsize=\"2048\" offsamples=\"" +
+         std::to_string(samples) +
+         "\"/>\n"
          "    <headlight ambient=\"0.45 0.45 0.45\" diffuse=\"0.55 0.55 0.55\" specular=\"0.1 0.1 "
          "0.1\"/>\n"
          "  </visual>\n"
@@ -106,7 +108,7 @@ void add_sphere(mjvScene* scene, const mjtNum* p, double radius, const float rgb
 
 RobotScene::RobotScene(const robot_config::RobotConfig& config,
                        const std::vector<std::string>& joint_names, int offscreen_width,
-                       int offscreen_height)
+                       int offscreen_height, int offscreen_samples)
     : ground_height_(config.ground.height) {
   const std::string where = "robot config (" + config.urdf + ")";
   const model::Model model = mujoco_sim::robot_model(config);
@@ -118,7 +120,7 @@ RobotScene::RobotScene(const robot_config::RobotConfig& config,
     throw std::logic_error("RobotScene: no <worldbody> in the written MJCF");
   }
   xml.insert(world + std::strlen("  <worldbody>\n"), floor_and_light(config.ground.height));
-  xml.insert(world, scenery(offscreen_width, offscreen_height));
+  xml.insert(world, scenery(offscreen_width, offscreen_height, offscreen_samples));
   m_ = load_from_memory(xml, where);
   d_ = mj_makeData(m_);
 

@@ -20,10 +20,11 @@ namespace wbi::render {
 class RobotScene {
  public:
   // config: complete (load_robot_config or complete_from_urdf done);
-  // joint_names: the recording's joint order. Throws std::runtime_error naming
+  // joint_names: the recording's joint order; offscreen_*: MuJoCo's offscreen
+  // buffer (size, multisamples). Throws std::runtime_error naming
   // a recorded joint the model does not have.
   RobotScene(const robot_config::RobotConfig& config, const std::vector<std::string>& joint_names,
-             int offscreen_width, int offscreen_height);
+             int offscreen_width, int offscreen_height, int offscreen_samples);
   ~RobotScene();
   RobotScene(const RobotScene&) = delete;
   RobotScene& operator=(const RobotScene&) = delete;
@@ -32,7 +33,7 @@ class RobotScene {
   void set_pose(const PoseFrame& frame);
 
   const mjModel* model() const { return m_; }
-  const mjData* data() const { return d_; }
+  mjData* data() { return d_; }
   int root_body() const { return 1; }
   Eigen::Vector3d com() const;  // whole robot, world
   double ground_height() const { return ground_height_; }

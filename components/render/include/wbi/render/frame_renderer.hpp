@@ -14,12 +14,17 @@
 
 namespace wbi::render {
 
+// kFast: one sample per pixel, no shadows (videos: ≥ 30 frames/s at 640×480 on
+// llvmpipe); kHigh: 4× multisampling and shadows (pictures).
+enum class Quality { kFast, kHigh };
+
 struct FrameOptions {
   int width = 1280;
   int height = 720;
   // "track" (follows the robot's CoM), "fixed" (looks at where the CoM was at
   // the first frame drawn), or the name of a camera of the model.
   std::string camera = "track";
+  Quality quality = Quality::kFast;
   std::string label;  // drawn under the time, e.g. "ground_truth · humanoid"
 };
 

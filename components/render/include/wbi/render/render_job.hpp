@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "wbi/render/frame_renderer.hpp"
 #include "wbi/render/pose_track.hpp"
 
 namespace wbi::render {
@@ -26,6 +27,8 @@ struct RenderOptions {
   std::optional<double> end;       // [s]; none: the last pose
   double speed = 1.0;              // recorded seconds per second of video
   std::optional<double> png_time;  // one frame at this time, as PNG
+  // none: kHigh for a PNG, kFast for a video (frame_renderer.hpp).
+  std::optional<Quality> quality;
 };
 
 struct RenderProgress {
