@@ -43,7 +43,8 @@ struct FrameRenderer::Impl {
   mjvScene scn;
   mjrContext con;
   mjvPerturb pert;
-  bool fixed_camera_placed = false;
+  bool track_com = false;
+  bool camera_placed = false;
   std::vector<std::uint8_t> flipped;
   std::vector<std::uint8_t> rgb;
 
@@ -61,15 +62,13 @@ struct FrameRenderer::Impl {
     mjv_defaultScene(&scn);
     mjr_defaultContext(&con);
     const mjModel* m = scene.model();
-    const double extent = std::max(m->stat.extent, 0.3);
-    camera.distance = 1.5 * extent;
     camera.azimuth = kAzimuth;
     camera.elevation = kElevation;
-    if (options.camera == "track") {
-      camera.type = mjCAMERA_TRACKING;
-      camera.trackbodyid = scene.root_body();
-    } else if (options.camera == "fixed") {
+    if (options.camera == "track" || options.camera == "fixed") {
+      // Both aim with a free camera placed at the first frame drawn; "track"
+      // then follows the CoM.
       camera.type = mjCAMERA_FREE;
+      track_com = options.camera == "track";
     } else {
       const int id = mj_name2id(m, mjOBJ_CAMERA, options.camera.c_str());
       if (id < 0) {
@@ -101,6 +100,22 @@ struct FrameRenderer::Impl {
     rgb.resize(n);
   }
 
+  // Looks at the CoM; at the first frame also sets the distance so that the
+  // whole robot shows: a standing robot is about 1.8 times as tall as its CoM
+  // is high, and MuJoCo's 45° field of view sees 0.83 × the distance in height.
+  void aim_at_com() {
+    const Eigen::Vector3d c = scene.com();
+    for (int i = 0; i < 3; ++i) {
+      camera.lookat[i] = c[i];
+    }
+    if (!camera_placed) {
+      const double com_height = c.z() - scene.ground_height();
+      camera.distance =
+          com_height > 0.1 ? 3.2 * com_height : 1.7 * std::max(scene.model()->stat.extent, 0.3);
+      camera_placed = true;
+    }
+  }
+
   ~Impl() {
     mjr_freeContext(&con);
     mjv_freeScene(&scn);
@@ -109,12 +124,8 @@ struct FrameRenderer::Impl {
   const std::vector<std::uint8_t>& render(double t) {
     const PoseFrame& frame = track.at(t);
     scene.set_pose(frame);
-    if (camera.type == mjCAMERA_FREE && !fixed_camera_placed) {
-      const Eigen::Vector3d c = scene.com();
-      for (int i = 0; i < 3; ++i) {
-        camera.lookat[i] = c[i];
-      }
-      fixed_camera_placed = true;
+    if (camera.type == mjCAMERA_FREE && (track_com || !camera_placed)) {
+      aim_at_com();
     }
     const mjModel* m = scene.model();
     mjv_updateScene(m, scene.data(), &vopt, &pert, &camera, mjCAT_ALL, &scn);

@@ -142,14 +142,14 @@ RobotScene::RobotScene(const robot_config::RobotConfig& config,
     const int site = mj_name2id(m_, mjOBJ_SITE, ("wbi_link_" + std::to_string(l)).c_str());
     contact_body_.push_back(site >= 0 ? m_->site_bodyid[site] : -1);
   }
-  // A bone as thick as 1.2 % of the robot's size (0.5 m → 6 mm, 1.8 m → 22 mm); arrows
-  // as long as the robot's extent for its weight.
+  // A bone as thick as 1.2 % of the robot's size (0.5 m → 6 mm, 1.8 m → 22 mm); an
+  // arrow as long as the robot's extent for its whole weight.
   bone_radius_ = std::clamp(0.012 * m_->stat.extent, 0.004, 0.03);
   double mass = 0.0;
   for (int b = 1; b < m_->nbody; ++b) {
     mass += m_->body_mass[b];
   }
-  newton_length_ = mass > 0.0 ? 0.5 * m_->stat.extent / (mass * 9.81) : 0.001;
+  newton_length_ = mass > 0.0 ? m_->stat.extent / (mass * 9.81) : 0.001;
   mj_resetData(m_, d_);
   mj_kinematics(m_, d_);
   mj_comPos(m_, d_);
@@ -206,7 +206,7 @@ void RobotScene::add_decorations(mjvScene* scene, const std::vector<Vector6d>& w
   add_sphere(scene, c, 2.5 * r, kCom);
   add_connector(scene, mjGEOM_LINE, 2.0, c, ground, kCom);
   if (mjvGeom* g = next_geom(scene)) {
-    const mjtNum size[3] = {3.0 * r, 3.0 * r, 0.001};
+    const mjtNum size[3] = {3.0 * r, 0.001, 0.0};  // as a model geom's: radius, half-length
     mjv_initGeom(g, mjGEOM_CYLINDER, size, ground, nullptr, kCom);
     g->category = mjCAT_DECOR;
   }
