@@ -98,7 +98,8 @@ void expect_one_line_error(const CliRun& run, const std::string& what) {
 #ifndef WBI_WITH_RENDER
 
 TEST(Render, NamesWhatIsMissingWhenNotBuilt) {
-  const CliRun run = run_wbi({"render", not_mcap().string(), "-o", (work_dir() / "x.mp4").string()});
+  const CliRun run =
+      run_wbi({"render", not_mcap().string(), "-o", (work_dir() / "x.mp4").string()});
   expect_one_line_error(run, "not available in this build: it needs");
 }
 
@@ -263,6 +264,38 @@ TEST_F(RecordedRun, PngIsNotUniformAndTheRobotMovesBetweenTimes) {
     changed += a.rgb[i] != b.rgb[i] || a.rgb[i + 1] != b.rgb[i + 1] || a.rgb[i + 2] != b.rgb[i + 2];
   }
   EXPECT_GT(changed, 50u) << "the robot did not move between 0.5 s and 2 s";
+}
+
+TEST_F(RecordedRun, CompareDrawsGroundTruthAndStateSideBySide) {
+  const fs::path out = work_dir() / "compare.png";
+  auto args = render_args(out);
+  args.insert(args.end(), {"--png", "1.5", "--size", "640x240", "--compare", "--camera", "fixed"});
+  const CliRun run = run_wbi(args);
+  ASSERT_EQ(run.code, 0) << run.output;
+  const Image image = read_png(out);
+  ASSERT_EQ(image.width, 640);
+  ASSERT_EQ(image.height, 240);
+  // Each half, below its overlay, holds a robot on the floor: many colours,
+  // and the two halves are nearly the same picture (the estimate is close to the truth).
+  std::set<std::uint32_t> left;
+  std::set<std::uint32_t> right;
+  std::size_t differ = 0;
+  for (int y = 40; y < image.height; ++y) {
+    for (int x = 0; x < 320; ++x) {
+      const auto at = [&](int px) {
+        const std::size_t i =
+            3 * (static_cast<std::size_t>(y) * 640 + static_cast<std::size_t>(px));
+        return static_cast<std::uint32_t>(image.rgb[i]) << 16 | image.rgb[i + 1] << 8 |
+               image.rgb[i + 2];
+      };
+      left.insert(at(x));
+      right.insert(at(x + 320));
+      differ += at(x) != at(x + 320);
+    }
+  }
+  EXPECT_GT(left.size(), 50u);
+  EXPECT_GT(right.size(), 50u);
+  EXPECT_LT(differ, 320u * 200u / 4) << "the estimate's robot is far from the truth's";
 }
 
 TEST_F(RecordedRun, BadInputsExitOneWithOneLine) {

@@ -53,6 +53,8 @@ int run_render(Args raw_args) {
                  "description names");
   options.option("robot", "NAME", "the robot, when the recording has several");
   options.option("source", "SOURCE", "pose stream: ground_truth or state", "ground_truth");
+  options.flag("compare",
+               "ground truth (left) and the estimator's state (right) side by side, one camera");
   options.option("fps", "N", "frames per second of video", "30");
   options.option("size", "WxH", "image size in pixels", "1280x720");
   options.option("camera", "CAMERA", "track (follows the CoM), fixed, or a camera of the model",
@@ -88,6 +90,7 @@ int run_render(Args raw_args) {
   }
   o.robot = options.get_optional("robot").value_or("");
   o.source = render::pose_source_from_name(options.get("source"));
+  o.compare = options.has("compare");
   o.fps = options.get_double("fps");
   std::tie(o.width, o.height) = render::parse_size(options.get("size"));
   o.camera = options.get("camera");

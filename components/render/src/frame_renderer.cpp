@@ -38,9 +38,11 @@ struct FrameRenderer::Impl {
   FrameOptions options;
   OffscreenGl gl;  // before anything MuJoCo draws with
   RobotScene scene;
+  std::unique_ptr<RobotScene> compare_scene;  // with options.compare
   mjvOption vopt;
   mjvCamera camera;
   mjvScene scn;
+  mjvScene compare_scn;
   mjrContext con;
   mjvPerturb pert;
   bool track_com = false;
@@ -85,8 +87,15 @@ struct FrameRenderer::Impl {
     // Software rasterising pays per sample and per pass: the fast look draws
     // one sample per pixel and no shadow pass (README.md, "Speed").
     const bool high = options.quality == Quality::kHigh;
+    mjv_defaultScene(&compare_scn);
     mjv_makeScene(m, &scn, kMaxSceneGeoms);
     scn.flags[mjRND_SHADOW] = high ? 1 : 0;
+    if (options.compare != nullptr) {
+      compare_scene = std::make_unique<RobotScene>(config, options.compare->joint_names,
+                                                   options.width, options.height, high ? 4 : 0);
+      mjv_makeScene(compare_scene->model(), &compare_scn, kMaxSceneGeoms);
+      compare_scn.flags[mjRND_SHADOW] = scn.flags[mjRND_SHADOW];
+    }
     mjr_makeContext(m, &con, options.height >= 600 ? mjFONTSCALE_150 : mjFONTSCALE_100);
     mjr_setBuffer(mjFB_OFFSCREEN, &con);
     if (con.currentBuffer != mjFB_OFFSCREEN || con.offWidth < options.width ||
@@ -118,6 +127,7 @@ struct FrameRenderer::Impl {
 
   ~Impl() {
     mjr_freeContext(&con);
+    mjv_freeScene(&compare_scn);
     mjv_freeScene(&scn);
   }
 
@@ -127,14 +137,25 @@ struct FrameRenderer::Impl {
     if (camera.type == mjCAMERA_FREE && (track_com || !camera_placed)) {
       aim_at_com();
     }
-    const mjModel* m = scene.model();
-    mjv_updateScene(m, scene.data(), &vopt, &pert, &camera, mjCAT_ALL, &scn);
-    scene.add_decorations(&scn, frame.contact_wrenches);
-    const mjrRect viewport{0, 0, options.width, options.height};
-    mjr_render(viewport, &scn, &con);
     char time[32];
     std::snprintf(time, sizeof time, "%.2f s", t);
-    mjr_overlay(mjFONT_SHADOW, mjGRID_TOPLEFT, viewport, time, options.label.c_str(), &con);
+    const mjrRect viewport{0, 0, options.width, options.height};
+    mjrRect left = viewport;
+    if (compare_scene) {
+      left.width = options.width / 2;
+      const mjrRect right{left.width, 0, options.width - left.width, options.height};
+      const PoseFrame& other = options.compare->at(t);
+      compare_scene->set_pose(other);
+      mjv_updateScene(compare_scene->model(), compare_scene->data(), &vopt, &pert, &camera,
+                      mjCAT_ALL, &compare_scn);
+      compare_scene->add_decorations(&compare_scn, other.contact_wrenches);
+      mjr_render(right, &compare_scn, &con);
+      mjr_overlay(mjFONT_SHADOW, mjGRID_TOPLEFT, right, time, options.compare_label.c_str(), &con);
+    }
+    mjv_updateScene(scene.model(), scene.data(), &vopt, &pert, &camera, mjCAT_ALL, &scn);
+    scene.add_decorations(&scn, frame.contact_wrenches);
+    mjr_render(left, &scn, &con);
+    mjr_overlay(mjFONT_SHADOW, mjGRID_TOPLEFT, left, time, options.label.c_str(), &con);
     mjr_readPixels(flipped.data(), nullptr, viewport, &con);
     // OpenGL's rows run bottom-up; images top-down.
     const auto row = static_cast<std::size_t>(options.width) * 3;

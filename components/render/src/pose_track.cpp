@@ -2,6 +2,7 @@
 #include "wbi/render/pose_track.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <optional>
@@ -190,6 +191,7 @@ PoseTrack read_pose_track(const std::filesystem::path& file, PoseSource source,
   for (auto& f : track.frames) {
     f.t -= t0;
   }
+  track.first_stamp_ns = *first_stamp + static_cast<std::int64_t>(std::llround(t0 * kNsPerSecond));
   for (const auto& name : description.joint_names()) {
     track.joint_names.emplace_back(name.to_string());
   }

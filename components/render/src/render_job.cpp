@@ -62,14 +62,28 @@ RenderSummary render(const RenderOptions& o,
                      const std::function<void(const RenderProgress&)>& progress) {
   check(o);
   const auto began = std::chrono::steady_clock::now();
-  const PoseTrack track = read_pose_track(o.recording, o.source, o.robot);
+  const PoseSource source = o.compare ? PoseSource::kGroundTruth : o.source;
+  const PoseTrack track = read_pose_track(o.recording, source, o.robot);
+  std::optional<PoseTrack> compare;
+  if (o.compare) {
+    // The state on the ground truth's time axis: both are source stamps of one robot.
+    compare = read_pose_track(o.recording, PoseSource::kState, track.robot);
+    const double offset = static_cast<double>(compare->first_stamp_ns - track.first_stamp_ns) / 1e9;
+    for (auto& f : compare->frames) {
+      f.t += offset;
+    }
+  }
   const robot_config::RobotConfig config = config_for(o, track);
   FrameOptions frame_options;
+  if (compare) {
+    frame_options.compare = &*compare;
+    frame_options.compare_label = track.robot + " state (estimator)";
+  }
   frame_options.width = o.width;
   frame_options.height = o.height;
   frame_options.camera = o.camera;
   frame_options.quality = o.quality.value_or(o.png_time ? Quality::kHigh : Quality::kFast);
-  frame_options.label = track.robot + " " + pose_source_name(o.source);
+  frame_options.label = track.robot + " " + pose_source_name(source);
   FrameRenderer renderer(track, config, frame_options);
 
   RenderSummary summary;

@@ -25,7 +25,12 @@ struct FrameOptions {
   // the first frame drawn), or the name of a camera of the model.
   std::string camera = "track";
   Quality quality = Quality::kFast;
-  std::string label;  // drawn under the time, e.g. "ground_truth · humanoid"
+  std::string label;  // drawn beside the time, e.g. "humanoid ground_truth"
+  // With a second track (same robot, same time base): the image split in two,
+  // `track` on the left and this one on the right, one camera for both (aimed
+  // at the left robot's CoM), so that a difference of pose or place shows.
+  const PoseTrack* compare = nullptr;
+  std::string compare_label;
 };
 
 class FrameRenderer {

@@ -5,6 +5,7 @@
 // support (Fast CDR), the same code DDS uses.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -36,8 +37,9 @@ struct PoseTrack {
   std::string topic;  // the pose stream read
   std::vector<std::string> joint_names;
   bool floating_base = true;
-  std::string urdf_path;          // as the description gives it (informative, may be empty)
-  std::vector<PoseFrame> frames;  // ascending t, at least one
+  std::string urdf_path;            // as the description gives it (informative, may be empty)
+  std::int64_t first_stamp_ns = 0;  // source stamp of the first pose (t = 0)
+  std::vector<PoseFrame> frames;    // ascending t, at least one
 
   double duration() const { return frames.back().t; }
   // The last recorded pose at or before t (the first one before it): a frame

@@ -18,6 +18,8 @@ struct RenderOptions {
   // recording's description names, its <collision> boxes as feet.
   std::optional<std::filesystem::path> robot_config;
   PoseSource source = PoseSource::kGroundTruth;
+  // Ground truth on the left, the estimator's state on the right (`source` unused).
+  bool compare = false;
   std::string robot;  // "": the only robot with a pose stream
   double fps = 30.0;
   int width = 1280;
