@@ -54,7 +54,7 @@ struct FrameRenderer::Impl {
       : track(t),
         options(std::move(o)),
         scene(config, t.joint_names, options.width, options.height,
-              options.quality == Quality::kHigh ? 4 : 0) {
+              options.quality == Quality::kHigh) {
     mjv_defaultOption(&vopt);
     for (int g = 0; g < mjNGROUP; ++g) {
       vopt.sitegroup[g] = 0;  // the MJCF's sensor and link sites are not for show
@@ -92,7 +92,7 @@ struct FrameRenderer::Impl {
     scn.flags[mjRND_SHADOW] = high ? 1 : 0;
     if (options.compare != nullptr) {
       compare_scene = std::make_unique<RobotScene>(config, options.compare->joint_names,
-                                                   options.width, options.height, high ? 4 : 0);
+                                                   options.width, options.height, high);
       mjv_makeScene(compare_scene->model(), &compare_scn, kMaxSceneGeoms);
       compare_scn.flags[mjRND_SHADOW] = scn.flags[mjRND_SHADOW];
     }

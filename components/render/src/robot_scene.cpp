@@ -22,13 +22,18 @@ constexpr float kCom[4] = {0.90f, 0.15f, 0.15f, 1.0f};
 constexpr float kForce[4] = {0.15f, 0.75f, 0.30f, 1.0f};
 
 // The floor, sky and light: MJCF elements added to robot_mjcf's text.
-std::string scenery(int width, int height, int samples) {
+// High quality: 4× multisampling and MuJoCo's default tessellation (28 slices,
+// 16 stacks); fast: one sample per pixel and 12 × 6, which llvmpipe draws in
+// about 30 % less time (README.md, "Speed").
+std::string scenery(int width, int height, bool high_quality) {
   return "  <visual>\n"
          "    <global offwidth=\"" +
          std::to_string(width) + "\" offheight=\"" + std::to_string(height) +
          "\"/>\n"
          "    <quality shadowsize=\"2048\" offsamples=\"" +
-         std::to_string(samples) +
+         std::to_string(high_quality ? 4 : 0) + "\" numslices=\"" +
+         std::to_string(high_quality ? 28 : 12) + "\" numstacks=\"" +
+         std::to_string(high_quality ? 16 : 6) +
          "\"/>\n"
          "    <headlight ambient=\"0.45 0.45 0.45\" diffuse=\"0.55 0.55 0.55\" specular=\"0.1 0.1 "
          "0.1\"/>\n"
@@ -108,7 +113,7 @@ void add_sphere(mjvScene* scene, const mjtNum* p, double radius, const float rgb
 
 RobotScene::RobotScene(const robot_config::RobotConfig& config,
                        const std::vector<std::string>& joint_names, int offscreen_width,
-                       int offscreen_height, int offscreen_samples)
+                       int offscreen_height, bool high_quality)
     : ground_height_(config.ground.height) {
   const std::string where = "robot config (" + config.urdf + ")";
   const model::Model model = mujoco_sim::robot_model(config);
@@ -120,7 +125,7 @@ RobotScene::RobotScene(const robot_config::RobotConfig& config,
     throw std::logic_error("RobotScene: no <worldbody> in the written MJCF");
   }
   xml.insert(world + std::strlen("  <worldbody>\n"), floor_and_light(config.ground.height));
-  xml.insert(world, scenery(offscreen_width, offscreen_height, offscreen_samples));
+  xml.insert(world, scenery(offscreen_width, offscreen_height, high_quality));
   m_ = load_from_memory(xml, where);
   d_ = mj_makeData(m_);
 

@@ -21,10 +21,10 @@ class RobotScene {
  public:
   // config: complete (load_robot_config or complete_from_urdf done);
   // joint_names: the recording's joint order; offscreen_*: MuJoCo's offscreen
-  // buffer (size, multisamples). Throws std::runtime_error naming
-  // a recorded joint the model does not have.
+  // buffer size; high_quality: 4× multisampling and finer spheres and capsules. Throws
+  // std::runtime_error naming a recorded joint the model does not have.
   RobotScene(const robot_config::RobotConfig& config, const std::vector<std::string>& joint_names,
-             int offscreen_width, int offscreen_height, int offscreen_samples);
+             int offscreen_width, int offscreen_height, bool high_quality);
   ~RobotScene();
   RobotScene(const RobotScene&) = delete;
   RobotScene& operator=(const RobotScene&) = delete;
