@@ -148,13 +148,13 @@ RobotScene::RobotScene(const robot_config::RobotConfig& config,
     contact_body_.push_back(site >= 0 ? m_->site_bodyid[site] : -1);
   }
   // A bone as thick as 1.2 % of the robot's size (0.5 m → 6 mm, 1.8 m → 22 mm); an
-  // arrow as long as the robot's extent for its whole weight.
+  // arrow as long as 0.6 × the robot's extent for its whole weight.
   bone_radius_ = std::clamp(0.012 * m_->stat.extent, 0.004, 0.03);
   double mass = 0.0;
   for (int b = 1; b < m_->nbody; ++b) {
     mass += m_->body_mass[b];
   }
-  newton_length_ = mass > 0.0 ? m_->stat.extent / (mass * 9.81) : 0.001;
+  newton_length_ = mass > 0.0 ? 0.6 * m_->stat.extent / (mass * 9.81) : 0.001;
   mj_resetData(m_, d_);
   mj_kinematics(m_, d_);
   mj_comPos(m_, d_);
@@ -217,7 +217,12 @@ void RobotScene::add_decorations(mjvScene* scene, const std::vector<Vector6d>& w
   }
   // Contact forces: an arrow per contact link along its force, from the
   // centre of pressure on the ground (where the wrench's horizontal moment vanishes).
-  for (std::size_t l = 0; l < wrenches.size() && l < contact_body_.size(); ++l) {
+  // Only when the recording's contact links are this config's: the simulator
+  // sends one wrench per contact link of its own config, in its order.
+  if (wrenches.size() != contact_body_.size()) {
+    return;
+  }
+  for (std::size_t l = 0; l < wrenches.size(); ++l) {
     const Vector6d& w = wrenches[l];
     const int body = contact_body_[l];
     if (body < 0 || w[2] < 1.0) {
