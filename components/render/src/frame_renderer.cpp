@@ -4,6 +4,7 @@
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -47,6 +48,7 @@ struct FrameRenderer::Impl {
   mjvPerturb pert;
   bool track_com = false;
   bool camera_placed = false;
+  double lookat_offset = 0.0;  // [m] added to the CoM's z
   std::vector<std::uint8_t> flipped;
   std::vector<std::uint8_t> rgb;
 
@@ -109,20 +111,31 @@ struct FrameRenderer::Impl {
     rgb.resize(n);
   }
 
-  // Looks at the CoM; at the first frame also sets the distance so that the
-  // whole robot shows: a standing robot is about 1.8 times as tall as its CoM
-  // is high, and MuJoCo's 45° field of view sees 0.83 × the distance in height.
+  // Looks at the CoM, raised or lowered to the middle of the robot's height at
+  // the first frame (then kept: the view follows the CoM). The distance, set at
+  // the first frame, shows the whole robot: MuJoCo's 45° field of view sees
+  // 0.83 × the distance in height, so 1.8 × the robot's size fills ~2/3 of it.
   void aim_at_com() {
     const Eigen::Vector3d c = scene.com();
-    for (int i = 0; i < 3; ++i) {
-      camera.lookat[i] = c[i];
-    }
     if (!camera_placed) {
-      const double com_height = c.z() - scene.ground_height();
-      camera.distance =
-          com_height > 0.1 ? 3.2 * com_height : 1.7 * std::max(scene.model()->stat.extent, 0.3);
+      const mjModel* m = scene.model();
+      const mjData* d = scene.data();
+      double top = 0.0;     // highest body origin or CoM above the ground
+      double spread = 0.0;  // farthest body origin from the CoM, horizontally
+      for (int b = 1; b < m->nbody; ++b) {
+        for (const mjtNum* p : {d->xpos + 3 * b, d->xipos + 3 * b}) {
+          top = std::max(top, p[2] - scene.ground_height());
+          spread = std::max(spread, std::hypot(p[0] - c.x(), p[1] - c.y()));
+        }
+      }
+      const double size = std::max({top, 2.0 * spread, 0.2});
+      camera.distance = 1.8 * size;
+      lookat_offset = scene.ground_height() + 0.5 * top - c.z();
       camera_placed = true;
     }
+    camera.lookat[0] = c.x();
+    camera.lookat[1] = c.y();
+    camera.lookat[2] = c.z() + lookat_offset;
   }
 
   ~Impl() {

@@ -35,7 +35,7 @@ std::string scenery(int width, int height, bool high_quality) {
          std::to_string(high_quality ? 28 : 12) + "\" numstacks=\"" +
          std::to_string(high_quality ? 16 : 6) +
          "\"/>\n"
-         "    <headlight ambient=\"0.45 0.45 0.45\" diffuse=\"0.55 0.55 0.55\" specular=\"0.1 0.1 "
+         "    <headlight ambient=\"0.3 0.3 0.3\" diffuse=\"0.4 0.4 0.4\" specular=\"0.1 0.1 "
          "0.1\"/>\n"
          "  </visual>\n"
          "  <asset>\n"
@@ -158,6 +158,7 @@ RobotScene::RobotScene(const robot_config::RobotConfig& config,
   mj_resetData(m_, d_);
   mj_kinematics(m_, d_);
   mj_comPos(m_, d_);
+  mj_camlight(m_, d_);  // the light's pose: not part of mj_kinematics
 }
 
 RobotScene::~RobotScene() {
@@ -180,6 +181,7 @@ void RobotScene::set_pose(const PoseFrame& frame) {
   }
   mj_kinematics(m_, d_);
   mj_comPos(m_, d_);
+  mj_camlight(m_, d_);  // the light's pose: not part of mj_kinematics
 }
 
 Eigen::Vector3d RobotScene::com() const {
