@@ -78,8 +78,7 @@ int run_render(Args raw_args) {
     throw UsageError("missing -o FILE (.mp4, or .png with --png)");
   }
 #ifndef WBI_WITH_RENDER
-  std::cerr << "wbi render: not available in this build: it needs " WBI_RENDER_MISSING
-               " (scripts/install-deps, then rebuild)\n";
+  std::cerr << "wbi render: not available in this build: " WBI_RENDER_UNAVAILABLE "\n";
   return kExitError;
 #else
   render::RenderOptions o;
