@@ -118,14 +118,12 @@ struct FrameRenderer::Impl {
   void aim_at_com() {
     const Eigen::Vector3d c = scene.com();
     if (!camera_placed) {
-      const mjModel* m = scene.model();
-      const mjData* d = scene.data();
-      double top = 0.0;     // highest body origin or CoM above the ground
-      double spread = 0.0;  // farthest body origin from the CoM, horizontally
-      for (int b = 1; b < m->nbody; ++b) {
-        for (const mjtNum* p : {d->xpos + 3 * b, d->xipos + 3 * b}) {
-          top = std::max(top, p[2] - scene.ground_height());
-          spread = std::max(spread, std::hypot(p[0] - c.x(), p[1] - c.y()));
+      double top = 0.0;     // highest body origin or centre of mass above the ground
+      double spread = 0.0;  // farthest of them from the CoM, horizontally
+      for (int b = 1; b < scene.model()->nbody; ++b) {
+        for (const Eigen::Vector3d& p : {scene.origin(b), scene.mass_centre(b)}) {
+          top = std::max(top, p.z() - scene.ground_height());
+          spread = std::max(spread, (p - c).head<2>().norm());
         }
       }
       const double size = std::max({top, 2.0 * spread, 0.2});

@@ -12,6 +12,8 @@
 
 namespace wbi::render {
 
+using Eigen::Vector3d;
+
 namespace {
 
 // Colours of the skeleton style (README.md, "What is drawn").
@@ -83,11 +85,9 @@ mjvGeom* next_geom(mjvScene* scene) {
   return scene->geoms + scene->ngeom++;
 }
 
-void add_connector(mjvScene* scene, int type, double width, const mjtNum* a, const mjtNum* b,
+void add_connector(mjvScene* scene, int type, double width, const Vector3d& a, const Vector3d& b,
                    const float rgba[4]) {
-  const double length = std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-                                  (a[2] - b[2]) * (a[2] - b[2]));
-  if (length < 1e-6) {
+  if ((b - a).norm() < 1e-6) {
     return;  // no direction
   }
   mjvGeom* g = next_geom(scene);
@@ -95,17 +95,18 @@ void add_connector(mjvScene* scene, int type, double width, const mjtNum* a, con
     return;
   }
   mjv_initGeom(g, type, nullptr, nullptr, nullptr, rgba);
-  mjv_makeConnector(g, type, width, a[0], a[1], a[2], b[0], b[1], b[2]);
+  mjv_makeConnector(g, type, width, a.x(), a.y(), a.z(), b.x(), b.y(), b.z());
   g->category = mjCAT_DECOR;
 }
 
-void add_sphere(mjvScene* scene, const mjtNum* p, double radius, const float rgba[4]) {
+// size: as a model geom's (sphere: radius; cylinder: radius, half-length).
+void add_shape(mjvScene* scene, int type, const Vector3d& size, const Vector3d& position,
+               const float rgba[4]) {
   mjvGeom* g = next_geom(scene);
   if (g == nullptr) {
     return;
   }
-  const mjtNum size[3] = {radius, radius, radius};
-  mjv_initGeom(g, mjGEOM_SPHERE, size, p, nullptr, rgba);
+  mjv_initGeom(g, type, size.data(), position.data(), nullptr, rgba);
   g->category = mjCAT_DECOR;
 }
 
@@ -184,10 +185,11 @@ void RobotScene::set_pose(const PoseFrame& frame) {
   mj_camlight(m_, d_);  // the light's pose: not part of mj_kinematics
 }
 
-Eigen::Vector3d RobotScene::com() const {
-  const mjtNum* c = d_->subtree_com + 3 * root_body();
-  return {c[0], c[1], c[2]};
-}
+Vector3d RobotScene::origin(int body) const { return Vector3d::Map(d_->xpos + 3 * body); }
+
+Vector3d RobotScene::mass_centre(int body) const { return Vector3d::Map(d_->xipos + 3 * body); }
+
+Vector3d RobotScene::com() const { return Vector3d::Map(d_->subtree_com + 3 * root_body()); }
 
 void RobotScene::add_decorations(mjvScene* scene, const std::vector<Vector6d>& wrenches) const {
   const double r = bone_radius_;
@@ -198,46 +200,41 @@ void RobotScene::add_decorations(mjvScene* scene, const std::vector<Vector6d>& w
     const int parent = m_->body_parentid[b];
     ++children[static_cast<std::size_t>(parent)];
     if (parent > 0) {
-      add_connector(scene, mjGEOM_CAPSULE, r, d_->xpos + 3 * parent, d_->xpos + 3 * b, kBone);
+      add_connector(scene, mjGEOM_CAPSULE, r, origin(parent), origin(b), kBone);
     }
   }
   for (int b = 1; b < m_->nbody; ++b) {
     if (children[static_cast<std::size_t>(b)] == 0) {
-      add_connector(scene, mjGEOM_CAPSULE, r, d_->xpos + 3 * b, d_->xipos + 3 * b, kBone);
+      add_connector(scene, mjGEOM_CAPSULE, r, origin(b), mass_centre(b), kBone);
     }
-    add_sphere(scene, d_->xpos + 3 * b, 1.5 * r, kJoint);
+    add_shape(scene, mjGEOM_SPHERE, Vector3d::Constant(1.5 * r), origin(b), kJoint);
   }
-  // The CoM and its projection on the ground.
-  const mjtNum* c = d_->subtree_com + 3 * root_body();
-  const mjtNum ground[3] = {c[0], c[1], ground_height_ + 0.002};
-  add_sphere(scene, c, 2.5 * r, kCom);
+  // The CoM, a line down to the ground and a disc there.
+  const Vector3d c = com();
+  const Vector3d ground(c.x(), c.y(), ground_height_ + 0.002);
+  add_shape(scene, mjGEOM_SPHERE, Vector3d::Constant(2.5 * r), c, kCom);
   add_connector(scene, mjGEOM_LINE, 2.0, c, ground, kCom);
-  if (mjvGeom* g = next_geom(scene)) {
-    const mjtNum size[3] = {3.0 * r, 0.001, 0.0};  // as a model geom's: radius, half-length
-    mjv_initGeom(g, mjGEOM_CYLINDER, size, ground, nullptr, kCom);
-    g->category = mjCAT_DECOR;
-  }
-  // Contact forces: an arrow per contact link along its force, from the
-  // centre of pressure on the ground (where the wrench's horizontal moment vanishes).
+  add_shape(scene, mjGEOM_CYLINDER, Vector3d(3.0 * r, 0.001, 0.0), ground, kCom);
+  // Contact forces: an arrow per contact link along its force f, from the
+  // centre of pressure c on the ground: where the wrench (f, τ) about the link
+  // origin p has no horizontal moment, τ + (p − c) × f = (0, 0, ·) with c_z = ground.
   // Only when the recording's contact links are this config's: the simulator
   // sends one wrench per contact link of its own config, in its order.
   if (wrenches.size() != contact_body_.size()) {
     return;
   }
   for (std::size_t l = 0; l < wrenches.size(); ++l) {
-    const Vector6d& w = wrenches[l];
+    const Vector3d f = wrenches[l].head<3>();
+    const Vector3d tau = wrenches[l].tail<3>();
     const int body = contact_body_[l];
-    if (body < 0 || w[2] < 1.0) {
+    if (body < 0 || f.z() < 1.0) {
       continue;  // in the air (or a pull): no arrow
     }
-    const mjtNum* p = d_->xpos + 3 * body;
-    const double dz = p[2] - ground_height_;
-    const double dx = (w[4] + dz * w[0]) / w[2];
-    const double dy = (dz * w[1] - w[3]) / w[2];
-    const mjtNum from[3] = {p[0] - dx, p[1] - dy, ground_height_};
-    const mjtNum to[3] = {from[0] + newton_length_ * w[0], from[1] + newton_length_ * w[1],
-                          from[2] + newton_length_ * w[2]};
-    add_connector(scene, mjGEOM_ARROW, 0.8 * r, from, to, kForce);
+    const Vector3d p = origin(body);
+    const double dz = p.z() - ground_height_;  // (p − c)_z
+    const Vector3d from(p.x() - (tau.y() + dz * f.x()) / f.z(),
+                        p.y() - (dz * f.y() - tau.x()) / f.z(), ground_height_);
+    add_connector(scene, mjGEOM_ARROW, 0.8 * r, from, from + newton_length_ * f, kForce);
   }
 }
 

@@ -35,7 +35,9 @@ class RobotScene {
   const mjModel* model() const { return m_; }
   mjData* data() { return d_; }
   int root_body() const { return 1; }
-  Eigen::Vector3d com() const;  // whole robot, world
+  Eigen::Vector3d com() const;                  // whole robot, world
+  Eigen::Vector3d origin(int body) const;       // body frame origin, world
+  Eigen::Vector3d mass_centre(int body) const;  // body's centre of mass, world
   double ground_height() const { return ground_height_; }
 
   // Appends the skeleton (capsules between body origins, joint spheres), the
