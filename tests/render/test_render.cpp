@@ -323,6 +323,10 @@ TEST_F(RecordedRun, BadInputsExitOneWithOneLine) {
       run_wbi({"render", (work_dir() / "missing.mcap").string(), "-o", out.string()}),
       "missing.mcap");
   expect_one_line_error(run_wbi({"render", recording_.string()}), "missing -o");
+  expect_one_line_error(run_wbi({"render", recording_.string(), "-o", "run.png"}),
+                        "does not end in .mp4");
+  expect_one_line_error(run_wbi({"render", recording_.string(), "--png", "1", "-o", "frame.mp4"}),
+                        "does not end in .png");
 }
 
 TEST(RenderParts, FrameCountAndSize) {

@@ -102,7 +102,8 @@ Mp4Writer::Mp4Writer(const std::filesystem::path& file, int width, int height, d
   const std::string command =
       quoted(ffmpeg) + " -nostdin -hide_banner -loglevel error -y -f rawvideo -pix_fmt rgb24 -s " +
       std::to_string(width) + "x" + std::to_string(height) + " -r " + rate +
-      " -i - -an -c:v libx264 -preset veryfast -crf 20 -pix_fmt yuv420p -movflags +faststart " +
+      " -i - -an -c:v libx264 -preset veryfast -crf 20 -pix_fmt yuv420p -movflags +faststart -f "
+      "mp4 " +
       quoted(file.string()) + " 2> " + quoted(log_.string());
   pipe_ = ::popen(command.c_str(), "w");
   if (pipe_ == nullptr) {

@@ -33,6 +33,17 @@ void check(const RenderOptions& o) {
   if (o.output.empty()) {
     throw std::invalid_argument("-o: missing output file");
   }
+  // What is written is what the name says: a PNG, or an MP4 (ffmpeg would
+  // otherwise pick its format from the extension).
+  const std::string extension = o.output.extension().string();
+  if (o.png_time && extension != ".png") {
+    throw std::invalid_argument("-o: '" + o.output.string() +
+                                "' does not end in .png (--png writes a PNG)");
+  }
+  if (!o.png_time && extension != ".mp4") {
+    throw std::invalid_argument("-o: '" + o.output.string() +
+                                "' does not end in .mp4 (give --png T for one frame as PNG)");
+  }
 }
 
 robot_config::RobotConfig config_for(const RenderOptions& o, const PoseTrack& track) {

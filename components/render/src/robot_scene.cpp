@@ -144,6 +144,10 @@ RobotScene::RobotScene(const robot_config::RobotConfig& config,
       std::copy(kFoot, kFoot + 4, m_->geom_rgba + 4 * g);
     }
   }
+  leaf_.assign(static_cast<std::size_t>(m_->nbody), true);
+  for (int b = 1; b < m_->nbody; ++b) {
+    leaf_[static_cast<std::size_t>(m_->body_parentid[b])] = false;
+  }
   for (std::size_t l = 0; l < written.contact_links.size(); ++l) {
     const int site = mj_name2id(m_, mjOBJ_SITE, ("wbi_link_" + std::to_string(l)).c_str());
     contact_body_.push_back(site >= 0 ? m_->site_bodyid[site] : -1);
@@ -195,16 +199,14 @@ void RobotScene::add_decorations(mjvScene* scene, const std::vector<Vector6d>& w
   const double r = bone_radius_;
   // Bones: body origin (the joint's origin) to each child body's origin; a
   // leaf body (hand, head) also to its centre of mass, so that it has a length.
-  std::vector<int> children(static_cast<std::size_t>(m_->nbody), 0);
   for (int b = 1; b < m_->nbody; ++b) {
     const int parent = m_->body_parentid[b];
-    ++children[static_cast<std::size_t>(parent)];
     if (parent > 0) {
       add_connector(scene, mjGEOM_CAPSULE, r, origin(parent), origin(b), kBone);
     }
   }
   for (int b = 1; b < m_->nbody; ++b) {
-    if (children[static_cast<std::size_t>(b)] == 0) {
+    if (leaf_[static_cast<std::size_t>(b)]) {
       add_connector(scene, mjGEOM_CAPSULE, r, origin(b), mass_centre(b), kBone);
     }
     add_shape(scene, mjGEOM_SPHERE, Vector3d::Constant(1.5 * r), origin(b), kJoint);

@@ -49,6 +49,7 @@ class RobotScene {
   mjModel* m_ = nullptr;
   mjData* d_ = nullptr;
   std::vector<int> qpos_of_;       // per recorded joint: its qpos address
+  std::vector<bool> leaf_;         // per body: it has no child body
   std::vector<int> contact_body_;  // per contact link (the ground truth's order): its body
   double ground_height_ = 0.0;
   double bone_radius_ = 0.01;     // [m], from the model's size
