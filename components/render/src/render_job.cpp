@@ -84,6 +84,21 @@ RenderSummary render(const RenderOptions& o,
       f.t += offset;
     }
   }
+  // Times are checked before rendering starts (EGL, the model).
+  const double duration = track.duration();
+  if (o.png_time) {
+    if (*o.png_time > duration + 1e-9) {
+      char text[160];
+      std::snprintf(text, sizeof text, "--png: %.3f s is past the recording's end (%.3f s)",
+                    *o.png_time, duration);
+      throw std::invalid_argument(text);
+    }
+  } else if (o.start > duration) {
+    char text[160];
+    std::snprintf(text, sizeof text, "--start: %.3f s is past the recording's end (%.3f s)",
+                  o.start, duration);
+    throw std::invalid_argument(text);
+  }
   const robot_config::RobotConfig config = config_for(o, track);
   FrameOptions frame_options;
   if (compare) {
@@ -100,24 +115,11 @@ RenderSummary render(const RenderOptions& o,
   RenderSummary summary;
   summary.robot = track.robot;
   summary.gl_renderer = renderer.gl_renderer();
-  const double duration = track.duration();
   if (o.png_time) {
-    if (*o.png_time > duration + 1e-9) {
-      char text[160];
-      std::snprintf(text, sizeof text, "--png: %.3f s is past the recording's end (%.3f s)",
-                    *o.png_time, duration);
-      throw std::invalid_argument(text);
-    }
     write_png(o.output, o.width, o.height, renderer.render(*o.png_time));
     summary.frames = 1;
     summary.start = summary.end = *o.png_time;
   } else {
-    if (o.start > duration) {
-      char text[160];
-      std::snprintf(text, sizeof text, "--start: %.3f s is past the recording's end (%.3f s)",
-                    o.start, duration);
-      throw std::invalid_argument(text);
-    }
     const double end = o.end ? std::min(*o.end, duration) : duration;
     const int frames = frame_count(o.start, end, o.fps, o.speed);
     // A dead ffmpeg is reported by write(), not by a SIGPIPE that ends the process.
