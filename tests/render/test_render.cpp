@@ -300,6 +300,97 @@ TEST_F(RecordedRun, CompareDrawsGroundTruthAndStateSideBySide) {
   EXPECT_LT(differ, 320u * 200u / 4) << "the estimate's robot is far from the truth's";
 }
 
+// A binary STL box (unit cube about the origin, 12 triangles).
+void write_cube_stl(const fs::path& file) {
+  const float v[8][3] = {{-0.5f, -0.5f, -0.5f}, {-0.5f, -0.5f, 0.5f}, {-0.5f, 0.5f, -0.5f},
+                         {-0.5f, 0.5f, 0.5f},   {0.5f, -0.5f, -0.5f}, {0.5f, -0.5f, 0.5f},
+                         {0.5f, 0.5f, -0.5f},   {0.5f, 0.5f, 0.5f}};
+  const int faces[12][3] = {{0, 1, 3}, {0, 3, 2}, {4, 6, 7}, {4, 7, 5}, {0, 4, 5}, {0, 5, 1},
+                            {2, 3, 7}, {2, 7, 6}, {0, 2, 6}, {0, 6, 4}, {1, 5, 7}, {1, 7, 3}};
+  std::ofstream out(file, std::ios::binary);
+  const std::string header(80, '\0');
+  out.write(header.data(), 80);
+  const std::uint32_t count = 12;
+  out.write(reinterpret_cast<const char*>(&count), 4);
+  for (const auto& f : faces) {
+    const float normal[3] = {0, 0, 0};
+    out.write(reinterpret_cast<const char*>(normal), sizeof normal);
+    for (int i : f) {
+      out.write(reinterpret_cast<const char*>(v[i]), sizeof v[i]);
+    }
+    const std::uint16_t attributes = 0;
+    out.write(reinterpret_cast<const char*>(&attributes), 2);
+  }
+}
+
+// The humanoid's URDF with box meshes on the chest, the root link and the left
+// hand (a link lumped into the forearm's body by a fixed joint), and its robot
+// config pointing at it. Returns the config.
+fs::path humanoid_with_meshes(const std::string& mesh_file) {
+  const fs::path dir = work_dir() / "meshes";
+  fs::create_directories(dir / "testpkg");
+  write_cube_stl(dir / "testpkg" / "box.stl");
+  std::ifstream in(wbi::test::project_model("humanoid.urdf"));
+  std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto visual = [&](const char* scale) {
+    return "<visual><origin xyz=\"0 0 0.05\" rpy=\"0 0 0.3\"/><geometry><mesh filename=\"" +
+           mesh_file + "\" scale=\"" + scale + "\"/></geometry></visual>";
+  };
+  auto add = [&](const std::string& from, const std::string& to) {
+    const auto at = urdf.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    urdf.replace(at, from.size(), to);
+  };
+  add("<link name=\"chest\">", "<link name=\"chest\">" + visual("0.12 0.2 0.2"));
+  add("<link name=\"root_link\">", "<link name=\"root_link\">" + visual("0.1 0.2 0.1"));
+  add("<link name=\"l_hand\"/>", "<link name=\"l_hand\">" + visual("0.06 0.06 0.06") + "</link>");
+  std::ofstream(dir / "humanoid_meshes.urdf") << urdf;
+  std::ifstream config_in(wbi::test::source_dir() / "deploy" / "robots" / "humanoid.yaml");
+  std::string config((std::istreambuf_iterator<char>(config_in)), std::istreambuf_iterator<char>());
+  const std::string key = "urdf: ../../models/humanoid.urdf";
+  const auto at = config.find(key);
+  EXPECT_NE(at, std::string::npos);
+  config.replace(at, key.size(), "urdf: " + (dir / "humanoid_meshes.urdf").string());
+  std::ofstream(dir / "humanoid_meshes.yaml") << config;
+  return dir / "humanoid_meshes.yaml";
+}
+
+TEST_F(RecordedRun, MeshPathDrawsTheUrdfMeshes) {
+  const fs::path config = humanoid_with_meshes("package://testpkg/box.stl");
+  auto png = [&](const std::vector<std::string>& extra, const std::string& name) {
+    const fs::path out = work_dir() / name;
+    std::vector<std::string> args{"render",         recording_.string(), "-o",        out.string(),
+                                  "--robot-config", config.string(),     "--png",     "1",
+                                  "--size",         "320x240",           "--quality", "fast"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const CliRun run = run_wbi(args);
+    EXPECT_EQ(run.code, 0) << run.output;
+    return read_png(out);
+  };
+  const Image skeleton = png({}, "skeleton.png");
+  const Image meshes = png({"--mesh-path", (work_dir() / "meshes").string()}, "meshes.png");
+  ASSERT_EQ(skeleton.rgb.size(), meshes.rgb.size());
+  ASSERT_FALSE(skeleton.rgb.empty());
+  // The chest's box alone covers thousands of pixels where the skeleton drew a few bones.
+  std::size_t changed = 0;
+  for (std::size_t i = 0; i + 2 < skeleton.rgb.size(); i += 3) {
+    changed += skeleton.rgb[i] != meshes.rgb[i] || skeleton.rgb[i + 1] != meshes.rgb[i + 1] ||
+               skeleton.rgb[i + 2] != meshes.rgb[i + 2];
+  }
+  EXPECT_GT(changed, 1000u);
+
+  const fs::path missing = humanoid_with_meshes("package://testpkg/missing.stl");
+  expect_one_line_error(
+      run_wbi({"render", recording_.string(), "-o", (work_dir() / "m.png").string(), "--png", "1",
+               "--robot-config", missing.string(), "--mesh-path",
+               (work_dir() / "meshes").string()}),
+      "package://testpkg/missing.stl not found");
+  expect_one_line_error(
+      run_wbi({"render", recording_.string(), "-o", (work_dir() / "m.png").string(), "--png", "1",
+               "--mesh-path", (work_dir() / "nowhere").string()}),
+      "--mesh-path: ");
+}
+
 TEST_F(RecordedRun, BadInputsExitOneWithOneLine) {
   const fs::path out = work_dir() / "bad.mp4";
   {

@@ -62,6 +62,9 @@ int run_render(Args raw_args) {
   options.option("quality", "Q",
                  "fast (no shadows, 1 sample per pixel) or high (shadows, 4x multisampling); "
                  "default: high for --png, fast for a video");
+  options.option("mesh-path", "DIR",
+                 "draw the URDF's visual meshes (binary STL), package:// resolved in DIR, "
+                 "instead of the skeleton's bones");
   options.option("start", "S", "first recorded second drawn", "0");
   options.option("end", "S", "last recorded second drawn (default: the end)");
   options.option("speed", "X", "recorded seconds per second of video", "1");
@@ -99,6 +102,7 @@ int run_render(Args raw_args) {
     }
     o.quality = *quality == "high" ? render::Quality::kHigh : render::Quality::kFast;
   }
+  o.mesh_path = options.get_optional("mesh-path").value_or("");
   o.start = options.get_double("start");
   if (options.has("end")) {
     o.end = options.get_double("end");

@@ -56,7 +56,7 @@ struct FrameRenderer::Impl {
       : track(t),
         options(std::move(o)),
         scene(config, t.joint_names, options.width, options.height,
-              options.quality == Quality::kHigh) {
+              options.quality == Quality::kHigh, options.mesh_path) {
     mjv_defaultOption(&vopt);
     for (int g = 0; g < mjNGROUP; ++g) {
       vopt.sitegroup[g] = 0;  // the MJCF's sensor and link sites are not for show
@@ -93,8 +93,9 @@ struct FrameRenderer::Impl {
     mjv_makeScene(m, &scn, kMaxSceneGeoms);
     scn.flags[mjRND_SHADOW] = high ? 1 : 0;
     if (options.compare != nullptr) {
-      compare_scene = std::make_unique<RobotScene>(config, options.compare->joint_names,
-                                                   options.width, options.height, high);
+      compare_scene =
+          std::make_unique<RobotScene>(config, options.compare->joint_names, options.width,
+                                       options.height, high, options.mesh_path);
       mjv_makeScene(compare_scene->model(), &compare_scn, kMaxSceneGeoms);
       compare_scn.flags[mjRND_SHADOW] = scn.flags[mjRND_SHADOW];
     }

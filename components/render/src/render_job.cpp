@@ -30,6 +30,9 @@ void check(const RenderOptions& o) {
   if (o.png_time && !(*o.png_time >= 0.0)) {
     throw std::invalid_argument("--png: must be >= 0");
   }
+  if (!o.mesh_path.empty() && !std::filesystem::is_directory(o.mesh_path)) {
+    throw std::invalid_argument("--mesh-path: '" + o.mesh_path.string() + "' is not a directory");
+  }
   if (o.output.empty()) {
     throw std::invalid_argument("-o: missing output file");
   }
@@ -108,6 +111,7 @@ RenderSummary render(const RenderOptions& o,
   frame_options.width = o.width;
   frame_options.height = o.height;
   frame_options.camera = o.camera;
+  frame_options.mesh_path = o.mesh_path;
   frame_options.quality = o.quality.value_or(o.png_time ? Quality::kHigh : Quality::kFast);
   frame_options.label = track.robot + " " + pose_source_name(source);
   FrameRenderer renderer(track, config, frame_options);

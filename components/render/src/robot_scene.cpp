@@ -10,6 +10,8 @@
 #include <wbi/mjcf/mjcf.hpp>
 #include <wbi/mujoco_sim/robot_mjcf.hpp>
 
+#include "urdf_meshes.hpp"
+
 namespace wbi::render {
 
 using Eigen::Vector3d;
@@ -114,8 +116,9 @@ void add_shape(mjvScene* scene, int type, const Vector3d& size, const Vector3d& 
 
 RobotScene::RobotScene(const robot_config::RobotConfig& config,
                        const std::vector<std::string>& joint_names, int offscreen_width,
-                       int offscreen_height, bool high_quality)
-    : ground_height_(config.ground.height) {
+                       int offscreen_height, bool high_quality,
+                       const std::filesystem::path& mesh_dir)
+    : skeleton_(mesh_dir.empty()), ground_height_(config.ground.height) {
   const std::string where = "robot config (" + config.urdf + ")";
   const model::Model model = mujoco_sim::robot_model(config);
   mujoco_sim::RobotMjcf written = mujoco_sim::robot_mjcf(config, model, where);
@@ -127,6 +130,19 @@ RobotScene::RobotScene(const robot_config::RobotConfig& config,
   }
   xml.insert(world + std::strlen("  <worldbody>\n"), floor_and_light(config.ground.height));
   xml.insert(world, scenery(offscreen_width, offscreen_height, high_quality));
+  if (!mesh_dir.empty()) {
+    // The meshes go into the MuJoCo bodies their links were lumped into: load
+    // once without them to learn those bodies' names.
+    const auto meshes = urdf_visual_meshes(config.urdf, mesh_dir);
+    mjModel* plain = load_from_memory(xml, where);
+    try {
+      xml = add_visual_meshes(std::move(xml), meshes, model, plain);
+    } catch (...) {
+      mj_deleteModel(plain);
+      throw;
+    }
+    mj_deleteModel(plain);
+  }
   m_ = load_from_memory(xml, where);
   d_ = mj_makeData(m_);
 
@@ -199,13 +215,13 @@ void RobotScene::add_decorations(mjvScene* scene, const std::vector<Vector6d>& w
   const double r = bone_radius_;
   // Bones: body origin (the joint's origin) to each child body's origin; a
   // leaf body (hand, head) also to its centre of mass, so that it has a length.
-  for (int b = 1; b < m_->nbody; ++b) {
+  for (int b = 1; b < m_->nbody && skeleton_; ++b) {
     const int parent = m_->body_parentid[b];
     if (parent > 0) {
       add_connector(scene, mjGEOM_CAPSULE, r, origin(parent), origin(b), kBone);
     }
   }
-  for (int b = 1; b < m_->nbody; ++b) {
+  for (int b = 1; b < m_->nbody && skeleton_; ++b) {
     if (leaf_[static_cast<std::size_t>(b)]) {
       add_connector(scene, mjGEOM_CAPSULE, r, origin(b), mass_centre(b), kBone);
     }

@@ -7,6 +7,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -21,10 +22,12 @@ class RobotScene {
  public:
   // config: complete (load_robot_config or complete_from_urdf done);
   // joint_names: the recording's joint order; offscreen_*: MuJoCo's offscreen
-  // buffer size; high_quality: 4× multisampling and finer spheres and capsules. Throws
+  // buffer size; high_quality: 4× multisampling and finer spheres and capsules;
+  // mesh_dir: draw the URDF's visual meshes found there instead of the bones. Throws
   // std::runtime_error naming a recorded joint the model does not have.
   RobotScene(const robot_config::RobotConfig& config, const std::vector<std::string>& joint_names,
-             int offscreen_width, int offscreen_height, bool high_quality);
+             int offscreen_width, int offscreen_height, bool high_quality,
+             const std::filesystem::path& mesh_dir = {});
   ~RobotScene();
   RobotScene(const RobotScene&) = delete;
   RobotScene& operator=(const RobotScene&) = delete;
@@ -49,6 +52,7 @@ class RobotScene {
   mjModel* m_ = nullptr;
   mjData* d_ = nullptr;
   std::vector<int> qpos_of_;       // per recorded joint: its qpos address
+  bool skeleton_ = true;           // bones and joint spheres (not with meshes)
   std::vector<bool> leaf_;         // per body: it has no child body
   std::vector<int> contact_body_;  // per contact link (the ground truth's order): its body
   double ground_height_ = 0.0;

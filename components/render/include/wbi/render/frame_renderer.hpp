@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <utility>
@@ -25,6 +26,9 @@ struct FrameOptions {
   // the first frame drawn), or the name of a camera of the model.
   std::string camera = "track";
   Quality quality = Quality::kFast;
+  // Not empty: the URDF's visual meshes (STL), `package://` resolved here,
+  // drawn instead of the skeleton's bones (README.md, "Meshes").
+  std::filesystem::path mesh_path;
   std::string label;  // drawn beside the time, e.g. "humanoid ground_truth"
   // With a second track (same robot, same time base): the image split in two,
   // `track` on the left and this one on the right, one camera for both (aimed

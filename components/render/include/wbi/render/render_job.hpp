@@ -31,6 +31,7 @@ struct RenderOptions {
   std::optional<double> png_time;  // one frame at this time, as PNG
   // none: kHigh for a PNG, kFast for a video (frame_renderer.hpp).
   std::optional<Quality> quality;
+  std::filesystem::path mesh_path;  // see FrameOptions::mesh_path
 };
 
 struct RenderProgress {
