@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <stdexcept>
 
@@ -63,14 +65,38 @@ std::string floor_and_light(double height) {
          " pos=\"1 1 4\" dir=\"-0.3 -0.2 -1\" diffuse=\"0.6 0.6 0.6\" specular=\"0.2 0.2 0.2\"/>\n";
 }
 
-mjModel* load_from_memory(const std::string& xml, const std::string& where) {
+// Copies `data` into the virtual file system as `name`.
+void add_to_vfs(mjVFS* vfs, const std::string& name, const std::string& data,
+                const std::string& where) {
+  if (mj_makeEmptyFileVFS(vfs, name.c_str(), static_cast<int>(data.size())) != 0) {
+    throw std::runtime_error(where + ": MuJoCo: cannot make the in-memory file " + name);
+  }
+  std::memcpy(vfs->filedata[mj_findFileVFS(vfs, name.c_str())], data.data(), data.size());
+}
+
+// The MJCF text, and the meshes under the names its assets give them, as files
+// of a virtual file system loaded by MuJoCo: nothing is written to disk, and
+// mesh names need no escaping nor a lower-case extension.
+mjModel* load_from_memory(const std::string& xml, const std::vector<VfsMesh>& meshes,
+                          const std::string& where) {
   auto vfs = std::make_unique<mjVFS>();
   mj_defaultVFS(vfs.get());
   const char* name = "robot.xml";
-  if (mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(xml.size())) != 0) {
-    throw std::runtime_error(where + ": MuJoCo: cannot make the in-memory MJCF file");
+  try {
+    add_to_vfs(vfs.get(), name, xml, where);
+    for (const auto& mesh : meshes) {
+      std::ifstream in(mesh.file, std::ios::binary);
+      if (!in) {
+        throw std::runtime_error("--mesh-path: cannot read " + mesh.file.string());
+      }
+      const std::string data((std::istreambuf_iterator<char>(in)),
+                             std::istreambuf_iterator<char>());
+      add_to_vfs(vfs.get(), mesh.vfs_name, data, where);
+    }
+  } catch (...) {
+    mj_deleteVFS(vfs.get());
+    throw;
   }
-  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), name)], xml.data(), xml.size());
   char error[1000] = "";
   mjModel* m = mj_loadXML(name, vfs.get(), error, sizeof(error));
   mj_deleteVFS(vfs.get());
@@ -130,20 +156,24 @@ RobotScene::RobotScene(const robot_config::RobotConfig& config,
   }
   xml.insert(world + std::strlen("  <worldbody>\n"), floor_and_light(config.ground.height));
   xml.insert(world, scenery(offscreen_width, offscreen_height, high_quality));
+  std::vector<VfsMesh> vfs_meshes;
   if (!mesh_dir.empty()) {
     // The meshes go into the MuJoCo bodies their links were lumped into: load
     // once without them to learn those bodies' names.
-    const auto meshes = urdf_visual_meshes(config.urdf, mesh_dir);
-    mjModel* plain = load_from_memory(xml, where);
+    const auto visuals = urdf_visual_meshes(config.urdf, mesh_dir);
+    mjModel* plain = load_from_memory(xml, {}, where);
     try {
-      xml = add_visual_meshes(std::move(xml), meshes, model, plain);
+      xml = add_visual_meshes(std::move(xml), visuals, model, plain);
     } catch (...) {
       mj_deleteModel(plain);
       throw;
     }
     mj_deleteModel(plain);
+    for (std::size_t k = 0; k < visuals.size(); ++k) {
+      vfs_meshes.push_back({visual_mesh_file_name(k), visuals[k].file});
+    }
   }
-  m_ = load_from_memory(xml, where);
+  m_ = load_from_memory(xml, vfs_meshes, where);
   d_ = mj_makeData(m_);
 
   for (const auto& name : joint_names) {

@@ -61,6 +61,10 @@ int body_of(const model::Model& model, const mjModel* m, int f) {
 
 }  // namespace
 
+std::string visual_mesh_file_name(std::size_t k) {
+  return "wbi_render_mesh_" + std::to_string(k) + ".stl";
+}
+
 std::vector<VisualMesh> urdf_visual_meshes(const std::string& urdf_file, const fs::path& mesh_dir) {
   const auto urdf = urdf::parseURDFFile(urdf_file);
   if (!urdf) {
@@ -120,8 +124,8 @@ std::string add_visual_meshes(std::string xml, const std::vector<VisualMesh>& me
     const Vector3d p_GV = p_GF + R_GF * v.p_LV;
     const Quaterniond q_GV = Quaterniond(R_GF) * v.q_LV;
     const std::string mesh_name = "wbi_render_mesh_" + std::to_string(k);
-    assets += "    <mesh name=\"" + mesh_name + "\" file=\"" + v.file.string() + "\" scale=\"" +
-              numbers({v.scale.x(), v.scale.y(), v.scale.z()}) + "\"/>\n";
+    assets += "    <mesh name=\"" + mesh_name + "\" file=\"" + visual_mesh_file_name(k) +
+              "\" scale=\"" + numbers({v.scale.x(), v.scale.y(), v.scale.z()}) + "\"/>\n";
     const std::string geom =
         "<geom type=\"mesh\" mesh=\"" + mesh_name + "\" pos=\"" +
         numbers({p_GV.x(), p_GV.y(), p_GV.z()}) + "\" quat=\"" +

@@ -30,7 +30,18 @@ struct VisualMesh {
 std::vector<VisualMesh> urdf_visual_meshes(const std::string& urdf_file,
                                            const std::filesystem::path& mesh_dir);
 
-// `xml` (write_mjcf's text for `model`) with one <mesh> asset and one <geom>
+// The name under which mesh k is given to MuJoCo (its virtual file system):
+// "wbi_render_mesh_<k>.stl".
+std::string visual_mesh_file_name(std::size_t k);
+
+// A file given to MuJoCo in memory under another name.
+struct VfsMesh {
+  std::string vfs_name;
+  std::filesystem::path file;
+};
+
+// `xml` (write_mjcf's text for `model`) with one <mesh> asset (file
+// visual_mesh_file_name(k)) and one <geom>
 // per visual, each in the MuJoCo body its link was lumped into (`plain`: that
 // XML loaded, for its body names). Geoms in group 2, colliding with nothing.
 std::string add_visual_meshes(std::string xml, const std::vector<VisualMesh>& meshes,
