@@ -8,11 +8,13 @@
 namespace wbi::cli {
 
 std::span<const Verb> verbs() {
-  static const std::array<Verb, 8> table{{
+  static const std::array<Verb, 9> table{{
       {"launch", "start, watch and stop the processes of a deploy file", run_launch},
       {"record", "record DDS topics to an MCAP file", run_record},
       {"play", "replay an MCAP recording onto DDS", run_play},
       {"bag", "inspect MCAP recordings (info)", run_bag},
+      {"render", "draw a recorded run into an MP4 video or a PNG frame (offscreen, MuJoCo)",
+       run_render},
       {"topic", "list, echo and measure the topics on the DDS domain", run_topic},
       {"model", "inspect and evaluate robot models (info, eval, bench)", run_model},
       {"robot", "check robot config files (URDF, contacts, joints, sensors)", run_robot},

@@ -34,7 +34,7 @@ TEST(Cli, HelpListsEveryVerb) {
   const auto run = wbi_cli({"--help"});
   EXPECT_EQ(run.code, 0);
   for (const char* verb :
-       {"launch", "record", "play", "bag", "topic", "model", "robot", "estimate"}) {
+       {"launch", "record", "play", "bag", "render", "topic", "model", "robot", "estimate"}) {
     EXPECT_TRUE(contains(run.output, std::string("\n  ") + verb + " ")) << verb << "\n"
                                                                         << run.output;
   }
@@ -59,7 +59,7 @@ TEST(Cli, UnknownVerbFailsWithMessage) {
 }
 
 TEST(Cli, EveryVerbHasHelp) {
-  for (const char* verb : {"topic", "model", "robot", "estimate", "bag", "launch"}) {
+  for (const char* verb : {"topic", "model", "robot", "estimate", "bag", "launch", "render"}) {
     const auto run = wbi_cli({verb, "--help"});
     EXPECT_EQ(run.code, 0) << verb << ": " << run.output;
     EXPECT_TRUE(contains(run.output, "usage: wbi")) << run.output;

@@ -10,6 +10,7 @@ int run_estimate(Args args);
 int run_launch(Args args);
 int run_model(Args args);
 int run_play(Args args);
+int run_render(Args args);
 int run_record(Args args);
 int run_robot(Args args);
 int run_topic(Args args);
