@@ -365,8 +365,10 @@ TEST_F(Loop, NeverRunsFasterThanItsRateOnTheSystemClock) {
   const auto elapsed = std::chrono::steady_clock::now() - start;
   r->deactivate();
   const auto stats = r->stats();
+  // The whole run, not the mean of measured periods: after a late wake the
+  // runner keeps its absolute schedule, so the next period is short (CI saw a
+  // mean of 4.92 ms under load with no cycle early).
   EXPECT_GE(elapsed, 49 * 5ms);
-  EXPECT_GE(stats.period_mean_s, 0.005 * (1.0 - 1e-3));
   std::cout << "200 Hz: " << stats.iterations << " cycles, mean " << stats.period_mean_s * 1e3
             << " ms, jitter " << stats.period_jitter_s * 1e6 << " us, overruns " << stats.overruns
             << "\n";
