@@ -42,7 +42,9 @@ const Options::Spec* Options::find(const std::string& name) const {
 bool Options::parse(Args args) {
   std::size_t next_positional = 0;
   for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
+    // -o is --output wherever a verb has one (record, render, model mjcf).
+    const std::string arg =
+        args[i] == "-o" && find("output") != nullptr ? std::string("--output") : args[i];
     if (arg == "--help" || arg == "-h") {
       std::cout << help_text();
       return false;

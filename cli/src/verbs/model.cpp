@@ -646,7 +646,7 @@ int run_bench(Args args) {
 
 // ---------------------------------------------------------------- mjcf
 
-int run_mjcf(Args raw_args) {
+int run_mjcf(Args args) {
   Options opts(
       "wbi model mjcf URDF -o FILE|- [--robot-config FILE] [--fixed-base] [--joints a,b,...]\n"
       "               [--welded a,b,...] [--timestep S] [--integrator NAME]",
@@ -676,12 +676,6 @@ int run_mjcf(Args raw_args) {
       .option("integrator", "NAME",
               "MuJoCo's integrator: euler, rk4 or implicit (default euler, or the robot "
               "config's)");
-  std::vector<std::string> args(raw_args.begin(), raw_args.end());
-  for (auto& arg : args) {
-    if (arg == "-o") {
-      arg = "--output";
-    }
-  }
   if (!opts.parse(args)) {
     return kExitOk;
   }

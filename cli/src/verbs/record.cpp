@@ -56,7 +56,7 @@ std::string progress_text(const recording::RecorderProgress& now,
 
 }  // namespace
 
-int run_record(Args raw_args) {
+int run_record(Args args) {
   Options options(
       "wbi record -o FILE.mcap [TOPIC_REGEX...] [--all] [options]",
       "Records DDS topics to an MCAP file until Ctrl-C (or SIGTERM, or --duration).\n"
@@ -77,12 +77,6 @@ int run_record(Args raw_args) {
   options.option("compression", "KIND", "chunk compression: none, zstd or lz4", "zstd");
   options.option("queue", "N", "samples that may wait for the writer thread before drops", "16384");
   options.option("domain", "ID", "DDS domain id (default: WBI_DOMAIN_ID, else 0)");
-  std::vector<std::string> args(raw_args.begin(), raw_args.end());
-  for (auto& arg : args) {
-    if (arg == "-o") {
-      arg = "--output";
-    }
-  }
   if (!options.parse(args)) {
     return kExitOk;
   }

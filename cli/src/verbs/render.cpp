@@ -37,7 +37,7 @@ std::string bar(const render::RenderProgress& p, double frames_per_second) {
 
 }  // namespace
 
-int run_render(Args raw_args) {
+int run_render(Args args) {
   Options options(
       "wbi render RECORDING.mcap -o run.mp4 [options] | --png T -o frame.png",
       "Draws a recorded run: the robot posed per frame from its recorded pose stream\n"
@@ -68,12 +68,6 @@ int run_render(Args raw_args) {
   options.option("start", "S", "first recorded second drawn", "0");
   options.option("end", "S", "last recorded second drawn (default: the end)");
   options.option("speed", "X", "recorded seconds per second of video", "1");
-  std::vector<std::string> args(raw_args.begin(), raw_args.end());
-  for (auto& arg : args) {
-    if (arg == "-o") {
-      arg = "--output";
-    }
-  }
   if (!options.parse(args)) {
     return kExitOk;
   }

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -16,6 +15,7 @@
 
 #include "wbi/mjcf/mjcf.hpp"
 #include "wbi/mjcf/mujoco_conventions.hpp"
+#include "wbi/mujoco_sim/load_mjcf.hpp"
 #include "wbi/mujoco_sim/robot_mjcf.hpp"
 #include "wbi/sim/sensor_actuator_models.hpp"
 
@@ -31,25 +31,6 @@ using MapVector = Eigen::Map<Eigen::VectorXd>;
 using ConstMapVector = Eigen::Map<const Eigen::VectorXd>;
 
 namespace {
-
-// The MJCF text as a file of a virtual file system, loaded by MuJoCo: nothing
-// touches the disk.
-mjModel* load_from_memory(const std::string& xml, const std::string& where) {
-  auto vfs = std::make_unique<mjVFS>();
-  mj_defaultVFS(vfs.get());
-  const char* name = "robot.xml";
-  if (mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(xml.size())) != 0) {
-    throw std::runtime_error(where + ": MuJoCo: cannot make the in-memory MJCF file");
-  }
-  std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), name)], xml.data(), xml.size());
-  char error[1000] = "";
-  mjModel* m = mj_loadXML(name, vfs.get(), error, sizeof(error));
-  mj_deleteVFS(vfs.get());
-  if (m == nullptr) {
-    throw std::runtime_error(where + ": MuJoCo rejected the model: " + error);
-  }
-  return m;
-}
 
 int id_of(const mjModel* m, mjtObj type, const std::string& name) {
   const int id = mj_name2id(m, type, name.c_str());
@@ -194,7 +175,7 @@ actuation::BackendDescription MujocoBackend::on_configure() {
   }
   desc.ft_frames = written.ft_frames;
   s.xml = mjcf::write_mjcf(model, written.options);
-  s.m = load_from_memory(s.xml, where + " " + c.urdf);
+  s.m = load_mjcf_from_memory(s.xml, {}, where + " " + c.urdf);
   mjModel* m = s.m;
 
   // Options the writer leaves at MuJoCo's defaults.

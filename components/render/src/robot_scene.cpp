@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include <wbi/mjcf/mjcf.hpp>
+#include <wbi/mujoco_sim/load_mjcf.hpp>
 #include <wbi/mujoco_sim/robot_mjcf.hpp>
 
 #include "urdf_meshes.hpp"
@@ -65,45 +66,20 @@ std::string floor_and_light(double height) {
          " pos=\"1 1 4\" dir=\"-0.3 -0.2 -1\" diffuse=\"0.6 0.6 0.6\" specular=\"0.2 0.2 0.2\"/>\n";
 }
 
-// Copies `data` into the virtual file system as `name`.
-void add_to_vfs(mjVFS* vfs, const std::string& name, const std::string& data,
-                const std::string& where) {
-  if (mj_makeEmptyFileVFS(vfs, name.c_str(), static_cast<int>(data.size())) != 0) {
-    throw std::runtime_error(where + ": MuJoCo: cannot make the in-memory file " + name);
-  }
-  std::memcpy(vfs->filedata[mj_findFileVFS(vfs, name.c_str())], data.data(), data.size());
-}
-
-// The MJCF text, and the meshes under the names its assets give them, as files
-// of a virtual file system loaded by MuJoCo: nothing is written to disk, and
+// The MJCF text with the meshes read from their files, loaded from memory:
 // mesh names need no escaping nor a lower-case extension.
-mjModel* load_from_memory(const std::string& xml, const std::vector<VfsMesh>& meshes,
+mjModel* load_with_meshes(const std::string& xml, const std::vector<VfsMesh>& meshes,
                           const std::string& where) {
-  auto vfs = std::make_unique<mjVFS>();
-  mj_defaultVFS(vfs.get());
-  const char* name = "robot.xml";
-  try {
-    add_to_vfs(vfs.get(), name, xml, where);
-    for (const auto& mesh : meshes) {
-      std::ifstream in(mesh.file, std::ios::binary);
-      if (!in) {
-        throw std::runtime_error("--mesh-path: cannot read " + mesh.file.string());
-      }
-      const std::string data((std::istreambuf_iterator<char>(in)),
-                             std::istreambuf_iterator<char>());
-      add_to_vfs(vfs.get(), mesh.vfs_name, data, where);
+  std::vector<mujoco_sim::MemoryFile> files;
+  for (const auto& mesh : meshes) {
+    std::ifstream in(mesh.file, std::ios::binary);
+    if (!in) {
+      throw std::runtime_error("--mesh-path: cannot read " + mesh.file.string());
     }
-  } catch (...) {
-    mj_deleteVFS(vfs.get());
-    throw;
+    files.push_back({mesh.vfs_name, std::string((std::istreambuf_iterator<char>(in)),
+                                                std::istreambuf_iterator<char>())});
   }
-  char error[1000] = "";
-  mjModel* m = mj_loadXML(name, vfs.get(), error, sizeof(error));
-  mj_deleteVFS(vfs.get());
-  if (m == nullptr) {
-    throw std::runtime_error(where + ": MuJoCo rejected the model: " + error);
-  }
-  return m;
+  return mujoco_sim::load_mjcf_from_memory(xml, files, where);
 }
 
 mjvGeom* next_geom(mjvScene* scene) {
@@ -161,7 +137,7 @@ RobotScene::RobotScene(const robot_config::RobotConfig& config,
     // The meshes go into the MuJoCo bodies their links were lumped into: load
     // once without them to learn those bodies' names.
     const auto visuals = urdf_visual_meshes(config.urdf, mesh_dir);
-    mjModel* plain = load_from_memory(xml, {}, where);
+    mjModel* plain = mujoco_sim::load_mjcf_from_memory(xml, {}, where);
     try {
       xml = add_visual_meshes(std::move(xml), visuals, model, plain);
     } catch (...) {
@@ -173,7 +149,7 @@ RobotScene::RobotScene(const robot_config::RobotConfig& config,
       vfs_meshes.push_back({visual_mesh_file_name(k), visuals[k].file});
     }
   }
-  m_ = load_from_memory(xml, vfs_meshes, where);
+  m_ = load_with_meshes(xml, vfs_meshes, where);
   d_ = mj_makeData(m_);
 
   for (const auto& name : joint_names) {
