@@ -460,6 +460,15 @@ detail::Guid Participant::oldest_writer_of(const std::string& topic) const {
   return impl_->oldest_writer_of(topic);
 }
 
+bool Participant::participant_gone(const detail::Guid& guid) const {
+  const auto owner = impl_->participant_of(guid);
+  return !owner || detail::ended_on_host(*owner, impl_->self.host);
+}
+
+std::string Participant::describe_writer(const detail::Guid& writer) const {
+  return impl_->describe_writer(writer);
+}
+
 bool Participant::has_ended(const ParticipantInfo& other) const {
   return detail::ended_on_host(other, impl_->self.host);
 }

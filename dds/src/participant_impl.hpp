@@ -55,6 +55,8 @@ class ParticipantImpl : public fdds::DomainParticipantListener {
   // "participant 'robot' on host h, pid 12 (writer <32 hex digits>)", as far
   // as discovery knows it, for log lines.
   std::string describe_writer(const Guid& writer) const;
+  // The participant of `writer`: this one, a remote one discovery knows, or none.
+  std::optional<ParticipantInfo> participant_of(const Guid& writer) const;
   // The remote writer of `topic` whose participant is the oldest of those
   // alive (the rule of a robot's name claim); all zero when none is known.
   Guid oldest_writer_of(const std::string& topic) const;
@@ -72,8 +74,6 @@ class ParticipantImpl : public fdds::DomainParticipantListener {
                                eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) override;
 
   std::vector<TopicInfo> collect_topics() const;  // caller holds discovery_mutex_
-  // The participant of `writer`: this one, a remote one discovery knows, or none.
-  std::optional<ParticipantInfo> participant_of(const Guid& writer) const;
 
   struct SharedTopic {
     fdds::Topic* topic = nullptr;

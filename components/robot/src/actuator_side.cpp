@@ -14,7 +14,8 @@ namespace wbi::robot {
 ActuatorSide::ActuatorSide(dds::Participant& participant, const std::string& robot,
                            const actuation::BackendDescription& description,
                            const actuation::JointControllerConfig& config,
-                           runtime::StatusReport& report, CommandObserver observer)
+                           runtime::StatusReport& report, CommandObserver observer,
+                           bool require_claims)
     : robot_(robot),
       joint_names_(description.joint_names),
       watchdog_timeout_s_(config.watchdog_timeout),
@@ -22,6 +23,8 @@ ActuatorSide::ActuatorSide(dds::Participant& participant, const std::string& rob
       controller_(description, config),
       reference_speed_(description.joint_names.size(), config.reference_speed),
       was_tripped_(description.joint_names.size(), 0),
+      claims_(description.joint_names, static_cast<std::int64_t>(config.watchdog_timeout * 1e9),
+              require_claims),
       report_(report),
       accepted_commands_(report.counter("accepted_commands")),
       accepted_parameters_(report.counter("accepted_parameters")),
@@ -31,18 +34,25 @@ ActuatorSide::ActuatorSide(dds::Participant& participant, const std::string& rob
       limit_clamps_(report.counter("limit_clamps")),
       rejections_(report, std::cerr),
       observer_(std::move(observer)) {
-  // Subscribers last: their callbacks use everything above.
+  // Claims and subscribers last: their callbacks use everything above.
+  claim_desk_ = std::make_unique<ClaimDesk>(participant, robot, claims_, mutex_, now_ns_, report,
+                                            rejections_);
   commands_ = std::make_unique<dds::Subscriber<wbi::msg::ActuatorCommand>>(
       participant, dds::topics::commands(robot), dds::qos::kCommand,
-      [this](const wbi::msg::ActuatorCommand& c, const dds::detail::SampleInfo&) { handle(c); });
+      [this](const wbi::msg::ActuatorCommand& c, const dds::detail::SampleInfo& info) {
+        handle(c, info.writer);
+      });
   parameters_ = std::make_unique<dds::Subscriber<wbi::msg::ControlParameters>>(
       participant, dds::topics::control_parameters(robot), dds::qos::kCommand,
-      [this](const wbi::msg::ControlParameters& p, const dds::detail::SampleInfo&) { handle(p); });
+      [this](const wbi::msg::ControlParameters& p, const dds::detail::SampleInfo& info) {
+        handle(p, info.writer);
+      });
 }
 
 ActuatorSide::~ActuatorSide() {
   commands_.reset();
   parameters_.reset();
+  claim_desk_.reset();
 }
 
 void ActuatorSide::hold(const actuation::SensorReadings& readings, actuation::Time now) {
@@ -61,14 +71,24 @@ void ActuatorSide::hold(const actuation::SensorReadings& readings, actuation::Ti
 // Runs on a DDS thread: stages the command for the next tick; never throws into DDS.
 // The loop waits for mutex_ only while the command is checked and staged; a
 // rejection is reported after it is released.
-void ActuatorSide::handle(const wbi::msg::ActuatorCommand& command) {
+void ActuatorSide::handle(const wbi::msg::ActuatorCommand& command,
+                          const dds::detail::Guid& writer) {
+  const auto sender =
+      Claimant::of(writer.data(), {command.controller().c_str(), command.controller().size()});
+  const std::span<const std::uint16_t> joints(command.joints().data(), command.joints().size());
   std::string error;
   {
     std::lock_guard lock(mutex_);
     error = to_batch(command, robot_, reference_speed_, batch_);
+    if (const int refused = error.empty() ? claims_.first_refused(sender, joints) : -1;
+        refused >= 0) {
+      error = claims_.refusal(sender, joints[refused]);
+    }
     if (error.empty()) {
-      auto result = controller_.submit(batch_, actuation::Time(now_ns_.load()));
+      const std::int64_t now_ns = now_ns_.load();
+      auto result = controller_.submit(batch_, actuation::Time(now_ns));
       if (result.ok) {
+        claims_.commanded(sender, joints, now_ns);
         accepted_commands_.add();
         limit_clamps_.add(static_cast<std::uint64_t>(result.clamped));
       } else {
@@ -85,11 +105,19 @@ void ActuatorSide::handle(const wbi::msg::ActuatorCommand& command) {
 }
 
 // Runs on a DDS thread. Every field is checked first: a bad message changes nothing.
-void ActuatorSide::handle(const wbi::msg::ControlParameters& message) {
+void ActuatorSide::handle(const wbi::msg::ControlParameters& message,
+                          const dds::detail::Guid& writer) {
+  const auto sender =
+      Claimant::of(writer.data(), {message.controller().c_str(), message.controller().size()});
+  const std::span<const std::uint16_t> joints(message.joints().data(), message.joints().size());
   std::string error;
   {
     std::lock_guard lock(mutex_);
     error = check_parameters(message, robot_, joint_names_);
+    if (const int refused = error.empty() ? claims_.first_refused(sender, joints) : -1;
+        refused >= 0) {
+      error = claims_.refusal(sender, joints[refused]);
+    }
     if (error.empty()) {
       for (std::size_t k = 0; k < message.joints().size(); ++k) {
         const auto joint = message.joints()[k];

@@ -1,7 +1,8 @@
 // The actuator side of a robot on DDS: subscribes to the robot's commands and
-// control parameters, runs the joint-level controller (wbi::actuation::
-// JointController: modes, PID, limits, watchdog) at the backend rate, and
-// reports on the owner component's status (StatusReport):
+// control parameters, answers joint claims (claim_desk.hpp: a command or
+// control parameters for a joint held by another controller is refused), runs the joint-level
+// controller (wbi::actuation:: JointController: modes, PID, limits, watchdog) at the backend rate,
+// and reports on the owner component's status (StatusReport):
 //   accepted_commands    commands applied (staged for the next tick)
 //   accepted_parameters  control parameters applied
 //   rejected_commands    commands refused (header.robot not this robot, mode
@@ -35,6 +36,8 @@
 #include <wbi/dds/subscriber.hpp>
 #include <wbi/runtime/status_report.hpp>
 
+#include "claim_desk.hpp"
+#include "joint_claims.hpp"
 #include "rejection_log.hpp"
 
 namespace wbi::robot {
@@ -48,7 +51,7 @@ class ActuatorSide {
   ActuatorSide(dds::Participant& participant, const std::string& robot,
                const actuation::BackendDescription& description,
                const actuation::JointControllerConfig& config, runtime::StatusReport& report,
-               CommandObserver observer = {});
+               CommandObserver observer = {}, bool require_claims = false);
   ~ActuatorSide();  // unsubscribes first: no callback runs after this
   ActuatorSide(const ActuatorSide&) = delete;
   ActuatorSide& operator=(const ActuatorSide&) = delete;
@@ -64,8 +67,11 @@ class ActuatorSide {
 
   // What the subscriptions call for each message (any thread; never throw).
   // Accepted commands do not allocate.
-  void handle(const wbi::msg::ActuatorCommand& command);
-  void handle(const wbi::msg::ControlParameters& message);
+  // `writer` is the sending writer's GUID: with the message's controller name,
+  // who must own every joint the message names (joint_claims.hpp).
+  // (Tests that feed the side directly leave it zero: one participant.)
+  void handle(const wbi::msg::ActuatorCommand& command, const dds::detail::Guid& writer = {});
+  void handle(const wbi::msg::ControlParameters& message, const dds::detail::Guid& writer = {});
 
   const actuation::JointControlStatus& status() const { return controller_.status(); }
   // The gains in use (control parameters change them); read where no message is handled.
@@ -87,7 +93,8 @@ class ActuatorSide {
   std::vector<std::uint8_t> was_tripped_;  // [n] at the previous tick
   std::uint64_t clamps_seen_ = 0;
   std::atomic<std::int64_t> now_ns_{0};
-  std::mutex mutex_;  // guards controller_, batch_, reference_speed_ (DDS threads vs loop)
+  std::mutex mutex_;  // guards controller_, batch_, reference_speed_, claims_ (DDS threads vs loop)
+  JointClaims claims_;
 
   runtime::StatusReport& report_;
   runtime::StatusCounter& accepted_commands_;
@@ -99,6 +106,7 @@ class ActuatorSide {
   RejectionLog rejections_;
   CommandObserver observer_;
 
+  std::unique_ptr<ClaimDesk> claim_desk_;
   std::unique_ptr<dds::Subscriber<wbi::msg::ActuatorCommand>> commands_;
   std::unique_ptr<dds::Subscriber<wbi::msg::ControlParameters>> parameters_;
 };

@@ -96,6 +96,7 @@ class RobotDriver final : public runtime::Component {
     control.watchdog_timeout = parameters.get<double>("watchdog_timeout_s", 0.1);
     control.reference_speed = parameters.get<double>("reference_speed", 0.5);
     hold_at_start_ = parameters.get<bool>("hold_at_start", true);
+    const bool require_claims = parameters.get<bool>("require_claims", false);
     // The description names the URDF the backend loaded (a model service or a
     // proxy may load it for frames); a real robot's driver may be told.
     std::string urdf;
@@ -136,7 +137,7 @@ class RobotDriver final : public runtime::Component {
     }
     if (sides.actuators) {
       actuators_ = std::make_unique<ActuatorSide>(participant, robot_, description, control,
-                                                  report(), std::move(observer));
+                                                  report(), std::move(observer), require_claims);
     }
   }
 

@@ -4,6 +4,7 @@
 
 #include <memory>
 
+#include <wbi/msg/claimsPubSubTypes.h>
 #include <wbi/msg/commandsPubSubTypes.h>
 #include <wbi/msg/descriptionPubSubTypes.h>
 #include <wbi/msg/modelPubSubTypes.h>
@@ -38,6 +39,9 @@ WBI_DDS_MESSAGE(ComponentStatus)
 WBI_DDS_MESSAGE(SimulationClock)
 WBI_DDS_MESSAGE(PlaybackCommand)
 WBI_DDS_MESSAGE(Signals)
+WBI_DDS_MESSAGE(JointClaimRequest)
+WBI_DDS_MESSAGE(JointClaimReply)
+WBI_DDS_MESSAGE(JointOwners)
 
 #undef WBI_DDS_MESSAGE
 

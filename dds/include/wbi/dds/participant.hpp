@@ -114,6 +114,13 @@ class Participant {
   // robot that holds its name, for wbi/<robot>/description); all zero when
   // discovery knows none. Allocates: for start-up, not for a loop.
   detail::Guid oldest_writer_of(const std::string& topic) const;
+  // Whether the participant of `guid` (any GUID of it: its prefix counts) is
+  // gone: no longer in discovery, or a process of this host that has ended.
+  // Allocates: for rare decisions (a joint claim), not for a loop.
+  bool participant_gone(const detail::Guid& guid) const;
+  // "participant 'pd' on host h, pid 12 (writer <32 hex digits>)", as far as
+  // discovery knows it, for log lines.
+  std::string describe_writer(const detail::Guid& writer) const;
 
   detail::ParticipantImpl& impl() { return *impl_; }
 

@@ -41,6 +41,13 @@ inline std::string model_reply(const std::string& robot) {
   return robot_topic(robot, "model/reply");
 }
 
+// The joint claims of a robot (request/reply, see rpc.hpp and idl/claims.idl)
+// and its current owners (wbi::msg::JointOwners, latched).
+inline std::string claim_service(const std::string& robot) { return robot_topic(robot, "claims"); }
+inline std::string joint_owners(const std::string& robot) {
+  return robot_topic(robot, "claims/owners");
+}
+
 // A controller's named signals (wbi::msg::Signals): wbi/<robot>/signals/<controller>.
 inline std::string signals(const std::string& robot, const std::string& controller) {
   return "wbi/" + robot + "/signals/" + controller;

@@ -31,7 +31,10 @@
 //
 // Parameters of every driver (besides the backend's own, which the factory reads):
 //   robot               required; topics wbi/<robot>/…
-//   watchdog_timeout_s  joint controller watchdog (default 0.1 s; 0 disables)
+//   watchdog_timeout_s  joint controller watchdog (default 0.1 s; 0 disables); also
+//                       how long a silent claim owner keeps its joints from others
+//   require_claims      false (default): a joint nobody claimed takes any sender's
+//                       commands; true: only claimed joints are commanded (hardware)
 //   reference_speed     default POSITION-mode speed [rad/s] (default 0.5)
 //   hold_at_start       true (default): joints hold their position (POSITION mode)
 //                       until commanded; false: they start IDLE (unpowered)

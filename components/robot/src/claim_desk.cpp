@@ -1,0 +1,183 @@
+#include "claim_desk.hpp"
+
+#include <iostream>
+
+#include <wbi/dds/topics.hpp>
+
+namespace wbi::robot {
+
+namespace {
+
+std::string joint_list(const JointClaims& claims, const std::vector<int>& joints) {
+  std::string text;
+  for (const int joint : joints) {
+    if (!text.empty()) {
+      text += ", ";
+    }
+    text += claims.joint_name(joint);
+  }
+  return text;
+}
+
+dds::detail::Guid participant_guid(const Claimant& claimant) {
+  dds::detail::Guid guid{};
+  std::copy(claimant.participant.begin(), claimant.participant.end(), guid.begin());
+  return guid;
+}
+
+}  // namespace
+
+ClaimDesk::ClaimDesk(dds::Participant& participant, const std::string& robot, JointClaims& claims,
+                     std::mutex& lock, const std::atomic<std::int64_t>& now_ns,
+                     runtime::StatusReport& report, RejectionLog& rejections)
+    : participant_(participant),
+      robot_(robot),
+      claims_(claims),
+      lock_(lock),
+      now_ns_(now_ns),
+      report_(report),
+      rejections_(rejections),
+      granted_(report.counter("claims_granted")),
+      refused_(report.counter("claims_refused")),
+      owners_(participant, dds::topics::joint_owners(robot), dds::qos::kLatched) {
+  publish_owners();  // generation 0: every joint free
+  server_ = std::make_unique<dds::Server<wbi::msg::JointClaimRequest, wbi::msg::JointClaimReply>>(
+      participant, dds::topics::claim_service(robot),
+      [this](const wbi::msg::JointClaimRequest& request, wbi::msg::JointClaimReply& reply) {
+        answer(request, reply);
+      });
+}
+
+ClaimDesk::~ClaimDesk() { server_.reset(); }
+
+std::string ClaimDesk::resolve(const wbi::msg::JointClaimRequest& request,
+                               std::vector<int>& joints) const {
+  for (const auto& name : request.joints()) {
+    const int joint = claims_.find(std::string_view(name.c_str(), name.size()));
+    if (joint < 0) {
+      return "robot '" + robot_ + "' has no joint '" +
+             RejectionLog::without_control_characters(name.c_str()) + "'";
+    }
+    if (std::find(joints.begin(), joints.end(), joint) != joints.end()) {
+      return "joint '" + claims_.joint_name(joint) + "' appears twice";
+    }
+    joints.push_back(joint);
+  }
+  return {};
+}
+
+std::string ClaimDesk::describe(const Claimant& claimant) const {
+  std::string who = participant_.describe_writer(participant_guid(claimant));
+  const auto writer = who.rfind(" (writer ");  // a participant has no writer of its own to name
+  if (writer != std::string::npos) {
+    who.erase(writer);
+  }
+  std::string text = "'";
+  text.append(RejectionLog::printable(claimant.name())).append("' (").append(who).append(")");
+  return text;
+}
+
+void ClaimDesk::answer(const wbi::msg::JointClaimRequest& request,
+                       wbi::msg::JointClaimReply& reply) {
+  reply.error() = "";
+  reply.contested().clear();
+  reply.owners().clear();
+  if (request.robot() != robot_) {
+    reply.error() = "claim for robot '" + RejectionLog::printable(request.robot().c_str()) +
+                    "' sent to robot '" + robot_ + "'";
+    return;
+  }
+  dds::detail::Guid client{};
+  if (!dds::detail::parse_guid_hex(request.client_id().c_str(), client)) {
+    reply.error() = "client_id '" + RejectionLog::printable(request.client_id().c_str()) +
+                    "' is not a GUID (32 hex digits): the claimant cannot be told apart";
+    return;
+  }
+  const std::string_view name(request.controller().c_str(), request.controller().size());
+  if (name.empty()) {
+    reply.error() = "a claim names its controller (the name its commands carry)";
+    return;
+  }
+  const Claimant who = Claimant::of(client.data(), name);
+  std::vector<int> joints;
+  if (auto error = resolve(request, joints); !error.empty()) {
+    reply.error() = error;
+    return;
+  }
+
+  if (request.action() == wbi::msg::ClaimAction::RELEASE) {
+    int released = 0;
+    {
+      std::lock_guard lock(lock_);
+      released = claims_.release(who, joints);
+    }
+    if (released > 0) {
+      std::cerr << "claims: " << describe(who) << " released " << released << " joint(s)\n";
+      publish_owners();
+    }
+    return;
+  }
+
+  if (joints.empty()) {
+    reply.error() = "a claim names at least one joint";
+    return;
+  }
+  JointClaims::Outcome outcome;
+  {
+    std::lock_guard lock(lock_);
+    outcome =
+        claims_.claim(who, joints, request.force(), now_ns_.load(), [this](const Claimant& owner) {
+          return participant_.participant_gone(participant_guid(owner));
+        });
+  }
+  if (!outcome.granted) {
+    std::string held;
+    for (const auto& contest : outcome.contested) {
+      const std::string owner = RejectionLog::printable(contest.owner.name());
+      reply.contested().push_back(claims_.joint_name(contest.joint));
+      reply.owners().push_back(owner);
+      if (!held.empty()) {
+        held += ", ";
+      }
+      held.append(claims_.joint_name(contest.joint))
+          .append(" (held by '")
+          .append(owner)
+          .append("')");
+    }
+    const std::string error = "claim of '" + RejectionLog::printable(name) + "' refused: " + held +
+                              "; claim with force to take them";
+    reply.error() = error;  // the reply's bound (512) may cut a long list; contested has all
+    refused_.add();
+    report_.set_error(error);
+    rejections_.reject("claim", name, error);
+    return;
+  }
+  granted_.add();
+  std::cerr << "claims: " << describe(who) << " holds " << joint_list(claims_, joints) << "\n";
+  for (const auto& taken : outcome.taken) {
+    std::cerr << "claims: joint " << claims_.joint_name(taken.joint) << " taken from "
+              << describe(taken.owner) << (request.force() ? " by force" : ": its claim had ended")
+              << "\n";
+  }
+  publish_owners();
+}
+
+void ClaimDesk::publish_owners() {
+  std::lock_guard publishing(publish_mutex_);
+  wbi::msg::JointOwners message;
+  {
+    std::lock_guard lock(lock_);
+    message.header().robot(robot_);
+    message.header().stamp_ns(now_ns_.load());
+    message.header().seq(claims_.generation());
+    message.generation(claims_.generation());
+    for (int joint = 0; joint < claims_.joint_count(); ++joint) {
+      const bool held = claims_.held(joint);
+      message.controllers().push_back(held ? std::string(claims_.owner(joint).name()) : "");
+      message.participants().push_back(held ? claims_.owner(joint).participant_hex() : "");
+    }
+  }
+  owners_.publish(message);
+}
+
+}  // namespace wbi::robot
