@@ -1,12 +1,17 @@
-// One producer per stream, end to end: the lockstep demo run next to a rogue
-// that publishes well-formed sensor samples for 'arm' — started before the
-// robot, so it is the first writer heard — ends exactly as without it (the
-// controller's final error to 9 digits), and the rogue is named in the log of
-// each process that dropped its samples.
+// One producer per stream and one owner per joint, end to end: the lockstep
+// demo run next to a rogue ends exactly as without it (the controller's final
+// error to 9 digits, in lockstep a function of every applied command and
+// sensor sample), and the rogue is named where it was dropped:
+//  - a rogue that publishes well-formed sensor samples for 'arm', started
+//    before the robot (so it is the first writer heard): named in the log of
+//    each process that dropped its samples;
+//  - a rogue that streams 40 N·m to joint_1, which the PD controller claimed:
+//    the robot refuses its commands, counts them and names the owner.
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <string>
+#include <vector>
 
 #include "child_process.hpp"
 #include "test_support.hpp"
@@ -42,20 +47,33 @@ DemoRun run_demo() {
   return run;
 }
 
-TEST(RogueProducer, ARogueSensorPublisherChangesNothingAndIsNamed) {
-  const DemoRun alone = run_demo();
-  ASSERT_EQ(alone.code, 0) << alone.output;
-  ASSERT_FALSE(alone.final_error.empty()) << alone.output;
+class Rogue : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { alone_ = new DemoRun(run_demo()); }
+  static void TearDownTestSuite() { delete alone_; }
+  // The demo without any rogue: what every run beside one must end with.
+  static const DemoRun& alone() { return *alone_; }
+  static ChildProcess start_rogue(const std::vector<std::string>& args) {
+    return ChildProcess(wbi::test::binary_dir() / "tests" / "wbi_test_rogue", args);
+  }
 
-  ChildProcess rogue(wbi::test::binary_dir() / "tests" / "wbi_test_rogue_sensors", {"arm", "7"});
+ private:
+  static inline DemoRun* alone_ = nullptr;
+};
+
+TEST_F(Rogue, ASensorPublisherChangesNothingAndIsNamed) {
+  ASSERT_EQ(alone().code, 0) << alone().output;
+  ASSERT_FALSE(alone().final_error.empty()) << alone().output;
+
+  ChildProcess rogue = start_rogue({"arm", "sensors", "7"});
   ASSERT_TRUE(rogue.wait_for_output("rogue: publishing", 20s)) << rogue.output();
   const DemoRun beside = run_demo();
   EXPECT_TRUE(rogue.running()) << rogue.output();
   rogue.stop(SIGTERM, 10s);
 
   ASSERT_EQ(beside.code, 0) << beside.output;
-  EXPECT_EQ(beside.final_error, alone.final_error) << "the rogue's samples changed the run\n"
-                                                   << beside.output;
+  EXPECT_EQ(beside.final_error, alone().final_error) << "the rogue's samples changed the run\n"
+                                                     << beside.output;
   const std::string named = "dropping the samples of a second writer, participant 'rogue'";
   for (const char* process : {"[estimator]", "[controller]"}) {
     const auto line =
@@ -63,6 +81,28 @@ TEST(RogueProducer, ARogueSensorPublisherChangesNothingAndIsNamed) {
     EXPECT_NE(line, std::string::npos) << process << " did not name the rogue\n" << beside.output;
   }
   EXPECT_NE(beside.output.find("pid " + std::to_string(rogue.pid())), std::string::npos)
+      << beside.output;
+}
+
+TEST_F(Rogue, ACommandPublisherNeverMovesAClaimedJoint) {
+  ASSERT_EQ(alone().code, 0) << alone().output;
+  ASSERT_FALSE(alone().final_error.empty()) << alone().output;
+
+  ChildProcess rogue = start_rogue({"arm", "commands", "0", "40"});
+  ASSERT_TRUE(rogue.wait_for_output("rogue: publishing", 20s)) << rogue.output();
+  const DemoRun beside = run_demo();
+  EXPECT_TRUE(rogue.running()) << rogue.output();
+  rogue.stop(SIGTERM, 10s);
+
+  ASSERT_EQ(beside.code, 0) << beside.output;
+  EXPECT_EQ(beside.final_error, alone().final_error) << "the rogue's 40 N·m reached joint_1\n"
+                                                     << beside.output;
+  EXPECT_NE(beside.output.find("[robot] claims: 'pd_gravity' (participant"), std::string::npos)
+      << beside.output;
+  EXPECT_NE(beside.output.find("[robot] command from 'rogue' rejected: joint 'joint_1' is held "
+                               "by 'pd_gravity'"),
+            std::string::npos)
+      << "the robot did not name the rogue and the owner\n"
       << beside.output;
 }
 

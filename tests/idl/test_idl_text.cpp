@@ -15,9 +15,10 @@
 namespace {
 
 TEST(IdlText, SelfContainedForEveryTopLevelType) {
-  for (const char* type : {"RobotDescription", "SensorSample", "GroundTruth", "ActuatorCommand",
-                           "ControlParameters", "StateEstimate", "ModelRequest", "ModelReply",
-                           "ComponentStatus", "SimulationClock", "PlaybackCommand", "Signals"}) {
+  for (const char* type :
+       {"RobotDescription", "SensorSample", "GroundTruth", "ActuatorCommand", "ControlParameters",
+        "StateEstimate", "ModelRequest", "ModelReply", "ComponentStatus", "SimulationClock",
+        "PlaybackCommand", "Signals", "JointOwners"}) {
     const std::string text = wbi::msg::idl_text_for(std::string("wbi::msg::") + type);
     EXPECT_NE(text.find(std::string("struct ") + type), std::string::npos) << type;
     EXPECT_NE(text.find("struct Header"), std::string::npos) << type;

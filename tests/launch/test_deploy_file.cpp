@@ -86,8 +86,17 @@ processes:
   EXPECT_EQ(controller.wait_for_topics, std::vector<std::string>{"wbi/arm/state"});
   EXPECT_DOUBLE_EQ(controller.wait_timeout_s, 3.0);
   EXPECT_DOUBLE_EQ(controller.hang_timeout_s, 0.0);  // not watched
-  ASSERT_TRUE(deploy.summary.has_value());
-  EXPECT_EQ(deploy.summary->process, "controller");
+  ASSERT_EQ(deploy.summaries.size(), 1u);
+  EXPECT_EQ(deploy.summaries[0].process, "controller");
+}
+
+TEST_F(DeployFileTest, SeveralSummariesInFileOrder) {
+  const auto deploy = wbi::launch::load_deploy_file(write(
+      "summary:\n  - {process: b, match: \"arm error\"}\n  - {process: a, match: \"com rms\"}\n"
+      "processes:\n  - {name: a, command: [x]}\n  - {name: b, command: [y]}\n"));
+  ASSERT_EQ(deploy.summaries.size(), 2u);
+  EXPECT_EQ(deploy.summaries[0].process, "b");
+  EXPECT_EQ(deploy.summaries[1].match, "com rms");
 }
 
 TEST_F(DeployFileTest, MistakesNameFileLineAndField) {
@@ -109,6 +118,9 @@ TEST_F(DeployFileTest, MistakesNameFileLineAndField) {
             ":3: processes[1].name: 'a' is used twice");
   EXPECT_EQ(error_of("summary: {process: b, match: x}\nprocesses:\n  - {name: a, command: [x]}\n"),
             ":1: summary.process: no process named 'b'");
+  EXPECT_EQ(error_of("summary:\n  - {process: a, match: x}\n  - {process: c, match: y}\n"
+                     "processes:\n  - {name: a, command: [x]}\n"),
+            ":3: summary[1].process: no process named 'c'");
   EXPECT_EQ(error_of("domain_id: 900\nprocesses:\n  - {name: a, command: [x]}\n"),
             ":1: domain_id: must be in [0, 232]");
   EXPECT_EQ(error_of("processes:\n  - {name: a, command: [x], wait_for: {timeout: -1}}\n"),

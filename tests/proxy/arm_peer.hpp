@@ -130,6 +130,9 @@ inline wbi::DdsInterfaceOptions arm_options(const std::string& robot) {
   options.controller = "test_controller";
   options.urdf = wbi::test::project_model("arm7.urdf").string();
   options.max_age_s = 0.5;
+  // The peer is the robot's streams only: it answers no joint claims (the
+  // robot's claims are tested on the robot: test_joint_claims, test_rogue_producer).
+  options.claim = wbi::DdsInterfaceOptions::Claim::none;
   return options;
 }
 

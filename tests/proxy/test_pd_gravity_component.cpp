@@ -33,7 +33,8 @@ struct Host {
 std::string parameters(const std::string& robot, const std::string& model_lines) {
   return "robot: " + robot + "\n" + model_lines +
          "joints: [joint_1, joint_2]\ntarget: [0.1, 0.2]\nmax_age_s: 0.5\n"
-         "init_timeout_s: 20\nprogress_period_s: 0\n";
+         "init_timeout_s: 20\nprogress_period_s: 0\n"
+         "claim: none\n";  // ArmPeer answers no claims
 }
 
 TEST(PdGravityComponent, AnUnknownModelSourceIsNamed) {

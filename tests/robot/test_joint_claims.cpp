@@ -67,6 +67,9 @@ TEST(JointClaimRules, OnlyTheOwnerCommandsAClaimedJointAndFreeJointsTakeAnyone) 
   EXPECT_EQ(claims.first_refused(pd, std::span<const std::uint16_t>(both)), -1);
   EXPECT_EQ(claims.first_refused(claimant(2, "rogue"), std::span<const std::uint16_t>(both)), 0);
   EXPECT_EQ(claims.first_refused(claimant(2, "rogue"), std::span<const std::uint16_t>(only_b)), -1);
+  const std::vector<std::uint16_t> out_of_range{41, 1};  // the joint controller names index 41
+  EXPECT_EQ(
+      claims.first_refused(claimant(2, "rogue"), std::span<const std::uint16_t>(out_of_range)), -1);
   // The name alone is not the owner: the same name from another participant is refused.
   EXPECT_EQ(claims.first_refused(claimant(2, "pd"), std::span<const std::uint16_t>(both)), 0);
   EXPECT_NE(claims.refusal(claimant(2, "pd"), 0).find("not by this sender's participant"),

@@ -19,6 +19,7 @@
 #include <wbi/dds/subscriber.hpp>
 #include <wbi/dds/topics.hpp>
 
+#include "joint_claim.hpp"
 #include "local_model.hpp"
 #include "remote_model.hpp"
 #include "size_check.hpp"
@@ -154,6 +155,12 @@ class DdsInterface final : public WholeBodyInterface {
     sensors_.seen.fill(sensors_.received.count);
     state_.seen.fill(state_.received.count);
     resolve_joints();
+    if (options_.claim != DdsInterfaceOptions::Claim::none) {
+      claim_ = std::make_unique<JointClaim>(
+          participant_, options_.robot, options_.controller, controlled_,
+          std::vector<int>(robot_index_.begin(), robot_index_.end()));
+      claim_->claim(timeout, options_.claim == DdsInterfaceOptions::Claim::force);
+    }
     if (remote_ != nullptr) {
       remote_->bind(controlled_, locked_positions());
     } else {
@@ -164,7 +171,10 @@ class DdsInterface final : public WholeBodyInterface {
     initialized_ = true;
   }
 
-  void close() override { initialized_ = false; }
+  void close() override {
+    initialized_ = false;
+    claim_.reset();  // releases the joints
+  }
 
   // ---- Actuators ----
 
@@ -488,6 +498,9 @@ class DdsInterface final : public WholeBodyInterface {
   }
 
   void publish_command() {
+    if (claim_) {
+      claim_->check();  // throws once another controller took a joint
+    }
     auto& header = command_.header();
     header.stamp_ns(system_now_ns());
     header.seq(command_seq_++);
@@ -532,6 +545,9 @@ class DdsInterface final : public WholeBodyInterface {
           v = unchanged;
         }
       }
+    }
+    if (claim_) {
+      claim_->check();
     }
     parameters_msg_.header().stamp_ns(system_now_ns());
     parameters_msg_.header().seq(parameters_seq_++);
@@ -674,6 +690,7 @@ class DdsInterface final : public WholeBodyInterface {
   dds::Publisher<wbi::msg::EstimatorParameter> estimator_parameters_;
 
   IdList controlled_;
+  std::unique_ptr<JointClaim> claim_;  // after init(), unless options_.claim is none
   bool initialized_ = false;
   std::vector<std::uint16_t>
       robot_index_;  // [dofs] position of controlled joint k in the robot's order
@@ -696,6 +713,20 @@ class DdsInterface final : public WholeBodyInterface {
 }  // namespace wbi::proxy
 
 namespace wbi {
+
+std::optional<DdsInterfaceOptions::Claim> claim_from_text(std::string_view text) {
+  using Claim = DdsInterfaceOptions::Claim;
+  if (text == "claim") {
+    return Claim::claim;
+  }
+  if (text == "force") {
+    return Claim::force;
+  }
+  if (text == "none") {
+    return Claim::none;
+  }
+  return std::nullopt;
+}
 
 std::unique_ptr<WholeBodyInterface> make_dds_interface(const DdsInterfaceOptions& options) {
   if (options.robot.empty()) {

@@ -64,10 +64,13 @@ class JointClaims {
   int release(const Claimant& who, std::span<const int> joints);
 
   // The position in `joints` of the first joint `who` may not command, or -1.
+  // Indices out of range are not this check's to refuse (the joint controller
+  // names them): they are skipped.
   template <class Index>
   int first_refused(const Claimant& who, std::span<const Index> joints) const {
     for (std::size_t k = 0; k < joints.size(); ++k) {
-      if (!may_command(who, static_cast<int>(joints[k]))) {
+      const auto joint = static_cast<std::size_t>(joints[k]);
+      if (joint < owners_.size() && !may_command(who, static_cast<int>(joint))) {
         return static_cast<int>(k);
       }
     }
@@ -77,7 +80,8 @@ class JointClaims {
   template <class Index>
   void commanded(const Claimant& who, std::span<const Index> joints, std::int64_t now_ns) {
     for (const auto joint : joints) {
-      if (owners_[joint].held && owners_[joint].by == who) {
+      if (static_cast<std::size_t>(joint) < owners_.size() && owners_[joint].held &&
+          owners_[joint].by == who) {
         owners_[joint].last_command_ns = now_ns;
       }
     }

@@ -239,14 +239,22 @@ DeployFile load_deploy_file(const std::filesystem::path& path) {
     deploy.processes.push_back(std::move(process));
   }
   if (const auto summary = root["summary"]) {
-    in.only_keys(summary, "summary", {"process", "match"});
-    SummarySpec spec;
-    spec.process = in.scalar<std::string>(summary["process"], "summary.process", "a process name");
-    spec.match = in.scalar<std::string>(summary["match"], "summary.match", "a text to find");
-    if (names.count(spec.process) == 0) {
-      in.fail(summary["process"], "summary.process", "no process named '" + spec.process + "'");
+    const bool list = summary.IsSequence();
+    if (list && summary.size() == 0) {
+      in.fail(summary, "summary", "expected {process, match} or a non-empty list of them");
     }
-    deploy.summary = spec;
+    for (std::size_t i = 0; i < (list ? summary.size() : 1); ++i) {
+      const auto entry = list ? summary[i] : summary;
+      const std::string field = list ? "summary[" + std::to_string(i) + "]" : "summary";
+      in.only_keys(entry, field, {"process", "match"});
+      SummarySpec spec;
+      spec.process = in.scalar<std::string>(entry["process"], field + ".process", "a process name");
+      spec.match = in.scalar<std::string>(entry["match"], field + ".match", "a text to find");
+      if (names.count(spec.process) == 0) {
+        in.fail(entry["process"], field + ".process", "no process named '" + spec.process + "'");
+      }
+      deploy.summaries.push_back(spec);
+    }
   }
   dds::ParticipantOptions placement;
   wbi::deploy::read_placement(root, path.string(), "launcher", placement);

@@ -90,10 +90,10 @@ struct Managed {
   std::optional<int> exit_code;  // of the last run; 128 + signal when killed
   bool stopped_by_us = false;
   std::optional<Clock::time_point> restart_at;
-  std::string summary_line;    // last line containing the summary match
-  bool hang_reported = false;  // silent past its hang_timeout, said once
-  bool heard = false;          // a heartbeat of this start was heard (said once)
-  bool running = false;        // a components: process printed "wbi_host: running"
+  std::vector<std::string> summary_lines;  // per DeployFile::summaries: its last matching line
+  bool hang_reported = false;              // silent past its hang_timeout, said once
+  bool heard = false;                      // a heartbeat of this start was heard (said once)
+  bool running = false;                    // a components: process printed "wbi_host: running"
 };
 
 class Launcher {
@@ -365,9 +365,12 @@ class Launcher {
     if (process.spec->hosts_components && line.rfind("wbi_host: running ", 0) == 0) {
       process.running = true;
     }
-    if (deploy_.summary && deploy_.summary->process == process.spec->name &&
-        line.find(deploy_.summary->match) != std::string::npos) {
-      process.summary_line = line;
+    for (std::size_t i = 0; i < deploy_.summaries.size(); ++i) {
+      const auto& summary = deploy_.summaries[i];
+      if (summary.process == process.spec->name && line.find(summary.match) != std::string::npos) {
+        process.summary_lines.resize(deploy_.summaries.size());
+        process.summary_lines[i] = line;
+      }
     }
   }
 
@@ -548,10 +551,10 @@ class Launcher {
       }
       out_ << "  " << process.spec->name << ": " << state << "\n";
     }
-    if (deploy_.summary) {
+    for (std::size_t i = 0; i < deploy_.summaries.size(); ++i) {
       for (const auto& process : processes_) {
-        if (process.spec->name == deploy_.summary->process && !process.summary_line.empty()) {
-          out_ << process.summary_line << "\n";
+        if (i < process.summary_lines.size() && !process.summary_lines[i].empty()) {
+          out_ << process.summary_lines[i] << "\n";
         }
       }
     }

@@ -8,7 +8,9 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include <wbi/dds/participant.hpp>
 #include <wbi/dds/producers.hpp>
@@ -20,6 +22,14 @@ namespace wbi {
 struct DdsInterfaceOptions {
   std::string robot;                      // robot name: topics wbi/<robot>/…
   std::string controller = "controller";  // sender name in commands (one owner per joint)
+  // Joint claims (components/robot/README.md, "Joint claims"): init() claims the
+  // controlled joints from the robot before any command, and fails naming each
+  // joint another controller holds; close() releases them. `force` takes them
+  // from their owner (a supervisor, an e-stop tool: logged, the owner is told).
+  // false: no claim, for a proxy that only reads (its commands would be refused
+  // on joints others hold).
+  enum class Claim { claim, force, none };
+  Claim claim = Claim::claim;
 
   enum class ModelSource { local, remote };
   ModelSource model_source = ModelSource::local;
@@ -51,6 +61,9 @@ struct DdsInterfaceOptions {
   // (runtime::count_producer_events). Called on DDS threads.
   std::function<void(const dds::ProducerEvent&)> on_producer_event;
 };
+
+// "claim", "force", "none" (a deploy file's or a script's spelling); nullopt otherwise.
+std::optional<DdsInterfaceOptions::Claim> claim_from_text(std::string_view text);
 
 // Throws Error naming what is wrong in the options (e.g. no robot name, no URDF
 // for a local model, a URDF that does not load).

@@ -43,6 +43,13 @@ class PdGravityComponent final : public runtime::Component {
     options.model_timeout = std::chrono::milliseconds(
         static_cast<std::int64_t>(parameters.get<double>("model_timeout_s", 0.2) * 1000));
     options.controller = parameters.get<std::string>("controller", context.instance);
+    const auto claim = parameters.get<std::string>("claim", "claim");
+    if (const auto parsed = claim_from_text(claim)) {
+      options.claim = *parsed;
+    } else {
+      throw runtime::ParameterError(parameters.where("claim") + ": claim is '" + claim +
+                                    "': expected claim, force or none");
+    }
     options.max_age_s = parameters.get<double>("max_age_s", 0.05);
     wait_for_state_ = parameters.get<bool>("wait_for_state", false);
     // A cycle waits at most this long for the next estimate (then: a stale cycle).

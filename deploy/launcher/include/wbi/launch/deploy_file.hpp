@@ -5,7 +5,7 @@
 //   qos_file: my_qos.xml              # optional, relative to the deploy file
 //   environment: {KEY: value}         # for every process
 //   network: {...}                    # across hosts; security: {...}  (wbi/deploy/placement.hpp)
-//   summary: {process: controller, match: "final max joint error"}
+//   summary: {process: controller, match: "final max joint error"}   # or a list of them
 //   processes:
 //     - name: robot
 //       command: [wbi_host, robot.yaml]    # argv; or components: (run by wbi_host)
@@ -50,8 +50,9 @@ struct ProcessSpec {
   double hang_timeout_s = 0.0;
 };
 
-// The launch repeats, as its last line, the last line of `process` that
-// contains `match` (e.g. the demo's "final max joint error: X rad").
+// The launch repeats, as its last lines, the last line of `process` that
+// contains `match` (e.g. the demo's "final max joint error: X rad"), for
+// each summary in file order (several controllers, several results).
 struct SummarySpec {
   std::string process;
   std::string match;
@@ -63,7 +64,7 @@ struct DeployFile {
   std::filesystem::path qos_file;  // empty: the built-in profiles
   std::map<std::string, std::string> environment;
   std::vector<ProcessSpec> processes;
-  std::optional<SummarySpec> summary;
+  std::vector<SummarySpec> summaries;
   // The launcher's own participant (it waits for topics): the deploy's
   // network and security blocks, with the identity "launcher".
   dds::Discovery discovery = dds::Discovery::localhost;

@@ -19,6 +19,9 @@
 //                    (critically damped), ω = 2π bandwidth (default 5 Hz); or
 //   kp, kd           explicit gains, one per joint (both or neither)
 //   controller       name on the commands (default: the instance name)
+//   claim            claim (default): init claims the joints from the robot and fails
+//                    naming any other owner; force: takes them (a supervisor); none:
+//                    no claim (a robot that answers none, e.g. a test peer)
 //   max_age_s        oldest state accepted (default 0.05 s)
 //   wait_for_state   false (default): cycles on the clock at rate_hz, each using the
 //                    newest estimate; true: event-driven, a cycle starts when an
