@@ -3,7 +3,9 @@
 # model_service, controller under `wbi launch`, each respawned) fails while
 # the arm holds its target:
 #   stall    SIGSTOP for 1 s, then SIGCONT;
-#   restart  SIGKILL, respawned by `wbi launch`.
+#   restart  SIGKILL, respawned by `wbi launch`;
+#   term     SIGTERM (a clean stop: the components shut down in order),
+#            respawned; bounds and behaviour as for restart.
 # Checked on the controller's progress lines (one a second, its max joint
 # error): the error after the fault stays under BOUND and is back under 0.01
 # rad within RECOVERY s of the process's return. Bounds per case (below), with
@@ -18,11 +20,11 @@
 #   estimator, model_service, controller stall or restart: the robot's
 #                    watchdog holds the arm (0.1 s without commands) until the
 #                    controller's commands return.        0.05 rad, 5 s
-#   process_faults.sh BINARY_DIR SOURCE_DIR robot|estimator|model_service|controller stall|restart
+#   process_faults.sh BINARY_DIR SOURCE_DIR robot|estimator|model_service|controller stall|restart|term
 # Exit 0 pass, 1 fail.
 set -euo pipefail
-[[ $# -eq 4 && $3 =~ ^(robot|estimator|model_service|controller)$ && $4 =~ ^(stall|restart)$ ]] ||
-  { sed -n '2,24p' "$0"; exit 2; }
+[[ $# -eq 4 && $3 =~ ^(robot|estimator|model_service|controller)$ && $4 =~ ^(stall|restart|term)$ ]] ||
+  { sed -n '2,26p' "$0"; exit 2; }
 bin="$1/bin" src=$(cd "$2" && pwd) target=$3 fault=$4
 work=$(mktemp -d /tmp/wbi-faults.XXXXXX)
 deploy="$work/demo.yaml" log="$work/launch.log"
@@ -66,7 +68,7 @@ before=$(progress_lines)
 initial=$(errors_after 0 | head -n 1)
 bound=0.05 recovery=5
 [[ $target != robot ]] || recovery=3
-[[ "$target $fault" != "robot restart" ]] || { bound=$(awk -v i="$initial" 'BEGIN { print i + 0.01 }'); recovery=8; }
+[[ "$target $fault" != "robot restart" && "$target $fault" != "robot term" ]] || { bound=$(awk -v i="$initial" 'BEGIN { print i + 0.01 }'); recovery=8; }
 
 if [[ $fault == stall ]]; then
   kill -STOP "$pid"
@@ -78,7 +80,7 @@ if [[ $fault == stall ]]; then
       fail "the robot did not report the stall"
   fi
 else
-  kill -KILL "$pid"
+  if [[ $fault == term ]]; then kill -TERM "$pid"; else kill -KILL "$pid"; fi
   new_process() { local p; p=$(target_pid); [[ -n "$p" && "$p" != "$pid" ]]; }
   wait_until 20 new_process || fail "the $target process was not respawned"
   back_at=$SECONDS
@@ -88,7 +90,7 @@ else
   fi
 fi
 # A restarted controller starts its own progress lines again, at t = 0.
-if [[ $target == controller && $fault == restart ]]; then
+if [[ $target == controller && $fault != stall ]]; then
   second_start() { (($(grep -c '^\[controller\] t = *0\.00 s' "$log") >= 2)); }
   wait_until 30 second_start || fail "the respawned controller printed no progress"
 fi
