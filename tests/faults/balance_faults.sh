@@ -76,7 +76,15 @@ target_pid() {
     pgrep -f "wbi_host $deploy --process $target\$" | head -n 1
   fi
 }
-runs() { grep -c "^\[$target\] wbi_host: running" "$log" || true; }
+# The starts of the target that run: its components, or the recorder's
+# subscription to the ground truth (its outage lasts until then).
+runs() {
+  if [[ $target == recorder ]]; then
+    grep -c "^\[recorder\] recording wbi/humanoid/ground_truth " "$log" || true
+  else
+    grep -c "^\[$target\] wbi_host: running" "$log" || true
+  fi
+}
 # After the fault: 3 more progress lines (3 s of simulated time) and at least
 # 4 s of wall time since the component's return (the checker's window).
 observed() { (($(progress_lines) >= lines_at_return + 3)) && awk -v b="$back" -v n="$(now)" 'BEGIN { exit !(n - b >= 4) }'; }
@@ -95,10 +103,8 @@ for fault in stall kill term; do
   if [[ $fault != stall ]]; then
     new_process() { local p; p=$(target_pid); [[ -n "$p" && "$p" != "$pid" ]]; }
     wait_until 30 new_process || fail "the $target process was not respawned after the $fault"
-    if [[ $target != recorder ]]; then
-      more_runs() { (($(runs) > runs_before)); }
-      wait_until 60 more_runs || fail "the respawned $target did not run its components"
-    fi
+    more_runs() { (($(runs) > runs_before)); }
+    wait_until 60 more_runs || fail "the respawned $target did not run (its components, or its recording)"
   fi
   back=$(now)
   echo "$target-$fault $start $back" >>"$events"

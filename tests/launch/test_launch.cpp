@@ -273,6 +273,31 @@ TEST_F(LaunchTest, DeadlockedLoopIsDetectedAndRespawned) {
   EXPECT_EQ(*code, 130) << launch.output();
 }
 
+// A shutdown_on_exit process that fails is respawned when its policy allows;
+// its clean exit then ends the launch (an experiment's controller that crashed).
+TEST_F(LaunchTest, FailedShutdownOnExitProcessIsRespawnedFirst) {
+  const auto marker = dir_ / "failed_once";
+  const auto deploy = write("shutdown_respawn.yaml",
+                            "processes:\n"
+                            "  - name: run\n"
+                            "    command: [sh, -c, \"if [ -e " +
+                                marker.string() +
+                                " ]; then echo second; exit 0; fi; "
+                                "touch " +
+                                marker.string() +
+                                "; exit 3\"]\n"
+                                "    shutdown_on_exit: true\n"
+                                "    respawn: {enabled: true, delay: 0.1, max_retries: 2}\n");
+  ChildProcess launch(wbi_exe(), {"launch", deploy.string(), "--duration", "60"});
+  const auto code = launch.wait(30s);
+  ASSERT_TRUE(code.has_value()) << launch.output();
+  EXPECT_EQ(*code, 0) << launch.output();
+  EXPECT_TRUE(contains(launch.output(), "run: failed with exit code 3")) << launch.output();
+  EXPECT_TRUE(contains(launch.output(), "run: respawn 1 of 2")) << launch.output();
+  EXPECT_TRUE(contains(launch.output(), "[run] second")) << launch.output();
+  EXPECT_TRUE(contains(launch.output(), "run ended: stopping the launch")) << launch.output();
+}
+
 TEST_F(LaunchTest, ProcessIgnoringSigtermIsKilled) {
   const auto deploy =
       write("stubborn.yaml",

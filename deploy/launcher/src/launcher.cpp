@@ -392,12 +392,16 @@ class Launcher {
       const bool ok = *process.exit_code == 0;
       say(process.spec->name +
           (ok ? ": exited" : ": failed with exit code " + std::to_string(*process.exit_code)));
-      if (process.spec->shutdown_on_exit) {
+      const bool will_respawn =
+          process.spec->respawn.enabled && process.restarts < process.spec->respawn.max_retries;
+      // A shutdown_on_exit process that ends cleanly ends the run; one that
+      // fails is respawned first when it may be (a crashed controller of an
+      // experiment that ends itself).
+      if (process.spec->shutdown_on_exit && (ok || !will_respawn)) {
         say(process.spec->name + " ended: stopping the launch");
         stop = true;
         failed = failed || (!ok && process.spec->required);
-      } else if (process.spec->respawn.enabled &&
-                 process.restarts < process.spec->respawn.max_retries) {
+      } else if (will_respawn) {
         process.restart_at = Clock::now() + seconds(process.spec->respawn.delay_s);
       } else if (!ok && process.spec->required) {
         say(process.spec->name + " is required: stopping the launch");
