@@ -18,6 +18,7 @@
 //    at the stream's rate, and at most 1 s of them elsewhere.
 // A sample's log time is when the recorder received it; matching by stamp
 // keeps a late delivery (a stopped recorder catching up) correct.
+// CONTROLLER and URDF "-": the samples only (a robot without a CoM reference).
 // Prints one line per fault and one for the samples; exit 0 pass, 1 fail, 2 usage.
 //   wbi_test_fault_recording ROBOT CONTROLLER URDF EVENTS BOUND_M FILE.mcap...
 #include <algorithm>
@@ -27,6 +28,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -45,10 +47,10 @@
 
 namespace {
 
-constexpr double kRecovered = 0.01;  // [m] CoM error of a recovered robot
-constexpr double kRecoveryS = 2.0;   // [s] after the component's return
-constexpr double kLossSlackS = 1.0;  // [s] of samples a fault may cost beyond the outage
-constexpr double kFrameJump = 0.01;  // [m] in a tick: a change of frame, not a motion
+constexpr double kRecovered = 0.01;          // [m] CoM error of a recovered robot
+constexpr double kRecoveryS = 2.0;           // [s] after the component's return
+constexpr double kLossSlackS = 1.0;          // [s] of samples a fault may cost beyond the outage
+constexpr double kFrameJump = 0.01;          // [m] in a tick: a change of frame, not a motion
 constexpr std::int64_t kMatchNs = 10000000;  // [ns] a reference this much older still matches
 
 template <class TypeSupport, class T>
@@ -114,8 +116,13 @@ int main(int argc, char** argv) {
   const std::string description_topic = "wbi/" + robot + "/description";
   const double bound = std::stod(argv[5]);
   try {
-    const auto model = wbi::model::load_urdf_file(argv[3]);
-    wbi::model::Data data(model);
+    const bool with_com = std::string(argv[2]) != "-";
+    std::optional<wbi::model::Model> model;
+    std::optional<wbi::model::Data> data;
+    if (with_com) {
+      model.emplace(wbi::model::load_urdf_file(argv[3]));
+      data.emplace(*model);
+    }
     std::vector<Event> events;
     {
       std::ifstream in(argv[4]);
@@ -134,7 +141,7 @@ int main(int argc, char** argv) {
     std::vector<int> model_joint;  // description's joint k → the model's joint index
     std::vector<Truth> truths;
     std::vector<Reference> references;
-    Eigen::VectorXd s(model.n_joints);
+    Eigen::VectorXd s(with_com ? model->n_joints : 0);
     EpochCounter truth_epochs;
     EpochCounter reference_epochs;
     // Files in the order of their first message: a restarted recorder's come after.
@@ -151,17 +158,17 @@ int main(int argc, char** argv) {
       auto cursor = reader.messages(wbi::mcap::Order::log_time);
       while (const auto* m = cursor.next()) {
         const double t = 1e-9 * static_cast<double>(m->log_time);
-        if (m->channel->topic == description_topic && model_joint.empty() &&
+        if (with_com && m->channel->topic == description_topic && model_joint.empty() &&
             decode(description_type, m->data, description)) {
           for (const auto& name : description.joint_names()) {
             const auto it =
-                std::find(model.joint_name.begin(), model.joint_name.end(), name.to_string());
-            if (it == model.joint_name.end()) {
+                std::find(model->joint_name.begin(), model->joint_name.end(), name.to_string());
+            if (it == model->joint_name.end()) {
               std::fprintf(stderr, "%s: joint '%s' of the description is not in %s\n", file.c_str(),
                            name.to_string().c_str(), argv[3]);
               return 1;
             }
-            model_joint.push_back(static_cast<int>(it - model.joint_name.begin()));
+            model_joint.push_back(static_cast<int>(it - model->joint_name.begin()));
           }
         } else if (m->channel->topic == signals_topic && decode(signals_type, m->data, signals) &&
                    signals.values().size() >= 6) {
@@ -174,22 +181,30 @@ int main(int argc, char** argv) {
           ref.estimate = {v[0], v[1], v[2]};
           ref.t = t;
           references.push_back(ref);
-        } else if (m->channel->topic == truth_topic && !model_joint.empty() &&
-                   decode(truth_type, m->data, truth) && truth.q().size() == model_joint.size()) {
-          for (std::size_t k = 0; k < model_joint.size(); ++k) {
-            s[model_joint[k]] = truth.q()[k];
+        } else if (m->channel->topic == truth_topic && decode(truth_type, m->data, truth)) {
+          Truth sample;
+          sample.t = t;
+          sample.seq = truth.header().seq();
+          sample.stamp = truth.header().stamp_ns();
+          sample.epoch = truth_epochs.next(sample.stamp);
+          if (with_com) {
+            if (truth.q().size() != model_joint.size()) {
+              continue;  // before the description
+            }
+            for (std::size_t k = 0; k < model_joint.size(); ++k) {
+              s[model_joint[k]] = truth.q()[k];
+            }
+            const auto& p = truth.base_pose().position();
+            const auto& o = truth.base_pose().orientation();
+            const Eigen::VectorXd q = wbi::model::make_configuration(
+                *model, {p.x(), p.y(), p.z()}, Eigen::Quaterniond(o.w(), o.x(), o.y(), o.z()), s);
+            sample.com = wbi::model::center_of_mass(*model, *data, q);
           }
-          const auto& p = truth.base_pose().position();
-          const auto& o = truth.base_pose().orientation();
-          const Eigen::VectorXd q = wbi::model::make_configuration(
-              model, {p.x(), p.y(), p.z()}, Eigen::Quaterniond(o.w(), o.x(), o.y(), o.z()), s);
-          const auto stamp = truth.header().stamp_ns();
-          truths.push_back({t, truth.header().seq(), stamp, truth_epochs.next(stamp),
-                            wbi::model::center_of_mass(model, data, q)});
+          truths.push_back(sample);
         }
       }
     }
-    if (truths.empty() || references.empty()) {
+    if (truths.empty() || (with_com && references.empty())) {
       std::fprintf(stderr, "no ground truth (%s) or no CoM reference (%s) recorded\n",
                    truth_topic.c_str(), signals_topic.c_str());
       return 1;
@@ -320,24 +335,29 @@ int main(int argc, char** argv) {
       }
       const double allowed = local_rate * (outage + kLossSlackS);
       const double recovered_s = last_off - ev.back;
-      std::printf(
-          "%s: outage %.2f s, worst CoM error %.4f m (bound %.3f), under 1 cm %.2f s after "
-          "the return, %llu samples missing (allowed %.0f)\n",
-          ev.label.c_str(), outage, worst, bound, recovered_s,
-          static_cast<unsigned long long>(missing[e]), allowed);
-      if (worst > bound) {
-        std::printf("FAIL: %s: CoM error %.4f m over the bound %.3f m\n", ev.label.c_str(), worst,
-                    bound);
-        pass = false;
-      }
-      if (!settled_seen) {
-        std::printf("FAIL: %s: no ground truth recorded from 2 s after the return on\n",
-                    ev.label.c_str());
-        pass = false;
-      } else if (recovered_s > kRecoveryS) {
-        std::printf("FAIL: %s: CoM error over 1 cm %.2f s after the return\n", ev.label.c_str(),
-                    recovered_s);
-        pass = false;
+      if (!with_com) {
+        std::printf("%s: outage %.2f s, %llu samples missing (allowed %.0f)\n", ev.label.c_str(),
+                    outage, static_cast<unsigned long long>(missing[e]), allowed);
+      } else {
+        std::printf(
+            "%s: outage %.2f s, worst CoM error %.4f m (bound %.3f), under 1 cm %.2f s after "
+            "the return, %llu samples missing (allowed %.0f)\n",
+            ev.label.c_str(), outage, worst, bound, recovered_s,
+            static_cast<unsigned long long>(missing[e]), allowed);
+        if (worst > bound) {
+          std::printf("FAIL: %s: CoM error %.4f m over the bound %.3f m\n", ev.label.c_str(), worst,
+                      bound);
+          pass = false;
+        }
+        if (!settled_seen) {
+          std::printf("FAIL: %s: no ground truth recorded from 2 s after the return on\n",
+                      ev.label.c_str());
+          pass = false;
+        } else if (recovered_s > kRecoveryS) {
+          std::printf("FAIL: %s: CoM error over 1 cm %.2f s after the return\n", ev.label.c_str(),
+                      recovered_s);
+          pass = false;
+        }
       }
       if (static_cast<double>(missing[e]) > allowed) {
         std::printf("FAIL: %s: %llu ground-truth samples missing, more than the outage + 1 s\n",
