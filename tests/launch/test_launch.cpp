@@ -250,7 +250,8 @@ TEST_F(LaunchTest, DeadlockedLoopIsDetectedAndRespawned) {
                                 "      - {name: stuck, type: deadlock, rate_hz: 100,\n"
                                 "         parameters: {after_s: 1.5}}\n"
                                 "    hang_timeout: 2.5\n"
-                                "    respawn: {enabled: true, delay: 0.1, max_retries: 1}\n");
+                                "    respawn: {enabled: true, delay: 0.1, max_retries: 1}\n"
+                                "    required: false\n");  // its second start deadlocks too
   ChildProcess launch(wbi_exe(), {"launch", deploy.string(), "--duration", "60", "--grace", "1"});
   ASSERT_TRUE(launch.wait_for_output("host: heartbeat heard", 30s)) << launch.output();
   const pid_t first = started_pid(launch.output(), "host");
