@@ -1,5 +1,5 @@
 // wbi_test_fault_recording: what a recording made through faults says about
-// them (tests/faults/balance_faults.sh). It reads one or more MCAP files of
+// them (tests/faults: balance_faults.sh, process_faults.sh). It reads MCAP files of
 // `wbi record` (several when the recorder itself was restarted), merged by
 // log time, and checks:
 //  - per fault (EVENTS: lines `LABEL START BACK`, system-clock seconds: the
@@ -27,7 +27,6 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <map>
 #include <optional>
 #include <span>
 #include <string>
