@@ -3,10 +3,15 @@
 # model_service, controller under `wbi launch`, each respawned) fails while
 # the arm holds its target:
 #   stall    SIGSTOP for 1 s, then SIGCONT;
-#   restart  SIGKILL, respawned by `wbi launch`.
+#   restart  SIGKILL, respawned by `wbi launch`;
+#   term     SIGTERM (a clean stop: the components shut down in order),
+#            respawned; bounds and behaviour as for restart.
 # Checked on the controller's progress lines (one a second, its max joint
 # error): the error after the fault stays under BOUND and is back under 0.01
-# rad within RECOVERY s of the process's return. Bounds per case (below), with
+# rad within RECOVERY s of the process's return. `wbi record` of the robot's
+# ground truth runs all along: at most the outage + 1 s of its samples are
+# missing from the file (wbi_test_fault_recording, by sequence number), and
+# nothing of the launch is left running once it is stopped. Bounds per case (below), with
 # what each process does:
 #   robot stall      the simulation pauses with its process (it used to step
 #                    the missed second in a burst: 1.3-2.6 rad); the robot
@@ -18,12 +23,12 @@
 #   estimator, model_service, controller stall or restart: the robot's
 #                    watchdog holds the arm (0.1 s without commands) until the
 #                    controller's commands return.        0.05 rad, 5 s
-#   process_faults.sh BINARY_DIR SOURCE_DIR robot|estimator|model_service|controller stall|restart
+#   process_faults.sh BINARY_DIR SOURCE_DIR robot|estimator|model_service|controller stall|restart|term
 # Exit 0 pass, 1 fail.
 set -euo pipefail
-[[ $# -eq 4 && $3 =~ ^(robot|estimator|model_service|controller)$ && $4 =~ ^(stall|restart)$ ]] ||
-  { sed -n '2,24p' "$0"; exit 2; }
-bin="$1/bin" src=$(cd "$2" && pwd) target=$3 fault=$4
+[[ $# -eq 4 && $3 =~ ^(robot|estimator|model_service|controller)$ && $4 =~ ^(stall|restart|term)$ ]] ||
+  { sed -n '2,26p' "$0"; exit 2; }
+bin="$1/bin" checker="$1/tests/wbi_test_fault_recording" src=$(cd "$2" && pwd) target=$3 fault=$4
 work=$(mktemp -d /tmp/wbi-faults.XXXXXX)
 deploy="$work/demo.yaml" log="$work/launch.log"
 launch_pid=""
@@ -41,6 +46,10 @@ sed -e "s#config: robots/#config: $src/deploy/robots/#" -e "s#\.\./models/#$src/
     -e "/^  - name: [a-z_]*$/a\\    respawn: {enabled: true, delay: 0.2, max_retries: 1}" \
     "$src/deploy/demo.yaml" >"$deploy"
 (($(grep -c "respawn: {enabled: true" "$deploy") == 4)) || fail "could not add respawn to the 4 processes of deploy/demo.yaml"
+cat >>"$deploy" <<EOF
+  - name: recorder
+    command: ["$bin/wbi", record, -o, "$work/run.mcap", wbi/arm/ground_truth]
+EOF
 "$bin/wbi" launch "$deploy" --duration 40 >"$log" 2>&1 &
 launch_pid=$!
 
@@ -66,8 +75,9 @@ before=$(progress_lines)
 initial=$(errors_after 0 | head -n 1)
 bound=0.05 recovery=5
 [[ $target != robot ]] || recovery=3
-[[ "$target $fault" != "robot restart" ]] || { bound=$(awk -v i="$initial" 'BEGIN { print i + 0.01 }'); recovery=8; }
+[[ "$target $fault" != "robot restart" && "$target $fault" != "robot term" ]] || { bound=$(awk -v i="$initial" 'BEGIN { print i + 0.01 }'); recovery=8; }
 
+start=$(date +%s.%N)
 if [[ $fault == stall ]]; then
   kill -STOP "$pid"
   sleep 1  # the fault itself: a one-second stall
@@ -78,7 +88,7 @@ if [[ $fault == stall ]]; then
       fail "the robot did not report the stall"
   fi
 else
-  kill -KILL "$pid"
+  if [[ $fault == term ]]; then kill -TERM "$pid"; else kill -KILL "$pid"; fi
   new_process() { local p; p=$(target_pid); [[ -n "$p" && "$p" != "$pid" ]]; }
   wait_until 20 new_process || fail "the $target process was not respawned"
   back_at=$SECONDS
@@ -87,8 +97,9 @@ else
       fail "the estimator did not see the new robot's writer"
   fi
 fi
+echo "$target-$fault $start $(date +%s.%N)" >"$work/events"
 # A restarted controller starts its own progress lines again, at t = 0.
-if [[ $target == controller && $fault == restart ]]; then
+if [[ $target == controller && $fault != stall ]]; then
   second_start() { (($(grep -c '^\[controller\] t = *0\.00 s' "$log") >= 2)); }
   wait_until 30 second_start || fail "the respawned controller printed no progress"
 fi
@@ -100,4 +111,14 @@ wait_until 30 seen_after || fail "the controller printed fewer than 3 progress l
 worst=$(errors_after "$before" | sort -g | tail -n 1)
 awk -v e="$worst" -v b="$bound" 'BEGIN { exit !(e <= b) }' ||
   fail "the error reached $worst rad after the $target's $fault (bound $bound rad)"
+
+kill -INT "$launch_pid"
+deadline=$((SECONDS + 30))
+while kill -0 "$launch_pid" 2>/dev/null && ((SECONDS < deadline)); do sleep 0.1; done
+kill -0 "$launch_pid" 2>/dev/null && fail "wbi launch did not end within 30 s of SIGINT"
+wait "$launch_pid" || true
+launch_pid=""
+left=$(pgrep -f "$work/" || true)
+[[ -z "$left" ]] || fail "processes left behind: $(ps -o pid,args -p "${left//$'\n'/,}" || true)"
+"$checker" arm - - "$work/events" 0 "$work/run.mcap" || fail "the recording through the fault (above)"
 echo "PASS: $target $fault: worst error after it $worst rad (bound $bound), back under 0.01 rad within ${recovered_in} s"

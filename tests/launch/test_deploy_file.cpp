@@ -78,6 +78,7 @@ processes:
   EXPECT_TRUE(robot.required);
   EXPECT_EQ(robot.components, std::vector<std::string>{"sim"});
   EXPECT_DOUBLE_EQ(robot.hang_timeout_s, 2.5);
+  EXPECT_EQ(robot.command.front(), "wbi_host");  // no host: wbi_host runs the components
   const auto& controller = deploy.processes[1];
   EXPECT_EQ(controller.command, (std::vector<std::string>{"wbi_pd", "--rate", "1000"}));
   EXPECT_EQ(controller.environment.at("B"), "two");
@@ -99,11 +100,22 @@ TEST_F(DeployFileTest, SeveralSummariesInFileOrder) {
   EXPECT_EQ(deploy.summaries[1].match, "com rms");
 }
 
+// host: the program that runs a components: process (a wbi_host of your own).
+TEST_F(DeployFileTest, HostNamesTheProgramOfComponents) {
+  const auto deploy = wbi::launch::load_deploy_file(
+      write("processes:\n  - {name: a, host: my_host, components: [{name: i, type: idle}]}\n"));
+  ASSERT_EQ(deploy.processes.size(), 1u);
+  EXPECT_EQ(deploy.processes[0].command.front(), "my_host");
+  EXPECT_TRUE(deploy.processes[0].hosts_components);
+}
+
 TEST_F(DeployFileTest, MistakesNameFileLineAndField) {
   EXPECT_EQ(error_of("processes: []\n"), ":1: processes: expected a non-empty list of processes");
   EXPECT_EQ(error_of("processes:\n  - name: a\n    command: [x]\n    colour: red\n"),
             ":4: processes[0].colour: unknown key (known: command, components, environment, "
-            "hang_timeout, name, required, respawn, shutdown_on_exit, wait_for)");
+            "hang_timeout, host, name, required, respawn, shutdown_on_exit, wait_for)");
+  EXPECT_EQ(error_of("processes:\n  - {name: a, command: [x], host: my_host}\n"),
+            ":2: processes[0].host: needs 'components' (it is the program that runs them)");
   EXPECT_EQ(error_of("processes:\n  - {name: a, command: [x], hang_timeout: 2}\n"),
             ":2: processes[0].hang_timeout: needs 'components' (the heartbeats watched are its "
             "components' status)");

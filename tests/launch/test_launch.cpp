@@ -231,6 +231,74 @@ TEST_F(LaunchTest, HungRequiredProcessFailsTheLaunch) {
   EXPECT_FALSE(running(host)) << "the stopped process was left behind";
 }
 
+// A deadlock in a component's loop leaves its status thread running: the
+// heartbeat goes on, the iteration count it carries stops. The launch says
+// which loop stopped, after its hang_timeout, and respawns the process; a
+// periodic component beside it that keeps looping (idle) is not blamed.
+TEST_F(LaunchTest, DeadlockedLoopIsDetectedAndRespawned) {
+  const auto host = (wbi::test::binary_dir() / "tests" / "wbi_test_deadlock_host").string();
+  const auto deploy = write("deadlock.yaml",
+                            "processes:\n"
+                            "  - name: busy\n"
+                            "    components: [{name: busy_idle, type: idle, rate_hz: 100}]\n"
+                            "    hang_timeout: 2.5\n"
+                            "  - name: host\n"
+                            "    host: " +
+                                host +
+                                "\n"
+                                "    components:\n"
+                                "      - {name: stuck, type: deadlock, rate_hz: 100,\n"
+                                "         parameters: {after_s: 1.5}}\n"
+                                "    hang_timeout: 2.5\n"
+                                "    respawn: {enabled: true, delay: 0.1, max_retries: 1}\n"
+                                "    required: false\n");  // its second start deadlocks too
+  ChildProcess launch(wbi_exe(), {"launch", deploy.string(), "--duration", "60", "--grace", "1"});
+  ASSERT_TRUE(launch.wait_for_output("host: heartbeat heard", 30s)) << launch.output();
+  const pid_t first = started_pid(launch.output(), "host");
+  ASSERT_GT(first, 0) << launch.output();
+  ASSERT_TRUE(launch.wait_for_output("host: the loop of 'stuck' stopped at iteration", 30s))
+      << launch.output();
+  ASSERT_TRUE(launch.wait_for_output("host: respawn 1 of 1", 10s)) << launch.output();
+  const auto deadline = std::chrono::steady_clock::now() + 20s;
+  while (started_pid(launch.output(), "host", 2) < 0 &&
+         std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(20ms);  // polling the launch's output for its second start
+  }
+  EXPECT_GT(started_pid(launch.output(), "host", 2), 0) << launch.output();
+  EXPECT_FALSE(running(first)) << "the deadlocked process was left behind";
+  EXPECT_FALSE(contains(launch.output(), "busy: the loop of")) << launch.output();
+  EXPECT_FALSE(contains(launch.output(), "busy: no status heartbeat")) << launch.output();
+  launch.stop(SIGINT);
+  const auto code = launch.wait(30s);
+  ASSERT_TRUE(code.has_value()) << launch.output();
+  EXPECT_EQ(*code, 130) << launch.output();
+}
+
+// A shutdown_on_exit process that fails is respawned when its policy allows;
+// its clean exit then ends the launch (an experiment's controller that crashed).
+TEST_F(LaunchTest, FailedShutdownOnExitProcessIsRespawnedFirst) {
+  const auto marker = dir_ / "failed_once";
+  const auto deploy = write("shutdown_respawn.yaml",
+                            "processes:\n"
+                            "  - name: run\n"
+                            "    command: [sh, -c, \"if [ -e " +
+                                marker.string() +
+                                " ]; then echo second; exit 0; fi; "
+                                "touch " +
+                                marker.string() +
+                                "; exit 3\"]\n"
+                                "    shutdown_on_exit: true\n"
+                                "    respawn: {enabled: true, delay: 0.1, max_retries: 2}\n");
+  ChildProcess launch(wbi_exe(), {"launch", deploy.string(), "--duration", "60"});
+  const auto code = launch.wait(30s);
+  ASSERT_TRUE(code.has_value()) << launch.output();
+  EXPECT_EQ(*code, 0) << launch.output();
+  EXPECT_TRUE(contains(launch.output(), "run: failed with exit code 3")) << launch.output();
+  EXPECT_TRUE(contains(launch.output(), "run: respawn 1 of 2")) << launch.output();
+  EXPECT_TRUE(contains(launch.output(), "[run] second")) << launch.output();
+  EXPECT_TRUE(contains(launch.output(), "run ended: stopping the launch")) << launch.output();
+}
+
 TEST_F(LaunchTest, ProcessIgnoringSigtermIsKilled) {
   const auto deploy =
       write("stubborn.yaml",

@@ -115,7 +115,7 @@ RespawnPolicy read_respawn(const Reader& in, const YAML::Node& node, const std::
 ProcessSpec read_process(const Reader& in, const YAML::Node& node, const std::string& field) {
   in.only_keys(node, field,
                {"name", "command", "components", "environment", "required", "respawn", "wait_for",
-                "shutdown_on_exit", "hang_timeout"});
+                "shutdown_on_exit", "hang_timeout", "host"});
   ProcessSpec process;
   if (!node["name"]) {
     in.fail(node, field + ".name", "missing");
@@ -139,12 +139,22 @@ ProcessSpec read_process(const Reader& in, const YAML::Node& node, const std::st
       in.fail(node["components"], field + ".components", "expected a non-empty list of components");
     }
     process.hosts_components = true;
-    process.command = {"wbi_host", in.path().string(), "--process", process.name};
+    // host: a wbi_host of your own (its main with more component types registered).
+    const std::string host =
+        node["host"] ? in.scalar<std::string>(node["host"], field + ".host", "a program")
+                     : "wbi_host";
+    if (host.empty()) {
+      in.fail(node["host"], field + ".host", "is empty");
+    }
+    process.command = {host, in.path().string(), "--process", process.name};
     for (const auto& component : node["components"]) {
       if (component.IsMap() && component["name"] && component["name"].IsScalar()) {
         process.components.push_back(component["name"].as<std::string>());
       }  // else wbi_host names the mistake
     }
+  }
+  if (node["host"] && !has_components) {
+    in.fail(node["host"], field + ".host", "needs 'components' (it is the program that runs them)");
   }
   if (node["hang_timeout"]) {
     if (!has_components) {

@@ -395,12 +395,16 @@ class Launcher {
       const bool ok = *process.exit_code == 0;
       say(process.spec->name +
           (ok ? ": exited" : ": failed with exit code " + std::to_string(*process.exit_code)));
-      if (process.spec->shutdown_on_exit) {
+      const bool will_respawn =
+          process.spec->respawn.enabled && process.restarts < process.spec->respawn.max_retries;
+      // A shutdown_on_exit process that ends cleanly ends the run; one that
+      // fails is respawned first when it may be (a crashed controller of an
+      // experiment that ends itself).
+      if (process.spec->shutdown_on_exit && (ok || !will_respawn)) {
         say(process.spec->name + " ended: stopping the launch");
         stop = true;
         failed = failed || (!ok && process.spec->required);
-      } else if (process.spec->respawn.enabled &&
-                 process.restarts < process.spec->respawn.max_retries) {
+      } else if (will_respawn) {
         process.restart_at = Clock::now() + seconds(process.spec->respawn.delay_s);
       } else if (!ok && process.spec->required) {
         say(process.spec->name + " is required: stopping the launch");
@@ -412,10 +416,12 @@ class Launcher {
   }
 
   // A process whose components' heartbeats stopped for its hang_timeout
-  // (stopped, or hung without dying) is said once and handled like a failure:
-  // killed (SIGKILL: it may not be able to handle SIGTERM) so that reap()
-  // respawns it, else, when required, the launch stops. Returns true when the
-  // launch must stop.
+  // (stopped, or hung without dying), or one of whose periodic components
+  // stopped counting loop iterations for that long while its status thread
+  // still speaks (its loop deadlocked), is said once and handled like a
+  // failure: killed (SIGKILL: it may not be able to handle SIGTERM) so that
+  // reap() respawns it, else, when required, the launch stops. Returns true
+  // when the launch must stop.
   bool check_hangs(bool& failed) {
     if (!heartbeats_) {
       return false;
@@ -429,9 +435,28 @@ class Launcher {
       if (heard && !process.heard) {
         process.heard = true;  // watched from now on (a start may take any time)
         say(process.spec->name + ": heartbeat heard; hung after " + std::to_string(timeout_s) +
-            " s without one");
+            " s without one or without loop iterations");
       }
-      if (!heard || Clock::now() - *heard < seconds(timeout_s)) {
+      if (!heard) {
+        process.hang_reported = false;
+        continue;
+      }
+      const auto timeout = seconds(timeout_s);
+      std::string why;
+      if (Clock::now() - *heard >= timeout) {
+        const double silent_s = std::chrono::duration<double>(Clock::now() - *heard).count();
+        why = "no status heartbeat from its components for " + std::to_string(silent_s) +
+              " s (hang_timeout " + std::to_string(timeout_s) + " s): hung or stopped";
+      } else if (const auto stalled =
+                     heartbeats_->stalled_loop(process.spec->components, timeout)) {
+        const double still_s =
+            std::chrono::duration<double>(Clock::now() - stalled->advanced_at).count();
+        why = "the loop of '" + stalled->instance + "' stopped at iteration " +
+              std::to_string(stalled->iterations) + " " + std::to_string(still_s) +
+              " s ago while its status goes on (hang_timeout " + std::to_string(timeout_s) +
+              " s): deadlocked, or waiting for an input that stopped";
+      }
+      if (why.empty()) {
         process.hang_reported = false;
         continue;
       }
@@ -439,10 +464,7 @@ class Launcher {
         continue;
       }
       process.hang_reported = true;
-      const double silent_s = std::chrono::duration<double>(Clock::now() - *heard).count();
-      say(process.spec->name + ": no status heartbeat from its components for " +
-          std::to_string(silent_s) + " s (hang_timeout " + std::to_string(timeout_s) +
-          " s): hung or stopped");
+      say(process.spec->name + ": " + why);
       const bool will_respawn =
           process.spec->respawn.enabled && process.restarts < process.spec->respawn.max_retries;
       if (will_respawn) {

@@ -1,11 +1,14 @@
 #include "wbi/controllers/momentum_balance_component.hpp"
 
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string>
+#include <utility>
 
 #include <wbi/controllers/com_sinusoid.hpp>
 #include <wbi/controllers/momentum_balance.hpp>
@@ -52,6 +55,7 @@ class MomentumBalanceComponent final : public runtime::Component {
  public:
   void on_configure(const runtime::Parameters& parameters,
                     const runtime::ComponentContext& context) override {
+    new_estimators_ = &report().counter("new_estimators");
     DdsInterfaceOptions options;
     options.robot = parameters.require<std::string>("robot");
     std::filesystem::path urdf = parameters.require<std::string>("urdf");
@@ -91,7 +95,20 @@ class MomentumBalanceComponent final : public runtime::Component {
       signals_.values(std::vector<double>(kSignalNames.size(), 0.0));
     }
 
-    options.on_producer_event = runtime::count_producer_events(report());
+    // A new estimator is a rebound of the state stream (wbi/dds/producers.hpp),
+    // said before its first sample is taken.
+    std::string state_topic = "'";  // as the rebound's line quotes it
+    state_topic += dds::topics::state(options.robot);
+    state_topic += '\'';
+    options.on_producer_event = [count = runtime::count_producer_events(report()),
+                                 state = std::move(state_topic),
+                                 this](const dds::ProducerEvent& event) {
+      count(event);
+      if (event.kind == dds::ProducerEvent::Kind::rebound &&
+          event.text.find(state) != std::string_view::npos) {
+        new_estimator_.store(true);
+      }
+    };
     robot_ = make_dds_interface(options);
     robot_->add_joints(joints);
     robot_->init(std::chrono::milliseconds(static_cast<std::int64_t>(init_timeout_s * 1000)));
@@ -128,6 +145,18 @@ class MomentumBalanceComponent final : public runtime::Component {
     }
     if (has_seq_ && stamp.seq == last_seq_) {
       return;  // this estimate was answered already
+    }
+    if (has_seq_ && new_estimator_.exchange(false)) {
+      // A new estimator: its world frame need not be the old one's (a legged
+      // base starts at x = y = 0 wherever the robot stands). The reference
+      // moves with the CoM's estimate, so that the robot does not (it moved
+      // 5 cm to the shifted reference before).
+      const Eigen::Vector3d shift = controller_->com_of_state() - controller_->com();
+      reference_.origin += shift;
+      new_estimators_->add();
+      std::printf("new estimator: CoM reference moved with its frame by (%.4f, %.4f, %.4f) m\n",
+                  shift.x(), shift.y(), shift.z());
+      std::fflush(stdout);
     }
     has_seq_ = true;
     last_seq_ = stamp.seq;
@@ -217,6 +246,8 @@ class MomentumBalanceComponent final : public runtime::Component {
   std::uint64_t last_seq_ = 0;
   bool has_seq_ = false;
   std::uint64_t stale_ = 0;
+  runtime::StatusCounter* new_estimators_ = nullptr;  // status counter "new_estimators"
+  std::atomic<bool> new_estimator_{false};            // set on a DDS thread
   double squared_error_ = 0.0, max_error_ = 0.0;
   std::uint64_t samples_ = 0;
   std::unique_ptr<dds::Publisher<wbi::msg::Signals>> signals_publisher_;

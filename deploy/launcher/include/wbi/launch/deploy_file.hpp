@@ -15,6 +15,8 @@
 //       wait_for: {topics: [wbi/arm/sensors], timeout: 10}   # start once these exist
 //       shutdown_on_exit: false            # true: when it exits, the launch stops
 //       hang_timeout: 3.0                  # components: only; s without a status heartbeat
+//                                          # or without loop iterations (a deadlocked loop)
+//       host: my_host                      # components: only; their program (default wbi_host)
 #pragma once
 
 #include <filesystem>
