@@ -19,7 +19,7 @@
 #include <wbi/dds/topics.hpp>
 
 #include "stream.hpp"
-#include "wbi/dds_interface.hpp"
+#include "wbi/dds_interface_options.hpp"
 
 namespace wbi::proxy {
 
