@@ -50,7 +50,7 @@ class PdGravity:
                 raise ValueError(f"PD + gravity: {name} is {gain.shape}, the robot has {n} "
                                  "controlled joints")
         self.gravity = np.asarray(gravity, dtype=float)
-        self.q, self.dq = np.zeros(n), np.zeros(n)
+        self.state = robot.robot_state()  # its arrays are views, refilled each tick
         self.g = np.zeros(n + 6)
         self.tau = np.zeros(n)
         self.max_error = math.inf
@@ -60,16 +60,12 @@ class PdGravity:
 
     def update(self):
         robot = self.robot
-        # q, dq and the base pose of one and the same estimate: read again until they agree.
-        while True:
-            _, position = robot.read_estimates(wbi.EstimateKind.joint_position, out=self.q)
-            _, velocity = robot.read_estimates(wbi.EstimateKind.joint_velocity, out=self.dq)
-            world_H_base, base = robot.read_base_pose()
-            if position.seq == velocity.seq == base.seq:
-                break
-        robot.gravity_forces(self.q, world_H_base, self.gravity, out=self.g)
-        error = self.q - self.q_desired
-        np.subtract(self.g[6:], self.kp @ error + self.kd @ self.dq, out=self.tau)
+        # q, dq and the base pose of one and the same estimate, in one call
+        robot.read_robot_state(self.state)
+        s = self.state
+        robot.gravity_forces(s.q, s.world_H_base, self.gravity, out=self.g)
+        error = s.q - self.q_desired
+        np.subtract(self.g[6:], self.kp @ error + self.kd @ s.dq, out=self.tau)
         self.max_error = float(np.abs(error).max())
         robot.set_control_reference(self.tau)
 

@@ -163,6 +163,19 @@ void bind_vocabulary(py::module_& module) {
         return "Stamp(source_ns=" + std::to_string(s.source_ns) + ", seq=" + std::to_string(s.seq) +
                ", age_s=" + std::to_string(s.age_s) + ")";
       });
+  // Its arrays are read-only numpy views on the C++ storage, not copies: a
+  // loop that reads into one RobotState sees each tick's values through the
+  // same arrays, and nothing is allocated per tick.
+  py::class_<RobotState>(module, "RobotState",
+                         "q, dq, ddq, base pose and velocity of one estimate "
+                         "(DdsInterface.robot_state(), DdsInterface.read_robot_state)")
+      .def_readonly("q", &RobotState::q, "joint positions (dofs,), a view")
+      .def_readonly("dq", &RobotState::dq, "joint velocities (dofs,), a view")
+      .def_readonly("ddq", &RobotState::ddq, "joint accelerations (dofs,), a view")
+      .def_readonly("world_H_base", &RobotState::world_H_base, "base pose (4, 4), a view")
+      .def_readonly("base_velocity", &RobotState::base_velocity,
+                    "(linear, angular) base velocity, world axes (6,), a view")
+      .def_readonly("stamp", &RobotState::stamp, "the Stamp of the estimate");
   // Subclasses of RuntimeError, so that `except RuntimeError` still catches them.
   static py::exception<Error> error(module, "Error", PyExc_RuntimeError);
   static py::exception<StaleDataError> stale(module, "StaleDataError", error.ptr());
@@ -228,6 +241,24 @@ void bind_reads(py::class_<PythonInterface>& interface) {
             return py::make_tuple(values, stamp);
           },
           arg("kind"), arg("index"), arg("mode") = ReadMode::latest, arg("out") = none)
+      .def(
+          "robot_state",
+          [](PythonInterface& self) { return RobotState(self.robot().dofs()); },
+          "a RobotState sized for the controlled joints, to pass to read_robot_state")
+      .def(
+          "read_robot_state",
+          [](PythonInterface& self, RobotState& state, ReadMode mode) {
+            // Sized once by robot_state(): a resize here would move the data under the views.
+            if (state.q.size() != self.robot().dofs()) {
+              throw py::value_error("read_robot_state: the RobotState has " +
+                                    std::to_string(state.q.size()) + " joints, the interface " +
+                                    std::to_string(self.robot().dofs()) +
+                                    "; make it with robot_state()");
+            }
+            return without_gil([&] { return self.robot().state().read_robot_state(state, mode); });
+          },
+          arg("state"), arg("mode") = ReadMode::latest,
+          "Stamp: fills `state` in place from one estimate (its arrays are views)")
       .def(
           "read_base_pose",
           [](PythonInterface& self, ReadMode mode) {

@@ -3,6 +3,7 @@
 // made of real DDS endpoints in the test's process.
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <string>
@@ -105,6 +106,11 @@ class ArmPeer {
       sample.header().seq(seq);
       sample.header().stamp_ns(static_cast<std::int64_t>(seq) * 5'000'000);
       state.header() = sample.header();
+      // Fields no test expects constant carry the sample's number: a read that
+      // mixed two samples would show it (read_robot_state).
+      std::fill(state.ddq().begin(), state.ddq().end(), static_cast<double>(seq));
+      state.base_velocity()[0] = static_cast<double>(seq);
+      state.base_pose().position().x(static_cast<double>(seq));
       sensors_.publish(sample);
       state_.publish(state);
       std::this_thread::sleep_for(5ms);  // the robot's rate, not a synchronisation

@@ -178,6 +178,79 @@ TEST(DdsInterface, StaleDataIsRefused) {
                wbi::TimeoutError);
 }
 
+// One call, one estimate: every field of the RobotState comes from the sample
+// whose number it carries (the peer writes it into ddq, the base velocity and
+// the base x), while the peer publishes new samples during the reads.
+TEST(DdsInterface, TheRobotStateIsOneEstimate) {
+  ArmPeer peer("arm_state");
+  auto robot = wbi::make_dds_interface(arm_options("arm_state"));
+  robot->add_joints({"joint_3", "joint_1"});
+  robot->init(10s);
+  wbi::RobotState state;  // sized by the first read
+  std::uint64_t previous = 0;
+  for (int k = 0; k < 200; ++k) {
+    const auto mode = k % 2 == 0 ? wbi::ReadMode::blocking : wbi::ReadMode::latest;
+    const wbi::Stamp stamp = robot->state().read_robot_state(state, mode);
+    const auto seq = static_cast<double>(stamp.seq);
+    ASSERT_EQ(state.q.size(), 2);
+    EXPECT_EQ(state.stamp.seq, stamp.seq);
+    EXPECT_DOUBLE_EQ(state.q[0], arm_position(2));
+    EXPECT_DOUBLE_EQ(state.q[1], arm_position(0));
+    EXPECT_DOUBLE_EQ(state.dq[0], arm_velocity(2));
+    EXPECT_TRUE((state.ddq.array() == seq).all()) << k;
+    EXPECT_DOUBLE_EQ(state.base_velocity[0], seq) << k;
+    EXPECT_DOUBLE_EQ(state.world_H_base(0, 3), seq) << k;
+    EXPECT_DOUBLE_EQ(state.world_H_base(2, 3), 0.25);
+    if (mode == wbi::ReadMode::blocking) {
+      EXPECT_GT(stamp.seq, previous) << "a blocking read returns a newer estimate";
+    }
+    previous = stamp.seq;
+  }
+}
+
+TEST(DdsInterface, ARobotStateReadWaitsABoundedTime) {
+  ArmPeer peer("arm_state_timeout");
+  auto options = arm_options("arm_state_timeout");
+  options.blocking_read_timeout = 200ms;
+  auto robot = wbi::make_dds_interface(options);
+  robot->add_joints({"joint_1"});
+  robot->init(10s);
+  wbi::RobotState state(1);
+  robot->read_robot_state(state, wbi::ReadMode::blocking);
+  peer.stop();
+  try {
+    robot->read_robot_state(state, wbi::ReadMode::blocking);
+    FAIL() << "a blocking read returned without a new estimate";
+  } catch (const wbi::TimeoutError& e) {
+    EXPECT_NE(std::string(e.what()).find("state estimates of robot 'arm_state_timeout'"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// Each element is an object of its own: code that needs only the model takes a
+// wbi::Model&, and the elements refuse use before init() like the flat API.
+TEST(DdsInterface, ElementsAreObjectsOfTheirOwn) {
+  ArmPeer peer("arm_elements");
+  auto robot = wbi::make_dds_interface(arm_options("arm_elements"));
+  robot->add_joints({"joint_1", "joint_2"});
+  EXPECT_EQ(robot->dofs(), 2);  // the controlled list is known before init()
+  EXPECT_THROW(robot->model(), wbi::Error);
+  EXPECT_THROW(robot->actuators(), wbi::Error);
+  robot->init(10s);
+  const auto gravity_of = [](wbi::Model& model, const Eigen::VectorXd& q) {
+    Eigen::VectorXd g(6 + model.dofs());
+    model.gravity_forces(q, wbi::Transform::Identity(), Eigen::Vector3d(0, 0, -9.81), g);
+    return g;
+  };
+  const Eigen::VectorXd q = Eigen::Vector2d(0.3, -0.6);
+  Eigen::VectorXd flat(8);
+  robot->gravity_forces(q, wbi::Transform::Identity(), Eigen::Vector3d(0, 0, -9.81), flat);
+  EXPECT_TRUE(gravity_of(robot->model(), q).isApprox(flat));
+  EXPECT_EQ(robot->model().joint_list(), robot->joint_list());
+  EXPECT_EQ(&robot->state(), &robot->state());
+}
+
 TEST(DdsInterface, CommandsCarryTheRobotsJointIndices) {
   ArmPeer peer("arm_cmd");
   auto robot = wbi::make_dds_interface(arm_options("arm_cmd"));

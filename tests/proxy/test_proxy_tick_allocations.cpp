@@ -102,6 +102,30 @@ TEST_F(ProxyTick, APdGravityTickAllocatesNoMoreThanItsDdsWrite) {
   EXPECT_GT(controller.max_error(), 0.0);  // the tick really read the peer's state
 }
 
+// The one-call state read: the first call sizes the structure's vectors (Eigen
+// allocates them with malloc, which the operator-new counter does not see, so
+// their storage is checked instead: it never moves again); after that nothing
+// is allocated, by the proxy or by Fast DDS, in latest mode. Blocking reads'
+// windows also hold Fast DDS receiving the samples waited for: reported only.
+TEST_F(ProxyTick, ARobotStateReadAllocatesOnlyOnItsFirstCall) {
+  wbi::RobotState state;
+  robot_->read_robot_state(state);
+  ASSERT_EQ(state.q.size(), robot_->dofs());
+  ASSERT_EQ(state.ddq.size(), robot_->dofs());
+  const double* const storage[] = {state.q.data(), state.dq.data(), state.ddq.data()};
+  const double latest = allocations_per_call([&] { robot_->read_robot_state(state); });
+  std::printf("allocations per call: %-36s %.2f\n", "read_robot_state(latest)", latest);
+  EXPECT_EQ(latest, 0.0);
+  const double blocking =
+      allocations_per_call([&] { robot_->read_robot_state(state, wbi::ReadMode::blocking); }, 10);
+  std::printf("allocations per call: %-36s %.2f (with the reception of 2 samples)\n",
+              "read_robot_state(blocking)", blocking);
+  EXPECT_EQ(state.q.data(), storage[0]) << "q was reallocated";
+  EXPECT_EQ(state.dq.data(), storage[1]) << "dq was reallocated";
+  EXPECT_EQ(state.ddq.data(), storage[2]) << "ddq was reallocated";
+  EXPECT_GT(state.stamp.seq, 0u);  // the reads really saw the peer's estimates
+}
+
 TEST_F(ProxyTick, EveryPerTickOperationAllocatesNothingOfItsOwn) {
   auto& robot = *robot_;
   const int n = robot.dofs();
@@ -116,8 +140,12 @@ TEST_F(ProxyTick, EveryPerTickOperationAllocatesNothingOfItsOwn) {
   robot.read_estimates(wbi::EstimateKind::joint_position, q);
   robot.read_estimates(wbi::EstimateKind::joint_velocity, dq);
 
+  wbi::RobotState state;
+  robot.read_robot_state(state);  // the first read sizes it
+
   using Operations = std::vector<std::pair<const char*, std::function<void()>>>;
   const Operations allocation_free{
+      {"read_robot_state", [&] { robot.read_robot_state(state); }},
       {"read_estimates(joint_position)",
        [&] { robot.read_estimates(wbi::EstimateKind::joint_position, q); }},
       {"read_estimate(joint_velocity, 3)",

@@ -35,6 +35,21 @@ class DdsInterfaceTest(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "out must be a writable contiguous vector of"):
             robot.read_estimates(wbi.EstimateKind.joint_position, out=np.zeros(5))
 
+    def test_robot_state_arrays_are_views_on_one_structure(self):
+        robot = wbi.DdsInterface(robot="nobody", urdf=ARM, joints=["joint_1", "joint_2"])
+        state = robot.robot_state()
+        self.assertEqual(state.q.shape, (2,))
+        self.assertEqual(state.world_H_base.shape, (4, 4))
+        self.assertEqual(state.base_velocity.shape, (6,))
+        # Each access is a view on the same C++ storage, read-only: no copy per tick.
+        self.assertEqual(state.q.ctypes.data, state.q.ctypes.data)
+        self.assertFalse(state.dq.flags.writeable)
+        with self.assertRaisesRegex(wbi.Error, "not initialized"):
+            robot.read_robot_state(state)
+        other = wbi.DdsInterface(robot="nobody", urdf=ARM, joints=["joint_1"])
+        with self.assertRaisesRegex(ValueError, "has 2 joints, the interface 1"):
+            other.read_robot_state(state)
+
 
 if __name__ == "__main__":
     unittest.main(argv=sys.argv, verbosity=2)

@@ -29,7 +29,7 @@
 #include <wbi/dds/client.hpp>
 #include <wbi/dds/subscriber.hpp>
 
-#include "wbi/dds_interface.hpp"
+#include "wbi/dds_interface_options.hpp"
 #include "wbi/model.hpp"
 
 namespace wbi::proxy {

@@ -50,8 +50,7 @@ MomentumBalance::MomentumBalance(WholeBodyInterface& robot, MomentumBalanceParam
           "torque_weight and foot_moment_weight must be >= 0, wrench_weight > 0");
 
   const int N = 6 + n_;
-  q_.setZero(n_);
-  dq_.setZero(n_);
+  state_ = RobotState(n_);
   M_.setZero(N, N);
   h_.setZero(N);
   Jc_.setZero(kWrenches, N);
@@ -126,19 +125,9 @@ void MomentumBalance::set_com_reference(const Eigen::Vector3d& position,
 }
 
 Stamp MomentumBalance::read_state(ReadMode mode) {
-  // Every quantity of one and the same estimate (a newer one may arrive between reads).
-  Stamp position = robot_.read_estimates(EstimateKind::joint_position, q_, mode);
-  Stamp velocity = robot_.read_estimates(EstimateKind::joint_velocity, dq_);
-  Stamp base = robot_.read_base_pose(world_H_base_);
-  Stamp twist = robot_.read_estimates(EstimateKind::base_velocity, base_velocity_);
-  while (position.seq != velocity.seq || velocity.seq != base.seq || base.seq != twist.seq) {
-    position = robot_.read_estimates(EstimateKind::joint_position, q_);
-    velocity = robot_.read_estimates(EstimateKind::joint_velocity, dq_);
-    base = robot_.read_base_pose(world_H_base_);
-    twist = robot_.read_estimates(EstimateKind::base_velocity, base_velocity_);
-  }
-  last_seq_ = position.seq;
-  return position;
+  const Stamp stamp = robot_.state().read_robot_state(state_, mode);
+  last_seq_ = stamp.seq;
+  return stamp;
 }
 
 // τ(f) = τ_c − T f from  M ν̇ + h = Bτ + Jcᵀ f,  Jc ν̇ + J̇ν = 0  (both feet fixed):
@@ -169,7 +158,8 @@ void MomentumBalance::compute_torque_map() {
   null_.noalias() = -Lambda_pinv_ * Lambda_;
   null_.diagonal().array() += 1.0;
 
-  tau_0_ = h_.tail(n_) - posture_kp_.cwiseProduct(q_ - q_posture_) - posture_kd_.cwiseProduct(dq_);
+  tau_0_ = h_.tail(n_) - posture_kp_.cwiseProduct(state_.q - q_posture_) -
+           posture_kd_.cwiseProduct(state_.dq);
   tau_c_.noalias() = Lambda_pinv_ * constraint_bias_;
   tau_c_.noalias() += null_ * tau_0_;
   T_.noalias() = Lambda_pinv_ * Jc_Minv_Jct_;
@@ -210,7 +200,7 @@ void MomentumBalance::solve_wrenches() {
 
 Eigen::Vector3d MomentumBalance::com_of_state() {
   Eigen::Vector3d c;
-  robot_.com(q_, world_H_base_, c);
+  robot_.com(state_.q, state_.world_H_base, c);
   return c;
 }
 
@@ -220,18 +210,21 @@ void MomentumBalance::update(ReadMode mode) {
 }
 
 void MomentumBalance::control() {
-  robot_.mass_matrix(q_, world_H_base_, M_);
-  robot_.bias_forces(q_, world_H_base_, dq_, base_velocity_, p_.gravity, h_);
+  robot_.mass_matrix(state_.q, state_.world_H_base, M_);
+  robot_.bias_forces(state_.q, state_.world_H_base, state_.dq, state_.base_velocity, p_.gravity,
+                     h_);
   const int soles[kContacts] = {left_, right_};
   for (int foot = 0; foot < kContacts; ++foot) {
-    robot_.jacobian(q_, world_H_base_, soles[foot], Jc_.middleRows(6 * foot, 6));
-    robot_.dj_nu(q_, world_H_base_, dq_, base_velocity_, soles[foot], dj_nu_.segment(6 * foot, 6));
-    robot_.frame_pose(q_, world_H_base_, soles[foot], world_H_sole_);
+    robot_.jacobian(state_.q, state_.world_H_base, soles[foot], Jc_.middleRows(6 * foot, 6));
+    robot_.dj_nu(state_.q, state_.world_H_base, state_.dq, state_.base_velocity, soles[foot],
+                 dj_nu_.segment(6 * foot, 6));
+    robot_.frame_pose(state_.q, state_.world_H_base, soles[foot], world_H_sole_);
     sole_position_[foot] = world_H_sole_.topRightCorner<3, 1>();
     sole_rotation_[foot] = world_H_sole_.topLeftCorner<3, 3>();
   }
-  robot_.com(q_, world_H_base_, com_);
-  robot_.centroidal_momentum(q_, world_H_base_, dq_, base_velocity_, momentum_);
+  robot_.com(state_.q, state_.world_H_base, com_);
+  robot_.centroidal_momentum(state_.q, state_.world_H_base, state_.dq, state_.base_velocity,
+                             momentum_);
   com_velocity_ = momentum_.head<3>() / mass_;
   if (!com_reference_set_) {
     set_com_reference(com_, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());

@@ -45,8 +45,7 @@ PdGravity::PdGravity(WholeBodyInterface& robot, PdGravityGains gains, Eigen::Vec
   require_square("kp", gains_.kp, n);
   require_square("kd", gains_.kd, n);
   require_size("q_desired", q_desired_.size(), n);
-  q_.setZero(n);
-  dq_.setZero(n);
+  state_ = RobotState(n);
   error_.setZero(n);
   tau_.setZero(n);
   g_.setZero(n + 6);
@@ -61,23 +60,14 @@ void PdGravity::set_reference(const ConstVectorRef& q_desired) {
 
 // The paper's loop: read the state, compute the gravity bias forces, send torques.
 void PdGravity::update(ReadMode mode) {
-  // q, q̇ and the base pose of one and the same estimate: a newer one may arrive
-  // between two reads, so read again until the three agree.
-  Stamp position = robot_.read_estimates(EstimateKind::joint_position, q_, mode);
-  Stamp velocity = robot_.read_estimates(EstimateKind::joint_velocity, dq_);
-  Stamp base = robot_.read_base_pose(world_H_base_);
-  while (position.seq != velocity.seq || velocity.seq != base.seq) {
-    position = robot_.read_estimates(EstimateKind::joint_position, q_);
-    velocity = robot_.read_estimates(EstimateKind::joint_velocity, dq_);
-    base = robot_.read_base_pose(world_H_base_);
-  }
-  robot_.gravity_forces(q_, world_H_base_, gravity_, g_);
-  error_ = q_ - q_desired_;
+  robot_.state().read_robot_state(state_, mode);
+  robot_.model().gravity_forces(state_.q, state_.world_H_base, gravity_, g_);
+  error_ = state_.q - q_desired_;
   tau_ = g_.tail(robot_.dofs());
   tau_.noalias() -= gains_.kp * error_;
-  tau_.noalias() -= gains_.kd * dq_;
+  tau_.noalias() -= gains_.kd * state_.dq;
   max_error_ = error_.cwiseAbs().maxCoeff();
-  robot_.set_control_reference(tau_);
+  robot_.actuators().set_control_reference(tau_);
 }
 
 }  // namespace wbi::controllers

@@ -19,6 +19,13 @@ class State {
   virtual Stamp read_estimate(EstimateKind kind, int index, VectorRef values,
                               ReadMode mode = ReadMode::latest) = 0;
 
+  // q, dq, ddq, base pose and base velocity of one and the same estimate, in
+  // one call: what a control tick reads. Sizes the vectors to dofs() when they
+  // differ (the first call); allocates nothing after that. Blocking mode waits
+  // for an estimate newer than the previous read_robot_state, up to the
+  // interface's bound, then throws TimeoutError; StaleDataError as below.
+  virtual Stamp read_robot_state(RobotState& state, ReadMode mode = ReadMode::latest) = 0;
+
   // The base pose as a homogeneous transform.
   virtual Stamp read_base_pose(Transform& world_H_base, ReadMode mode = ReadMode::latest) = 0;
 

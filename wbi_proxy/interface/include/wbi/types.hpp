@@ -100,6 +100,25 @@ struct Stamp {
   double age_s = 0.0;          // time since the sample arrived in this process
 };
 
+// One state estimate, whole: every field comes from the same sample (one
+// stamp, one sequence number). Preallocate it once (or let the first
+// State::read_robot_state size it) and read into it every tick.
+struct RobotState {
+  Eigen::VectorXd q;                               // [dofs] joint positions [rad or m]
+  Eigen::VectorXd dq;                              // [dofs] joint velocities [rad/s or m/s]
+  Eigen::VectorXd ddq;                             // [dofs] joint accelerations [rad/s^2 or m/s^2]
+  Transform world_H_base = Transform::Identity();  // base pose
+  Eigen::Matrix<double, 6, 1> base_velocity =      // (ṗ_B, ω_B), world axes (mixed)
+      Eigen::Matrix<double, 6, 1>::Zero();
+  Stamp stamp;  // of the one sample all fields come from
+
+  RobotState() = default;
+  explicit RobotState(int dofs)
+      : q(Eigen::VectorXd::Zero(dofs)),
+        dq(Eigen::VectorXd::Zero(dofs)),
+        ddq(Eigen::VectorXd::Zero(dofs)) {}
+};
+
 // Any failure of the interface: names what was wrong.
 class Error : public std::runtime_error {
  public:

@@ -90,9 +90,7 @@ class MomentumBalance {
   double mass_ = 0.0;
 
   // state
-  Eigen::VectorXd q_, dq_;
-  Eigen::Matrix<double, 6, 1> base_velocity_;
-  Transform world_H_base_ = Transform::Identity();
+  RobotState state_;  // read whole by read_state()
   Transform world_H_sole_ = Transform::Identity();
   std::uint64_t last_seq_ = 0;
 

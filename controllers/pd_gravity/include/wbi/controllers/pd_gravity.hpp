@@ -50,8 +50,8 @@ class PdGravity {
   PdGravityGains gains_;
   Eigen::VectorXd q_desired_;
   Eigen::Vector3d gravity_;
-  Eigen::VectorXd q_, dq_, error_, g_, tau_;
-  Transform world_H_base_ = Transform::Identity();
+  RobotState state_;  // read whole each tick
+  Eigen::VectorXd error_, g_, tau_;
   double max_error_ = 0.0;
 };
 

@@ -1,0 +1,61 @@
+// The Actuators element: publishes wbi/<robot>/commands (modes and references
+// of all controlled joints, robot joint indices resolved once at init) and
+// wbi/<robot>/control_parameters (values left as they are travel as NaN).
+// It holds the joint claim (joint_claim.hpp): claimed at init before any
+// command, checked before each, released at close.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <wbi/dds/publisher.hpp>
+
+#include "joint_claim.hpp"
+#include "robot_connection.hpp"
+#include "wbi/actuators.hpp"
+
+namespace wbi::proxy {
+
+class DdsActuators final : public wbi::Actuators {
+ public:
+  explicit DdsActuators(RobotConnection& robot);
+
+  // Waits up to `deadline` for the actuator component to read the commands;
+  // appends it to `missing` when it does not.
+  void wait(std::chrono::steady_clock::time_point deadline, std::vector<std::string>& missing);
+  // Sizes the messages for the controlled joints (after RobotConnection::resolve).
+  void prepare();
+  // Claims the controlled joints as the options say (DdsInterfaceOptions::claim):
+  // a wbi::Error names each joint another controller holds.
+  void claim(std::chrono::nanoseconds timeout);
+  void release() { claim_.reset(); }
+
+  void set_control_mode(ControlMode mode) override;
+  void set_control_mode(ControlMode mode, int joint) override;
+  void set_control_reference(const ConstVectorRef& reference) override;
+  void set_control_reference(double reference, int joint) override;
+  void set_control_parameter(ControlParameter parameter, const ConstVectorRef& values) override;
+  void set_control_parameter(ControlParameter parameter, double value, int joint) override;
+
+ private:
+  int dofs() const { return static_cast<int>(modes_.size()); }
+  void switch_mode(int joint, ControlMode mode);
+  void publish_command();
+  std::vector<double>& parameter_values(ControlParameter parameter);
+  void publish_parameters(ControlParameter parameter);
+
+  RobotConnection& robot_;
+  dds::Publisher<wbi::msg::ActuatorCommand> commands_;
+  dds::Publisher<wbi::msg::ControlParameters> parameters_;
+  std::vector<ControlMode> modes_;  // [dofs] current mode per controlled joint
+  Eigen::VectorXd references_;      // [dofs] current reference per controlled joint
+  wbi::msg::ActuatorCommand command_;
+  wbi::msg::ControlParameters parameters_msg_;
+  std::uint64_t command_seq_ = 0;
+  std::uint64_t parameters_seq_ = 0;
+  std::unique_ptr<JointClaim> claim_;  // from claim() to release()
+};
+
+}  // namespace wbi::proxy

@@ -1,0 +1,36 @@
+// The State element over wbi/<robot>/state; estimator parameters go out on
+// wbi/<robot>/state/parameters.
+#pragma once
+
+#include <wbi/dds/publisher.hpp>
+
+#include "robot_connection.hpp"
+#include "wbi/model.hpp"
+#include "wbi/state.hpp"
+
+namespace wbi::proxy {
+
+class DdsState final : public wbi::State {
+ public:
+  explicit DdsState(RobotConnection& robot);
+
+  // The model whose frame_list() names "fixed_link" frames (set by init()).
+  void use_frames_of(const wbi::Model& model) { model_ = &model; }
+
+  Stamp read_robot_state(RobotState& state, ReadMode mode) override;
+  Stamp read_estimates(EstimateKind kind, VectorRef values, ReadMode mode) override;
+  Stamp read_estimate(EstimateKind kind, int index, VectorRef values, ReadMode mode) override;
+  Stamp read_base_pose(Transform& world_H_base, ReadMode mode) override;
+  void set_estimation_parameter(const std::string& name, double value) override;
+
+ private:
+  int estimate_count(EstimateKind kind) const;
+  const wbi::msg::StateEstimate& take(std::size_t read, ReadMode mode);
+  Stamp read_range(EstimateKind kind, int first, int count, VectorRef out, ReadMode mode);
+
+  RobotConnection& robot_;
+  dds::Publisher<wbi::msg::EstimatorParameter> parameters_;
+  const wbi::Model* model_ = nullptr;
+};
+
+}  // namespace wbi::proxy

@@ -1,0 +1,114 @@
+#include "robot_connection.hpp"
+
+#include <algorithm>
+#include <optional>
+
+namespace wbi::proxy {
+
+std::int64_t system_now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+RobotConnection::RobotConnection(const DdsInterfaceOptions& options_)
+    : options(options_),
+      participant(options.participant),
+      description(participant, dds::topics::description(options.robot), dds::qos::kLatched, nullptr,
+                  dds::ProducerPolicy::one(options.on_producer_event)),
+      sensors(participant, dds::topics::sensors(options.robot), dds::qos::kStream,
+              "sensor samples of robot '" + options.robot + "' on " +
+                  dds::topics::sensors(options.robot),
+              dds::ProducerPolicy::owned_by(dds::description_owner(participant, description),
+                                            options.on_producer_event)),
+      state(participant, dds::topics::state(options.robot), dds::qos::kStream,
+            "state estimates of robot '" + options.robot + "' on " +
+                dds::topics::state(options.robot),
+            dds::ProducerPolicy::one(options.on_producer_event)) {}
+
+void RobotConnection::wait(std::chrono::steady_clock::time_point deadline,
+                           std::vector<std::string>& missing) {
+  using Clock = std::chrono::steady_clock;
+  const auto remaining = [&] { return std::max(Clock::duration::zero(), deadline - Clock::now()); };
+  if (!description.wait_newer(description_rx, 0, remaining())) {
+    missing.push_back("the robot description on " + dds::topics::description(options.robot) +
+                      " (sensor component)");
+  }
+  if (!sensors.subscriber.wait_newer(sensors.received, 0, remaining())) {
+    missing.push_back("sensor samples on " + dds::topics::sensors(options.robot) +
+                      " (sensor component)");
+  }
+  if (!state.subscriber.wait_newer(state.received, 0, remaining())) {
+    missing.push_back("state estimates on " + dds::topics::state(options.robot) + " (estimator)");
+  }
+  // Blocking reads from now on wait for samples newer than those init() saw.
+  sensors.seen.fill(sensors.received.count);
+  state.seen.fill(state.received.count);
+}
+
+void RobotConnection::resolve(const IdList& joints) {
+  controlled = joints;
+  const auto& names = description_rx.sample.joint_names();
+  robot_index.clear();
+  for (const auto& joint : controlled) {
+    std::optional<std::size_t> found;
+    for (std::size_t r = 0; r < names.size(); ++r) {
+      if (names[r] == joint) {
+        found = r;
+      }
+    }
+    if (!found) {
+      std::string known;
+      for (const auto& name : names) {
+        known += (known.empty() ? "" : ", ") + name.to_string();
+      }
+      throw Error("joint '" + joint + "' is not a joint of robot '" + options.robot +
+                  "' (its joints: " + known + ")");
+    }
+    robot_index.push_back(static_cast<std::uint16_t>(*found));
+  }
+  imu_names.clear();
+  force_torque_names.clear();
+  for (const auto& sensor : description_rx.sample.sensors()) {
+    if (sensor.kind() == wbi::msg::SensorKind::IMU) {
+      imu_names.push_back(sensor.name().to_string());
+    } else if (sensor.kind() == wbi::msg::SensorKind::FORCE_TORQUE) {
+      force_torque_names.push_back(sensor.name().to_string());
+    }
+  }
+}
+
+std::map<std::string, double> RobotConnection::locked_positions() const {
+  std::map<std::string, double> locked = options.locked_positions;
+  const auto& names = description_rx.sample.joint_names();
+  const auto& measured = sensors.received.sample.encoder_position();
+  for (std::size_t r = 0; r < names.size() && r < measured.size(); ++r) {
+    const std::string name = names[r].to_string();
+    const bool is_controlled =
+        std::find(controlled.begin(), controlled.end(), name) != controlled.end();
+    if (!is_controlled && locked.count(name) == 0) {
+      locked[name] = measured[r];
+    }
+  }
+  return locked;
+}
+
+void RobotConnection::gather(const std::vector<double>& robot_values, int first, int count,
+                             VectorRef out, const char* what) const {
+  for (int k = 0; k < count; ++k) {
+    const auto r = robot_index[static_cast<std::size_t>(first + k)];
+    if (r >= robot_values.size()) {
+      throw Error(std::string("robot '") + options.robot + "' sends no " + what);
+    }
+    out[k] = robot_values[r];
+  }
+}
+
+void RobotConnection::require_init() const {
+  if (!initialized) {
+    throw Error("the whole-body interface of robot '" + options.robot +
+                "' is not initialized: call init() first");
+  }
+}
+
+}  // namespace wbi::proxy

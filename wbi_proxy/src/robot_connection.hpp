@@ -1,0 +1,67 @@
+// What every DDS element of one interface shares: the participant, the
+// robot's description, its sensor and state streams, and the controlled
+// joints resolved against the robot's order.
+//
+// Orders: the controller's joint list C (add_joints) is the order of every
+// joint vector of the interface. The robot's order R comes from its
+// description; robot_index[k] is the position in R of controlled joint k,
+// resolved once in resolve(). The elements gather robot-order vectors into C.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <wbi/dds/participant.hpp>
+#include <wbi/dds/subscriber.hpp>
+#include <wbi/dds/topics.hpp>
+
+#include "stream.hpp"
+#include "wbi/dds_interface_options.hpp"
+
+namespace wbi::proxy {
+
+// Kinds of read that keep their own "seen" count for blocking reads.
+constexpr std::size_t kSensorReads = 9;  // SensorKind
+constexpr std::size_t kStateReads = 9;   // EstimateKind, then read_robot_state
+constexpr std::size_t kRobotStateRead = 8;
+
+std::int64_t system_now_ns();
+
+class RobotConnection {
+ public:
+  explicit RobotConnection(const DdsInterfaceOptions& options);
+
+  // Waits up to `deadline` for the description, a sensor sample and a state
+  // estimate; appends what is missing to `missing`.
+  void wait(std::chrono::steady_clock::time_point deadline, std::vector<std::string>& missing);
+  // Resolves the controlled joints and the sensor names against the description
+  // (after wait()); throws Error naming a joint the robot does not have.
+  void resolve(const IdList& controlled);
+  // Joints of the robot outside the controlled list: from the options, else
+  // where the first sensor sample measured them.
+  std::map<std::string, double> locked_positions() const;
+
+  // Joint values in robot order → controlled joints [first, first + count).
+  void gather(const std::vector<double>& robot_values, int first, int count, VectorRef out,
+              const char* what) const;
+
+  void require_init() const;
+
+  const DdsInterfaceOptions options;
+  dds::Participant participant;
+  dds::Subscriber<wbi::msg::RobotDescription> description;
+  dds::Received<wbi::msg::RobotDescription> description_rx;
+  Stream<wbi::msg::SensorSample, kSensorReads> sensors;
+  Stream<wbi::msg::StateEstimate, kStateReads> state;
+
+  IdList controlled;                       // C, from add_joints
+  std::vector<std::uint16_t> robot_index;  // [dofs] position of controlled joint k in R
+  IdList imu_names;
+  IdList force_torque_names;
+  bool initialized = false;
+};
+
+}  // namespace wbi::proxy
