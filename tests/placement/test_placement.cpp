@@ -78,14 +78,16 @@ TEST(Placement, SecurityDirectoryIsRelativeToTheFileAndIdentityDefaultsToTheProc
   std::filesystem::remove_all(dir.parent_path());
 }
 
-TEST(Placement, EnvironmentReplacesTheNetworkBlock) {
+TEST(Placement, TheFileReaderReadsTheFileOnly) {
+  // The environment is the next layer (dds::apply_environment), not the reader's.
   setenv("WBI_DDS_DISCOVERY", "peers", 1);
-  setenv("WBI_DDS_PEERS", "10.1.0.1,10.1.0.2", 1);
   const auto options = read("network: {discovery: multicast, peers: [10.0.0.9]}");
   unsetenv("WBI_DDS_DISCOVERY");
-  unsetenv("WBI_DDS_PEERS");
-  EXPECT_EQ(options.discovery, Discovery::peers);
-  EXPECT_EQ(options.network.peers, (std::vector<std::string>{"10.1.0.1", "10.1.0.2"}));
+  EXPECT_EQ(options.discovery, Discovery::multicast);
+  EXPECT_EQ(options.network.peers, (std::vector<std::string>{"10.0.0.9"}));
+  // Without a security block the identity is still recorded, for a directory given later.
+  EXPECT_EQ(options.security.identity, "controller");
+  EXPECT_FALSE(options.security.enabled());
 }
 
 }  // namespace

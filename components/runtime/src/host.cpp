@@ -7,11 +7,15 @@
 #include <yaml-cpp/yaml.h>
 
 #include <wbi/dds/participant.hpp>
-#include <wbi/deploy/placement.hpp>
+#include <wbi/dds/join_options.hpp>
 
 namespace wbi::runtime {
 
 namespace {
+
+// The deploy file's keys that the placement reader handles.
+constexpr const char* kNetworkKey = "network";
+constexpr const char* kSecurityKey = "security";
 
 std::string at(const std::string& file, const YAML::Node& node) {
   return file + ":" + std::to_string(node.Mark().line + 1);
@@ -53,10 +57,13 @@ T scalar(const std::string& file, const YAML::Node& map, const std::string& key,
 
 }  // namespace
 
-Host::Host(const std::string& file, const Registry& registry) { load(file, false, file, registry); }
+Host::Host(const std::string& file, const Registry& registry, PlacementReader placement) {
+  load(file, false, file, registry, "", placement);
+}
 
-Host::Host(const std::string& deploy_file, const std::string& process, const Registry& registry) {
-  load(deploy_file, false, deploy_file, registry, process);
+Host::Host(const std::string& deploy_file, const std::string& process, const Registry& registry,
+           PlacementReader placement) {
+  load(deploy_file, false, deploy_file, registry, process, placement);
 }
 
 namespace {
@@ -77,7 +84,7 @@ YAML::Node process_of_deploy(const std::string& file, const YAML::Node& deploy,
         YAML::Node host;
         host["components"] = entry["components"];
         for (const char* key :
-             {"domain_id", "qos_file", wbi::deploy::kNetworkKey, wbi::deploy::kSecurityKey}) {
+             {"domain_id", "qos_file", kNetworkKey, kSecurityKey}) {
           if (deploy[key]) {
             host[key] = deploy[key];
           }
@@ -99,7 +106,8 @@ std::unique_ptr<Host> Host::from_string(const std::string& yaml, const Registry&
 }
 
 void Host::load(const std::string& source, bool is_text, const std::string& file,
-                const Registry& registry, const std::string& process) {
+                const Registry& registry, const std::string& process,
+                const PlacementReader& placement) {
   YAML::Node root;
   try {
     root = is_text ? YAML::Load(source) : YAML::LoadFile(source);
@@ -117,7 +125,7 @@ void Host::load(const std::string& source, bool is_text, const std::string& file
   const std::string context = "host file";
   check_keys(file, root,
              {"domain_id", "qos_file", "clock", "status_period_s", "components",
-              wbi::deploy::kNetworkKey, wbi::deploy::kSecurityKey},
+              kNetworkKey, kSecurityKey},
              context);
 
   dds::ParticipantOptions options;
@@ -198,8 +206,20 @@ void Host::load(const std::string& source, bool is_text, const std::string& file
   options.name = "wbi_host";
   try {
     // Across hosts and DDS Security (deploy/README.md); the identity is the process's name.
-    wbi::deploy::read_placement(root, file, process, options);
-  } catch (const std::runtime_error& error) {
+    if (placement) {
+      placement(root, file, process, options);
+    } else {
+      for (const char* key : {kNetworkKey, kSecurityKey}) {
+        if (root[key]) {
+          throw ParameterError(at(file, root[key]) + ": host file: '" + key +
+                               "' needs a placement reader (wbi_host has one)");
+        }
+      }
+    }
+    dds::apply_environment(options);
+  } catch (const ParameterError&) {
+    throw;
+  } catch (const std::exception& error) {
     throw ParameterError(error.what());
   }
   participant_ = std::make_unique<dds::Participant>(options);
