@@ -173,7 +173,19 @@ int run_play(Args raw_args) {
   // user names an identity allowed to publish what it replays.
   const dds::ParticipantOptions participant_options = join_options(options, "wbi play", "");
   dds::Participant participant(participant_options);
-  recording::Player player(participant, player_options);
+  std::optional<recording::Player> made;
+  try {
+    made.emplace(participant, player_options);
+  } catch (const std::runtime_error& error) {
+    if (!participant_options.security.enabled()) {
+      throw;
+    }
+    // Access control refuses a writer the identity's permissions do not grant.
+    throw std::runtime_error("identity '" + participant_options.security.identity +
+                             "' may not publish what this recording holds (" + error.what() +
+                             "): give --identity NAME of an identity allowed to publish it");
+  }
+  recording::Player& player = *made;
   if (options.has("paused")) {
     player.pause();
   }
