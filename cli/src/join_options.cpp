@@ -42,7 +42,7 @@ dds::ParticipantOptions join_options(const Options& options, const std::string& 
   dds::apply_environment(join);
   dds::apply(join_flags(options), join);
   if (join.security.enabled() && join.security.identity.empty()) {
-    throw UsageError(name + ": the deployment is secured (" + join.security.directory +
+    throw UsageError("the deployment is secured (" + join.security.directory +
                      "): give --identity NAME, an identity of that directory allowed to publish");
   }
   return join;
