@@ -440,6 +440,7 @@ Participant::Participant(const std::string& name)
     : Participant([&] {
         ParticipantOptions options;
         options.name = name;
+        apply_environment(options);
         return options;
       }()) {}
 
