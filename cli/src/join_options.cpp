@@ -6,7 +6,7 @@
 
 namespace wbi::cli {
 
-void add_join_options(Options& options, bool with_deploy) {
+void add_join_options(Options& options, bool with_deploy, const std::string& identity) {
   if (with_deploy) {
     options.option("deploy", "FILE",
                    "join the deployment FILE describes: its domain_id, qos_file, network and "
@@ -23,7 +23,8 @@ void add_join_options(Options& options, bool with_deploy) {
   options.option("security", "DIR",
                  "DDS Security files from scripts/wbi-security-setup (WBI_DDS_SECURITY_DIRECTORY)");
   options.option("identity", "NAME",
-                 "the identity in DIR to join as (WBI_DDS_SECURITY_IDENTITY)");
+                 "the identity in DIR to join as (WBI_DDS_SECURITY_IDENTITY" +
+                     (identity.empty() ? std::string(")") : "; default: " + identity + ")"));
 }
 
 dds::ParticipantOptions join_options(const Options& options, const std::string& name,

@@ -14,8 +14,9 @@ namespace wbi::cli {
 
 // Declares --deploy (unless `with_deploy` is false: `wbi launch FILE` has its
 // file), --domain, --discovery, --peers, --interfaces, --discovery-server,
-// --qos-file, --security and --identity.
-void add_join_options(Options& options, bool with_deploy = true);
+// --qos-file, --security and --identity. `identity`: the verb's default
+// identity on a secured deployment, shown in --help (empty: none).
+void add_join_options(Options& options, bool with_deploy = true, const std::string& identity = "");
 
 // The flags alone (the top layer). Throws UsageError on a bad value.
 dds::JoinOverrides join_flags(const Options& options);

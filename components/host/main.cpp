@@ -65,9 +65,9 @@ int main(int argc, char** argv) {
   try {
     // The deploy reader turns the file's network and security blocks into join options.
     const wbi::runtime::PlacementReader placement = wbi::deploy::read_placement;
-    auto host_ptr = from_deploy
-                        ? std::make_unique<wbi::runtime::Host>(argv[1], argv[3], registry, placement)
-                        : std::make_unique<wbi::runtime::Host>(argv[1], registry, placement);
+    auto host_ptr =
+        from_deploy ? std::make_unique<wbi::runtime::Host>(argv[1], argv[3], registry, placement)
+                    : std::make_unique<wbi::runtime::Host>(argv[1], registry, placement);
     auto& host = *host_ptr;
     host.start();
     std::cout << "wbi_host: running " << host.size() << " component(s) from " << argv[1]

@@ -33,9 +33,9 @@ RawSubscriber::RawSubscriber(Participant& participant, const TopicInfo& topic, C
   // every sample: with the stream profile's depth 1, a sample that arrives
   // while the tool's DDS thread is late replaces the one not yet taken.
   overrides.history_depth = kToolHistoryDepth;
-  impl_->reader = std::make_unique<detail::Reader>(participant, topic.name,
-                                                   new detail::RawType(topic.type), qos::kStream,
-                                                   *impl_, overrides, std::move(producers));
+  impl_->reader =
+      std::make_unique<detail::Reader>(participant, topic.name, new detail::RawType(topic.type),
+                                       qos::kStream, *impl_, overrides, std::move(producers));
 }
 
 ProducerCounts RawSubscriber::producers() const { return impl_->reader->producers(); }

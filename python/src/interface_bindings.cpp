@@ -80,22 +80,18 @@ class PythonInterface {
   std::unique_ptr<WholeBodyInterface> robot_;
 };
 
-PythonInterface make_interface(const std::string& robot, const std::string& urdf,
-                               const std::optional<std::vector<std::string>>& joints,
-                               const std::string& controller, const std::string& model,
-                               const std::map<std::string, double>& locked_positions,
-                               double max_age_s, double blocking_read_timeout_s,
-                               double model_timeout_s, std::optional<int> domain_id,
-                               const std::optional<std::string>& discovery,
-                               const std::string& participant_name,
-                               const std::optional<std::string>& qos_file,
-                               const std::map<std::string, double>& armature,
-                               const std::optional<std::string>& deploy,
-                               const std::optional<std::vector<std::string>>& peers,
-                               const std::optional<std::vector<std::string>>& interfaces,
-                               const std::optional<std::string>& discovery_server,
-                               const std::optional<std::string>& security,
-                               const std::optional<std::string>& identity) {
+PythonInterface make_interface(
+    const std::string& robot, const std::string& urdf,
+    const std::optional<std::vector<std::string>>& joints, const std::string& controller,
+    const std::string& model, const std::map<std::string, double>& locked_positions,
+    double max_age_s, double blocking_read_timeout_s, double model_timeout_s,
+    std::optional<int> domain_id, const std::optional<std::string>& discovery,
+    const std::string& participant_name, const std::optional<std::string>& qos_file,
+    const std::map<std::string, double>& armature, const std::optional<std::string>& deploy,
+    const std::optional<std::vector<std::string>>& peers,
+    const std::optional<std::vector<std::string>>& interfaces,
+    const std::optional<std::string>& discovery_server, const std::optional<std::string>& security,
+    const std::optional<std::string>& identity) {
   DdsInterfaceOptions options;
   options.robot = robot;
   options.urdf = urdf;

@@ -19,10 +19,14 @@ using wbi::dds::Discovery;
 using wbi::dds::ParticipantOptions;
 using Strings = std::vector<std::string>;
 
-const char* const kVariables[] = {"WBI_DOMAIN_ID",           "WBI_QOS_FILE",
-                                  "WBI_DDS_DISCOVERY",       "WBI_DDS_PEERS",
-                                  "WBI_DDS_INTERFACES",      "WBI_DDS_DISCOVERY_SERVER",
-                                  "WBI_DDS_SECURITY_DIRECTORY", "WBI_DDS_SECURITY_IDENTITY"};
+const char* const kVariables[] = {"WBI_DOMAIN_ID",
+                                  "WBI_QOS_FILE",
+                                  "WBI_DDS_DISCOVERY",
+                                  "WBI_DDS_PEERS",
+                                  "WBI_DDS_INTERFACES",
+                                  "WBI_DDS_DISCOVERY_SERVER",
+                                  "WBI_DDS_SECURITY_DIRECTORY",
+                                  "WBI_DDS_SECURITY_IDENTITY"};
 
 // Clears the join variables for the test, restores them after (ctest sets WBI_DOMAIN_ID).
 class JoinOptions : public ::testing::Test {
@@ -34,8 +38,8 @@ class JoinOptions : public ::testing::Test {
       }
       unsetenv(name);
     }
-    dir_ = std::filesystem::temp_directory_path() /
-           ("wbi-join-options-" + std::to_string(::getpid()));
+    dir_ =
+        std::filesystem::temp_directory_path() / ("wbi-join-options-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir_ / "keys");
     std::filesystem::create_directories(dir_ / "other_keys");
     deploy_ = (dir_ / "deploy.yaml").string();
@@ -107,10 +111,9 @@ TEST_F(JoinOptions, FlagsBeatTheEnvironment) {
   setenv("WBI_DDS_PEERS", "10.0.0.3", 1);
   setenv("WBI_DDS_INTERFACES", "10.0.0.2", 1);
   setenv("WBI_DDS_SECURITY_IDENTITY", "recorder", 1);
-  const auto options =
-      join({"--deploy", deploy_, "--domain", "7", "--discovery-server", "10.0.0.9:11811",
-            "--interfaces", "10.0.0.5,10.0.0.6", "--security", (dir_ / "other_keys").string(),
-            "--identity", "controller"});
+  const auto options = join({"--deploy", deploy_, "--domain", "7", "--discovery-server",
+                             "10.0.0.9:11811", "--interfaces", "10.0.0.5,10.0.0.6", "--security",
+                             (dir_ / "other_keys").string(), "--identity", "controller"});
   EXPECT_EQ(options.domain_id, 7);
   EXPECT_EQ(options.discovery, Discovery::server);  // a server given: server mode
   EXPECT_EQ(options.network.discovery_server, "10.0.0.9:11811");

@@ -77,7 +77,7 @@ int run_record(Args args) {
                  "start a new file past this size; files are STEM_0.mcap, STEM_1.mcap, ...");
   options.option("compression", "KIND", "chunk compression: none, zstd or lz4", "zstd");
   options.option("queue", "N", "samples that may wait for the writer thread before drops", "16384");
-  add_join_options(options);
+  add_join_options(options, true, "observer");
   if (!options.parse(args)) {
     return kExitOk;
   }

@@ -6,8 +6,8 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <wbi/dds/participant.hpp>
 #include <wbi/dds/join_options.hpp>
+#include <wbi/dds/participant.hpp>
 
 namespace wbi::runtime {
 
@@ -83,8 +83,7 @@ YAML::Node process_of_deploy(const std::string& file, const YAML::Node& deploy,
         }
         YAML::Node host;
         host["components"] = entry["components"];
-        for (const char* key :
-             {"domain_id", "qos_file", kNetworkKey, kSecurityKey}) {
+        for (const char* key : {"domain_id", "qos_file", kNetworkKey, kSecurityKey}) {
           if (deploy[key]) {
             host[key] = deploy[key];
           }
@@ -124,8 +123,8 @@ void Host::load(const std::string& source, bool is_text, const std::string& file
   }
   const std::string context = "host file";
   check_keys(file, root,
-             {"domain_id", "qos_file", "clock", "status_period_s", "components",
-              kNetworkKey, kSecurityKey},
+             {"domain_id", "qos_file", "clock", "status_period_s", "components", kNetworkKey,
+              kSecurityKey},
              context);
 
   dds::ParticipantOptions options;

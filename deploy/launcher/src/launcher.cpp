@@ -168,6 +168,8 @@ class Launcher {
     if (flags.interfaces) env["WBI_DDS_INTERFACES"] = joined(*flags.interfaces);
     if (flags.discovery_server) env["WBI_DDS_DISCOVERY_SERVER"] = *flags.discovery_server;
     if (flags.security_directory) env["WBI_DDS_SECURITY_DIRECTORY"] = *flags.security_directory;
+    // Each process joins as its own name, not as one identity for all.
+    env.erase("WBI_DDS_SECURITY_IDENTITY");
     // wbi_host stops when this process dies, even by SIGKILL (components/host/main.cpp).
     env[kLauncherPidVariable] = std::to_string(getpid());
     for (const auto& [key, value] : deploy_.environment) {
@@ -205,7 +207,8 @@ class Launcher {
     join.security = deploy_.security;
     dds::apply_environment(join);
     // A process's identity is its own; the launcher's is "launcher" whatever the environment says.
-    join.security.identity = deploy_.security.identity.empty() ? "launcher" : deploy_.security.identity;
+    join.security.identity =
+        deploy_.security.identity.empty() ? "launcher" : deploy_.security.identity;
     dds::apply(options_.join, join);
     return join;
   }

@@ -63,9 +63,10 @@ void read_network(const std::string& file, const YAML::Node& network,
   only_keys(file, network, "network", {"discovery", "peers", "interfaces", "server"});
   if (network["discovery"]) {
     try {
-      options.discovery = dds::discovery_named(
-          text(file, network["discovery"], "network.discovery"),
-          file + ":" + std::to_string(network["discovery"].Mark().line + 1) + ": network.discovery");
+      options.discovery =
+          dds::discovery_named(text(file, network["discovery"], "network.discovery"),
+                               file + ":" + std::to_string(network["discovery"].Mark().line + 1) +
+                                   ": network.discovery");
     } catch (const std::invalid_argument& error) {
       throw std::runtime_error(error.what());
     }
@@ -140,9 +141,9 @@ void read_join_options(const std::string& file, const std::string& identity,
   }
   if (const YAML::Node domain = root["domain_id"]) {
     try {
-      options.domain_id = dds::domain_id_named(domain.IsScalar() ? domain.Scalar() : "",
-                                               file + ":" + std::to_string(domain.Mark().line + 1) +
-                                                   ": domain_id");
+      options.domain_id =
+          dds::domain_id_named(domain.IsScalar() ? domain.Scalar() : "",
+                               file + ":" + std::to_string(domain.Mark().line + 1) + ": domain_id");
     } catch (const std::invalid_argument& error) {
       throw std::runtime_error(error.what());
     }
