@@ -2,7 +2,7 @@
 // one DDS participant and one clock.
 //
 //   # robot.yaml
-//   domain_id: 3              # optional; default WBI_DOMAIN_ID (else 0)
+//   domain_id: 3              # optional; WBI_DOMAIN_ID wins (else 0)
 //   clock: system             # system | simulation (wbi/clock)
 //   status_period_s: 1.0      # heartbeat period on wbi/status
 //   components:
