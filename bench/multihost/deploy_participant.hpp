@@ -1,13 +1,12 @@
-// A participant placed as a deploy file says (its `network` and `security`
-// blocks, with the WBI_DDS_* overrides), for the multi-host benches that run
-// next to a deploy's processes on one of its hosts.
+// A participant that joins a deployment as the wbi tools do (dds/README.md,
+// "Joining a deployment": the deploy file, then the WBI_* environment), for the
+// multi-host benches that run next to a deploy's processes on one of its hosts.
 #pragma once
 
 #include <memory>
 #include <string>
 
-#include <yaml-cpp/yaml.h>
-
+#include <wbi/dds/join_options.hpp>
 #include <wbi/dds/participant.hpp>
 #include <wbi/deploy/placement.hpp>
 
@@ -20,7 +19,10 @@ inline dds::ParticipantOptions deploy_participant_options(const std::string& dep
                                                           const std::string& identity) {
   dds::ParticipantOptions options;
   options.name = name;
-  deploy::read_placement(YAML::LoadFile(deploy_file), deploy_file, identity, options);
+  deploy::read_join_options(deploy_file, identity, options);
+  // The bench's own identity, whatever the file's processes use.
+  options.security.identity = identity;
+  dds::apply_environment(options);
   return options;
 }
 

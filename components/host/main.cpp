@@ -13,6 +13,7 @@
 #include <pthread.h>
 
 #include <wbi/dds/participant.hpp>
+#include <wbi/deploy/placement.hpp>
 #include <wbi/launch/launcher.hpp>
 #include <wbi/runtime/builtin.hpp>
 #include <wbi/runtime/host.hpp>
@@ -62,8 +63,11 @@ int main(int argc, char** argv) {
   // components as SIGTERM does, then exit with its code.
   wbi::runtime::set_process_exit_handler([](int) { ::kill(::getpid(), SIGTERM); });
   try {
-    auto host_ptr = from_deploy ? std::make_unique<wbi::runtime::Host>(argv[1], argv[3], registry)
-                                : std::make_unique<wbi::runtime::Host>(argv[1], registry);
+    // The deploy reader turns the file's network and security blocks into join options.
+    const wbi::runtime::PlacementReader placement = wbi::deploy::read_placement;
+    auto host_ptr =
+        from_deploy ? std::make_unique<wbi::runtime::Host>(argv[1], argv[3], registry, placement)
+                    : std::make_unique<wbi::runtime::Host>(argv[1], registry, placement);
     auto& host = *host_ptr;
     host.start();
     std::cout << "wbi_host: running " << host.size() << " component(s) from " << argv[1]

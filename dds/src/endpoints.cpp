@@ -301,6 +301,10 @@ Reader::Reader(Participant& participant, const std::string& topic, fdds::TopicDa
     qos.durability().kind = overrides.transient_local ? fdds::TRANSIENT_LOCAL_DURABILITY_QOS
                                                       : fdds::VOLATILE_DURABILITY_QOS;
   }
+  if (overrides.history_depth > 0) {
+    qos.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
+    qos.history().depth = overrides.history_depth;
+  }
   fdds::Topic& dds_topic = impl_->participant.acquire_topic(topic, type);
   const auto mask = fdds::StatusMask::subscription_matched()
                     << fdds::StatusMask::data_available()

@@ -1,4 +1,5 @@
 #include "wbi/dds/participant.hpp"
+#include "wbi/dds/join_options.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -47,13 +48,7 @@ int domain_id_from_environment() {
   if (text == nullptr || *text == '\0') {
     return 0;
   }
-  char* end = nullptr;
-  const long id = std::strtol(text, &end, 10);
-  if (*end != '\0' || id < 0 || id > 232) {
-    throw std::invalid_argument(std::string("WBI_DOMAIN_ID must be an integer in [0, 232], got '") +
-                                text + "'");
-  }
-  return static_cast<int>(id);
+  return domain_id_named(text, "WBI_DOMAIN_ID");
 }
 
 namespace {
@@ -445,6 +440,7 @@ Participant::Participant(const std::string& name)
     : Participant([&] {
         ParticipantOptions options;
         options.name = name;
+        apply_environment(options);
         return options;
       }()) {}
 

@@ -6,6 +6,10 @@
 
 namespace wbi::dds {
 
+namespace {
+constexpr int kToolHistoryDepth = 256;  // samples a lagging tool thread may fall behind
+}  // namespace
+
 struct RawSubscriber::Impl : detail::ReaderSink {
   detail::RawBuffer buffer;
   Callback callback;
@@ -24,9 +28,14 @@ struct RawSubscriber::Impl : detail::ReaderSink {
 RawSubscriber::RawSubscriber(Participant& participant, const TopicInfo& topic, Callback callback,
                              ProducerPolicy producers)
     : impl_(std::make_unique<Impl>(std::move(callback))) {
-  impl_->reader = std::make_unique<detail::Reader>(
-      participant, topic.name, new detail::RawType(topic.type), qos::kStream, *impl_,
-      detail::matching_writers_of(topic), std::move(producers));
+  detail::ReaderOverrides overrides = detail::matching_writers_of(topic);
+  // The tools behind raw subscribers (wbi record, wbi topic hz) count or keep
+  // every sample: with the stream profile's depth 1, a sample that arrives
+  // while the tool's DDS thread is late replaces the one not yet taken.
+  overrides.history_depth = kToolHistoryDepth;
+  impl_->reader =
+      std::make_unique<detail::Reader>(participant, topic.name, new detail::RawType(topic.type),
+                                       qos::kStream, *impl_, overrides, std::move(producers));
 }
 
 ProducerCounts RawSubscriber::producers() const { return impl_->reader->producers(); }

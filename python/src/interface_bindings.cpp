@@ -15,7 +15,9 @@
 
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
+#include <wbi/dds/join_options.hpp>
 #include <wbi/dds_interface.hpp>
+#include <wbi/deploy/placement.hpp>
 
 #include "bindings.hpp"
 #include "numpy_out.hpp"
@@ -29,16 +31,6 @@ const Eigen::Vector3d kGravity(0.0, 0.0, -9.81);
 
 std::chrono::milliseconds milliseconds(double seconds) {
   return std::chrono::milliseconds(static_cast<std::int64_t>(seconds * 1000.0));
-}
-
-dds::Discovery discovery_from(const std::string& name) {
-  if (name == "localhost") {
-    return dds::Discovery::localhost;
-  }
-  if (name == "multicast") {
-    return dds::Discovery::multicast;
-  }
-  throw py::value_error("discovery is '" + name + "'; expected localhost or multicast");
 }
 
 DdsInterfaceOptions::ModelSource model_source_from(const std::string& name) {
@@ -88,15 +80,18 @@ class PythonInterface {
   std::unique_ptr<WholeBodyInterface> robot_;
 };
 
-PythonInterface make_interface(const std::string& robot, const std::string& urdf,
-                               const std::optional<std::vector<std::string>>& joints,
-                               const std::string& controller, const std::string& model,
-                               const std::map<std::string, double>& locked_positions,
-                               double max_age_s, double blocking_read_timeout_s,
-                               double model_timeout_s, std::optional<int> domain_id,
-                               const std::string& discovery, const std::string& participant_name,
-                               const std::string& qos_file,
-                               const std::map<std::string, double>& armature) {
+PythonInterface make_interface(
+    const std::string& robot, const std::string& urdf,
+    const std::optional<std::vector<std::string>>& joints, const std::string& controller,
+    const std::string& model, const std::map<std::string, double>& locked_positions,
+    double max_age_s, double blocking_read_timeout_s, double model_timeout_s,
+    std::optional<int> domain_id, const std::optional<std::string>& discovery,
+    const std::string& participant_name, const std::optional<std::string>& qos_file,
+    const std::map<std::string, double>& armature, const std::optional<std::string>& deploy,
+    const std::optional<std::vector<std::string>>& peers,
+    const std::optional<std::vector<std::string>>& interfaces,
+    const std::optional<std::string>& discovery_server, const std::optional<std::string>& security,
+    const std::optional<std::string>& identity) {
   DdsInterfaceOptions options;
   options.robot = robot;
   options.urdf = urdf;
@@ -107,12 +102,34 @@ PythonInterface make_interface(const std::string& robot, const std::string& urdf
   options.max_age_s = max_age_s;
   options.blocking_read_timeout = milliseconds(blocking_read_timeout_s);
   options.model_timeout = milliseconds(model_timeout_s);
-  if (domain_id) {
-    options.participant.domain_id = *domain_id;
+  // Joins as every wbi tool does (dds/README.md, "Joining a deployment"):
+  // defaults < the deploy file < WBI_* environment < these keyword arguments.
+  dds::ParticipantOptions& join = options.participant;
+  join.name = participant_name;
+  try {
+    if (deploy) {
+      deploy::read_join_options(*deploy, identity.value_or(""), join);
+    }
+    dds::apply_environment(join);
+    dds::JoinOverrides keywords;
+    keywords.domain_id = domain_id;
+    if (discovery) {
+      keywords.discovery = dds::discovery_named(*discovery, "discovery");
+    }
+    keywords.peers = peers;
+    keywords.interfaces = interfaces;
+    keywords.discovery_server = discovery_server;
+    keywords.qos_file = qos_file;
+    keywords.security_directory = security;
+    keywords.identity = identity;
+    dds::apply(keywords, join);
+  } catch (const std::exception& error) {
+    throw py::value_error(error.what());
   }
-  options.participant.discovery = discovery_from(discovery);
-  options.participant.name = participant_name;
-  options.participant.qos_file = qos_file;
+  if (join.security.enabled() && join.security.identity.empty()) {
+    throw py::value_error("the deployment is secured (" + join.security.directory +
+                          "): give identity=NAME, an identity of that directory");
+  }
   PythonInterface result(options);
   if (joints) {
     result.robot().add_joints(*joints);
@@ -456,15 +473,20 @@ void bind_interface(py::module_& module) {
       module, "DdsInterface",
       "The whole-body interface of a robot over DDS (make_dds_interface). Keyword options as "
       "DdsInterfaceOptions; joints: the controlled joints (add_joints), in the order of every "
-      "joint vector. Call init() before reading.");
+      "joint vector. Joining: deploy (a deploy file), domain_id, discovery, peers, interfaces, "
+      "discovery_server, qos_file, security, identity, above the WBI_* environment "
+      "(dds/README.md). Call init() before reading.");
   interface
       .def(py::init(&make_interface), arg("robot"), arg("urdf") = "", arg("joints") = py::none(),
            arg("controller") = "controller", arg("model") = "local",
            arg("locked_positions") = std::map<std::string, double>{}, arg("max_age_s") = 0.1,
            arg("blocking_read_timeout_s") = 1.0, arg("model_timeout_s") = 0.2,
-           arg("domain_id") = py::none(), arg("discovery") = "localhost",
-           arg("participant_name") = "wbi_python", arg("qos_file") = "",
-           arg("armature") = std::map<std::string, double>{})
+           arg("domain_id") = py::none(), arg("discovery") = py::none(),
+           arg("participant_name") = "wbi_python", arg("qos_file") = py::none(),
+           arg("armature") = std::map<std::string, double>{}, arg("deploy") = py::none(),
+           arg("peers") = py::none(), arg("interfaces") = py::none(),
+           arg("discovery_server") = py::none(), arg("security") = py::none(),
+           arg("identity") = py::none())
       .def(
           "add_joints",
           [](PythonInterface& self, const IdList& joints) { self.robot().add_joints(joints); },

@@ -321,4 +321,25 @@ TEST_F(LaunchTest, BadDeployFileFailsWithItsName) {
       << launch.output();
 }
 
+// The join flags of `wbi launch` reach every process it starts, above the
+// deploy file's domain and the environment (dds/README.md, "Joining a deployment").
+TEST_F(LaunchTest, JoinFlagsReachEveryProcess) {
+  const auto deploy = write("joined.yaml",
+                            "domain_id: 3\n"
+                            "processes:\n"
+                            "  - name: shower\n"
+                            "    command: [sh, -c, \"echo joined $WBI_DOMAIN_ID $WBI_DDS_DISCOVERY "
+                            "$WBI_DDS_PEERS ${WBI_DDS_SECURITY_IDENTITY:-none}\"]\n"
+                            "    required: false\n");
+  ChildProcess launch(wbi_exe(),
+                      {"launch", deploy.string(), "--duration", "1", "--domain", "7", "--peers",
+                       "10.9.0.1,10.9.0.2"},
+                      {"WBI_DOMAIN_ID=5", "WBI_DDS_SECURITY_IDENTITY=someone"});
+  const auto code = launch.wait(60s);
+  ASSERT_TRUE(code.has_value());
+  const std::string out = launch.output();
+  // Each process's identity is its own name: the variable is not passed on.
+  EXPECT_TRUE(contains(out, "joined 7 peers 10.9.0.1,10.9.0.2 none")) << out;
+}
+
 }  // namespace

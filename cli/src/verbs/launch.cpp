@@ -3,6 +3,7 @@
 
 #include <wbi/launch/launcher.hpp>
 
+#include "../join_options.hpp"
 #include "../options.hpp"
 #include "verbs.hpp"
 
@@ -18,12 +19,15 @@ int run_launch(Args args) {
   options.positional("FILE", "deploy file (YAML)");
   options.option("duration", "SECONDS", "stop everything after this long (0: no limit)", "0");
   options.option("grace", "SECONDS", "time between SIGTERM and SIGKILL when stopping", "5");
+  // Above the file's blocks and the environment, for every process started.
+  add_join_options(options, false);
   if (!options.parse(args)) {
     return kExitOk;
   }
   launch::LaunchOptions launch_options;
   launch_options.duration_s = options.get_double("duration");
   launch_options.stop_grace_s = options.get_double("grace");
+  launch_options.join = join_flags(options);
   if (launch_options.duration_s < 0 || launch_options.stop_grace_s < 0) {
     throw UsageError("--duration and --grace must be >= 0");
   }

@@ -20,6 +20,7 @@
 #include <wbi/dds/subscriber.hpp>
 #include <wbi/recording/player.hpp>
 
+#include "../join_options.hpp"
 #include "../options.hpp"
 #include "../terminal.hpp"
 #include "verbs.hpp"
@@ -130,7 +131,7 @@ int run_play(Args raw_args) {
                  "play at SCHED_FIFO priority N (1-99), on time under load (needs "
                  "CAP_SYS_NICE; else a warning; 0: off)",
                  "0");
-  options.option("domain", "ID", "DDS domain id (default: WBI_DOMAIN_ID, else 0)");
+  add_join_options(options);
   std::vector<std::string> args(raw_args.begin(), raw_args.end());
   const bool wants_help = std::find(args.begin(), args.end(), "--help") != args.end() ||
                           std::find(args.begin(), args.end(), "-h") != args.end();
@@ -168,13 +169,23 @@ int run_play(Args raw_args) {
     throw std::runtime_error(player_options.file.string() + ": no such file");
   }
 
-  dds::ParticipantOptions participant_options;
-  participant_options.name = "wbi play";
-  if (options.has("domain")) {
-    participant_options.domain_id = static_cast<int>(options.get_int("domain"));
-  }
+  // No default identity: on a secured deployment, play publishes, so the
+  // user names an identity allowed to publish what it replays.
+  const dds::ParticipantOptions participant_options = join_options(options, "wbi play", "");
   dds::Participant participant(participant_options);
-  recording::Player player(participant, player_options);
+  std::optional<recording::Player> made;
+  try {
+    made.emplace(participant, player_options);
+  } catch (const std::runtime_error& error) {
+    if (!participant_options.security.enabled()) {
+      throw;
+    }
+    // Access control refuses a writer the identity's permissions do not grant.
+    throw std::runtime_error("identity '" + participant_options.security.identity +
+                             "' may not publish what this recording holds (" + error.what() +
+                             "): give --identity NAME of an identity allowed to publish it");
+  }
+  recording::Player& player = *made;
   if (options.has("paused")) {
     player.pause();
   }

@@ -13,6 +13,7 @@
 
 #include <wbi/recording/recorder.hpp>
 
+#include "../join_options.hpp"
 #include "../options.hpp"
 #include "../terminal.hpp"
 #include "verbs.hpp"
@@ -76,7 +77,7 @@ int run_record(Args args) {
                  "start a new file past this size; files are STEM_0.mcap, STEM_1.mcap, ...");
   options.option("compression", "KIND", "chunk compression: none, zstd or lz4", "zstd");
   options.option("queue", "N", "samples that may wait for the writer thread before drops", "16384");
-  options.option("domain", "ID", "DDS domain id (default: WBI_DOMAIN_ID, else 0)");
+  add_join_options(options, true, "observer");
   if (!options.parse(args)) {
     return kExitOk;
   }
@@ -113,11 +114,9 @@ int run_record(Args args) {
   recorder_options.queue_capacity = static_cast<std::size_t>(queue);
   recorder_options.log = [](const std::string& line) { std::cerr << line << std::endl; };
 
-  dds::ParticipantOptions participant_options;
-  participant_options.name = "wbi record";
-  if (options.has("domain")) {
-    participant_options.domain_id = static_cast<int>(options.get_int("domain"));
-  }
+  // On a secured deployment the recorder joins as the observer (subscribe only).
+  const dds::ParticipantOptions participant_options =
+      join_options(options, "wbi record", "observer");
   std::signal(SIGINT, on_record_signal);
   std::signal(SIGTERM, on_record_signal);
   dds::Participant participant(participant_options);

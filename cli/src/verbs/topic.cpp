@@ -13,6 +13,7 @@
 #include <wbi/dds/raw_subscriber.hpp>
 #include <wbi/dds/topic_echo.hpp>
 
+#include "../join_options.hpp"
 #include "../options.hpp"
 #include "verbs.hpp"
 
@@ -26,24 +27,16 @@ using std::chrono::nanoseconds;
 
 nanoseconds seconds(double s) { return duration_cast<nanoseconds>(duration<double>(s)); }
 
+// On a secured deployment, the topic verbs look as the observer (subscribe only).
 dds::ParticipantOptions participant_options(const Options& options) {
-  dds::ParticipantOptions participant;
-  participant.name = "wbi topic";
-  if (auto domain = options.get_optional("domain")) {
-    participant.domain_id = static_cast<int>(options.get_int("domain"));
-  }
-  return participant;
-}
-
-void add_domain_option(Options& options) {
-  options.option("domain", "ID", "DDS domain id (default: WBI_DOMAIN_ID, else 0)");
+  return join_options(options, "wbi topic", "observer");
 }
 
 int run_list(Args args) {
   Options options("wbi topic list [options]",
                   "Lists the topics that other participants on the domain publish or subscribe,\n"
                   "with their type and the number of writers and readers.");
-  add_domain_option(options);
+  add_join_options(options, true, "observer");
   options.option("wait", "SECONDS", "how long to listen to discovery", "1.0");
   if (!options.parse(args)) {
     return kExitOk;
@@ -82,7 +75,7 @@ int run_echo(Args args) {
                   "Prints every sample of TOPIC as YAML, separated by '---'. The topic's type\n"
                   "is learnt from discovery; it must be a wbi message type.");
   options.positional("TOPIC", "topic name, e.g. wbi/arm/sensors");
-  add_domain_option(options);
+  add_join_options(options, true, "observer");
   options.option("count", "N", "exit after N samples (0: until Ctrl-C)", "0");
   options.option("timeout", "SECONDS", "give up when the topic is not found within this time", "5");
   if (!options.parse(args)) {
@@ -140,7 +133,7 @@ int run_hz(Args args) {
                   "Prints the rate at which samples of TOPIC arrive, once per window:\n"
                   "rate, largest gap between samples, bandwidth. Works for any type.");
   options.positional("TOPIC", "topic name, e.g. wbi/arm/sensors");
-  add_domain_option(options);
+  add_join_options(options, true, "observer");
   options.option("window", "SECONDS", "length of a reporting window", "1.0");
   options.option("duration", "SECONDS", "stop after this long (0: until Ctrl-C)", "0");
   options.option("timeout", "SECONDS", "give up when the topic is not found within this time", "5");

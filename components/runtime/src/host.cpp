@@ -6,12 +6,16 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <wbi/dds/join_options.hpp>
 #include <wbi/dds/participant.hpp>
-#include <wbi/deploy/placement.hpp>
 
 namespace wbi::runtime {
 
 namespace {
+
+// The deploy file's keys that the placement reader handles.
+constexpr const char* kNetworkKey = "network";
+constexpr const char* kSecurityKey = "security";
 
 std::string at(const std::string& file, const YAML::Node& node) {
   return file + ":" + std::to_string(node.Mark().line + 1);
@@ -53,10 +57,13 @@ T scalar(const std::string& file, const YAML::Node& map, const std::string& key,
 
 }  // namespace
 
-Host::Host(const std::string& file, const Registry& registry) { load(file, false, file, registry); }
+Host::Host(const std::string& file, const Registry& registry, PlacementReader placement) {
+  load(file, false, file, registry, "", placement);
+}
 
-Host::Host(const std::string& deploy_file, const std::string& process, const Registry& registry) {
-  load(deploy_file, false, deploy_file, registry, process);
+Host::Host(const std::string& deploy_file, const std::string& process, const Registry& registry,
+           PlacementReader placement) {
+  load(deploy_file, false, deploy_file, registry, process, placement);
 }
 
 namespace {
@@ -76,8 +83,7 @@ YAML::Node process_of_deploy(const std::string& file, const YAML::Node& deploy,
         }
         YAML::Node host;
         host["components"] = entry["components"];
-        for (const char* key :
-             {"domain_id", "qos_file", wbi::deploy::kNetworkKey, wbi::deploy::kSecurityKey}) {
+        for (const char* key : {"domain_id", "qos_file", kNetworkKey, kSecurityKey}) {
           if (deploy[key]) {
             host[key] = deploy[key];
           }
@@ -99,7 +105,8 @@ std::unique_ptr<Host> Host::from_string(const std::string& yaml, const Registry&
 }
 
 void Host::load(const std::string& source, bool is_text, const std::string& file,
-                const Registry& registry, const std::string& process) {
+                const Registry& registry, const std::string& process,
+                const PlacementReader& placement) {
   YAML::Node root;
   try {
     root = is_text ? YAML::Load(source) : YAML::LoadFile(source);
@@ -116,8 +123,8 @@ void Host::load(const std::string& source, bool is_text, const std::string& file
   }
   const std::string context = "host file";
   check_keys(file, root,
-             {"domain_id", "qos_file", "clock", "status_period_s", "components",
-              wbi::deploy::kNetworkKey, wbi::deploy::kSecurityKey},
+             {"domain_id", "qos_file", "clock", "status_period_s", "components", kNetworkKey,
+              kSecurityKey},
              context);
 
   dds::ParticipantOptions options;
@@ -198,8 +205,20 @@ void Host::load(const std::string& source, bool is_text, const std::string& file
   options.name = "wbi_host";
   try {
     // Across hosts and DDS Security (deploy/README.md); the identity is the process's name.
-    wbi::deploy::read_placement(root, file, process, options);
-  } catch (const std::runtime_error& error) {
+    if (placement) {
+      placement(root, file, process, options);
+    } else {
+      for (const char* key : {kNetworkKey, kSecurityKey}) {
+        if (root[key]) {
+          throw ParameterError(at(file, root[key]) + ": host file: '" + key +
+                               "' needs a placement reader (wbi_host has one)");
+        }
+      }
+    }
+    dds::apply_environment(options);
+  } catch (const ParameterError&) {
+    throw;
+  } catch (const std::exception& error) {
     throw ParameterError(error.what());
   }
   participant_ = std::make_unique<dds::Participant>(options);

@@ -19,6 +19,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <wbi/dds/join_options.hpp>
 #include <wbi/dds/participant.hpp>
 
 #include "heartbeats.hpp"
@@ -143,12 +144,32 @@ class Launcher {
       const auto eq = entry.find('=');
       env[entry.substr(0, eq)] = eq == std::string::npos ? "" : entry.substr(eq + 1);
     }
-    if (deploy_.domain_id) {
-      env["WBI_DOMAIN_ID"] = std::to_string(*deploy_.domain_id);
+    // The processes read the deploy file too, then the environment: the
+    // launcher's resolved domain and QoS file, and its flags, go there, so
+    // that every process joins as the launcher did (dds/README.md).
+    const dds::ParticipantOptions join = join_options();
+    env["WBI_DOMAIN_ID"] = std::to_string(join.domain_id);
+    if (!join.qos_file.empty()) {
+      env["WBI_QOS_FILE"] = join.qos_file;
     }
-    if (!deploy_.qos_file.empty()) {
-      env["WBI_QOS_FILE"] = deploy_.qos_file.string();
+    const dds::JoinOverrides& flags = options_.join;
+    auto joined = [](const std::vector<std::string>& list) {
+      std::string text;
+      for (const auto& item : list) {
+        text += (text.empty() ? "" : ",") + item;
+      }
+      return text;
+    };
+    if (flags.discovery) env["WBI_DDS_DISCOVERY"] = dds::discovery_name(*flags.discovery);
+    if (flags.peers || flags.discovery_server || flags.interfaces) {
+      env["WBI_DDS_DISCOVERY"] = dds::discovery_name(join.discovery);
     }
+    if (flags.peers) env["WBI_DDS_PEERS"] = joined(*flags.peers);
+    if (flags.interfaces) env["WBI_DDS_INTERFACES"] = joined(*flags.interfaces);
+    if (flags.discovery_server) env["WBI_DDS_DISCOVERY_SERVER"] = *flags.discovery_server;
+    if (flags.security_directory) env["WBI_DDS_SECURITY_DIRECTORY"] = *flags.security_directory;
+    // Each process joins as its own name, not as one identity for all.
+    env.erase("WBI_DDS_SECURITY_IDENTITY");
     // wbi_host stops when this process dies, even by SIGKILL (components/host/main.cpp).
     env[kLauncherPidVariable] = std::to_string(getpid());
     for (const auto& [key, value] : deploy_.environment) {
@@ -168,18 +189,28 @@ class Launcher {
   // hears heartbeats; the deploy's domain, QoS, network and security.
   dds::Participant& participant() {
     if (!participant_) {
-      dds::ParticipantOptions participant_options;
-      participant_options.name = "wbi launch";
-      if (deploy_.domain_id) {
-        participant_options.domain_id = *deploy_.domain_id;
-      }
-      participant_options.qos_file = deploy_.qos_file.string();
-      participant_options.discovery = deploy_.discovery;
-      participant_options.network = deploy_.network;
-      participant_options.security = deploy_.security;
-      participant_.emplace(participant_options);
+      participant_.emplace(join_options());
     }
     return *participant_;
+  }
+
+  // defaults < deploy file < environment < flags (dds/README.md, "Joining a deployment").
+  dds::ParticipantOptions join_options() const {
+    dds::ParticipantOptions join;
+    join.name = "wbi launch";
+    if (deploy_.domain_id) {
+      join.domain_id = *deploy_.domain_id;
+    }
+    join.qos_file = deploy_.qos_file.string();
+    join.discovery = deploy_.discovery;
+    join.network = deploy_.network;
+    join.security = deploy_.security;
+    dds::apply_environment(join);
+    // A process's identity is its own; the launcher's is "launcher" whatever the environment says.
+    join.security.identity =
+        deploy_.security.identity.empty() ? "launcher" : deploy_.security.identity;
+    dds::apply(options_.join, join);
+    return join;
   }
 
   bool wait_until_ready(const Managed& process) {

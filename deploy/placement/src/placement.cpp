@@ -6,20 +6,18 @@
 #include <stdexcept>
 #include <vector>
 
+#include <wbi/dds/join_options.hpp>
+
 namespace wbi::deploy {
 
 namespace {
-
-const char* environment(const char* name) {
-  const char* value = std::getenv(name);
-  return value != nullptr && *value != '\0' ? value : nullptr;
-}
 
 [[noreturn]] void fail(const std::string& file, const YAML::Node& node, const std::string& field,
                        const std::string& what) {
   std::string where = file;
   if (node.IsDefined()) {
-    where += ":" + std::to_string(node.Mark().line + 1);
+    where += ':';  // not ":" + to_string(...): GCC 12's -Wrestrict false positive at -O3
+    where += std::to_string(node.Mark().line + 1);
   }
   throw std::runtime_error(where + ": " + field + ": " + what);
 }
@@ -60,35 +58,18 @@ std::vector<std::string> text_list(const std::string& file, const YAML::Node& no
   return out;
 }
 
-dds::Discovery discovery_named(const std::string& name, const std::string& where) {
-  if (name == "localhost") return dds::Discovery::localhost;
-  if (name == "multicast") return dds::Discovery::multicast;
-  if (name == "peers") return dds::Discovery::peers;
-  if (name == "server") return dds::Discovery::server;
-  throw std::runtime_error(where + ": must be localhost, multicast, peers or server, got '" + name +
-                           "'");
-}
-
-std::vector<std::string> comma_list(const std::string& value) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  while (start <= value.size()) {
-    const auto end = std::min(value.find(',', start), value.size());
-    if (end > start) {
-      out.push_back(value.substr(start, end - start));
-    }
-    start = end + 1;
-  }
-  return out;
-}
-
 void read_network(const std::string& file, const YAML::Node& network,
                   dds::ParticipantOptions& options) {
   only_keys(file, network, "network", {"discovery", "peers", "interfaces", "server"});
   if (network["discovery"]) {
-    options.discovery = discovery_named(
-        text(file, network["discovery"], "network.discovery"),
-        file + ":" + std::to_string(network["discovery"].Mark().line + 1) + ": network.discovery");
+    try {
+      options.discovery =
+          dds::discovery_named(text(file, network["discovery"], "network.discovery"),
+                               file + ":" + std::to_string(network["discovery"].Mark().line + 1) +
+                                   ": network.discovery");
+    } catch (const std::invalid_argument& error) {
+      throw std::runtime_error(error.what());
+    }
   } else {
     options.discovery = dds::Discovery::multicast;  // a network block means other hosts
   }
@@ -103,49 +84,36 @@ void read_network(const std::string& file, const YAML::Node& network,
   }
 }
 
-// The security block; WBI_DDS_SECURITY_DIRECTORY replaces its directory (and
-// turns security on for a file without the block).
+// The security block. Without one, the identity is still recorded, so that a
+// security directory given later (environment, flags) turns security on as it.
 void read_security(const std::string& file, const YAML::Node& root, const std::string& identity,
                    dds::ParticipantOptions& options) {
+  if (options.security.identity.empty()) {
+    options.security.identity = identity;
+  }
   const YAML::Node security = root[kSecurityKey];
-  const char* directory_override = environment("WBI_DDS_SECURITY_DIRECTORY");
-  if (!security && directory_override == nullptr) {
+  if (!security) {
     return;
   }
-  std::filesystem::path directory;
-  std::string identity_name = identity;
-  if (security) {
-    only_keys(file, security, "security", {"directory", "identity"});
-    if (!security["directory"] && directory_override == nullptr) {
-      fail(file, security, "security.directory", "missing");
-    }
-    if (security["directory"]) {
-      directory = text(file, security["directory"], "security.directory");
-      if (directory.is_relative()) {
-        directory = std::filesystem::path(file).parent_path() / directory;
-      }
-    }
-    if (security["identity"]) {
-      identity_name = text(file, security["identity"], "security.identity");
-    }
+  only_keys(file, security, "security", {"directory", "identity"});
+  if (!security["directory"]) {
+    fail(file, security, "security.directory", "missing");
   }
-  const std::string where =
-      directory_override != nullptr
-          ? std::string("WBI_DDS_SECURITY_DIRECTORY")
-          : file + ":" + std::to_string(security.Mark().line + 1) + ": security.directory";
-  if (directory_override != nullptr) {
-    directory = directory_override;
+  std::filesystem::path directory = text(file, security["directory"], "security.directory");
+  if (directory.is_relative()) {
+    directory = std::filesystem::path(file).parent_path() / directory;
   }
-  if (!std::filesystem::is_directory(directory)) {
-    throw std::runtime_error(where + ": no such directory: " + directory.string() +
-                             " (create it with scripts/wbi-security-setup DEPLOY " +
-                             directory.string() + ")");
+  // Not checked here: the environment or a flag may replace it (a deploy file
+  // shipped without its keys); the participant names a missing file.
+  if (security["identity"]) {
+    options.security.identity = text(file, security["identity"], "security.identity");
+  } else if (!identity.empty()) {
+    options.security.identity = identity;
   }
-  if (identity_name.empty()) {
+  if (options.security.identity.empty()) {
     fail(file, security, "security.identity", "missing (no process name to default to)");
   }
   options.security.directory = directory.string();
-  options.security.identity = identity_name;
 }
 
 }  // namespace
@@ -156,18 +124,41 @@ void read_placement(const YAML::Node& root, const std::string& file, const std::
     read_network(file, network, options);
   }
   read_security(file, root, identity, options);
-  if (const char* value = environment("WBI_DDS_DISCOVERY")) {
-    options.discovery = discovery_named(value, "WBI_DDS_DISCOVERY");
+}
+
+void read_join_options(const std::string& file, const std::string& identity,
+                       dds::ParticipantOptions& options) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file);
+  } catch (const YAML::BadFile&) {
+    throw std::runtime_error(file + ": cannot read the deploy file");
+  } catch (const YAML::Exception& error) {
+    throw std::runtime_error(file + ":" + std::to_string(error.mark.line + 1) + ": " + error.msg);
   }
-  if (const char* value = environment("WBI_DDS_PEERS")) {
-    options.network.peers = comma_list(value);
+  if (!root.IsMap()) {
+    throw std::runtime_error(file + ": a deploy file is a map");
   }
-  if (const char* value = environment("WBI_DDS_INTERFACES")) {
-    options.network.interfaces = comma_list(value);
+  if (const YAML::Node domain = root["domain_id"]) {
+    try {
+      options.domain_id =
+          dds::domain_id_named(domain.IsScalar() ? domain.Scalar() : "",
+                               file + ":" + std::to_string(domain.Mark().line + 1) + ": domain_id");
+    } catch (const std::invalid_argument& error) {
+      throw std::runtime_error(error.what());
+    }
   }
-  if (const char* value = environment("WBI_DDS_DISCOVERY_SERVER")) {
-    options.network.discovery_server = value;
+  if (const YAML::Node qos_file = root["qos_file"]) {
+    std::filesystem::path path = text(file, qos_file, "qos_file");
+    if (path.is_relative()) {
+      path = std::filesystem::path(file).parent_path() / path;
+    }
+    if (!std::filesystem::exists(path)) {
+      fail(file, qos_file, "qos_file", "no such file: " + path.string());
+    }
+    options.qos_file = path.string();
   }
+  read_placement(root, file, identity, options);
 }
 
 }  // namespace wbi::deploy

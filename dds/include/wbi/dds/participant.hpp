@@ -83,7 +83,7 @@ struct ParticipantInfo {
 class Participant {
  public:
   explicit Participant(const ParticipantOptions& options = {});
-  // Default options (domain from WBI_DOMAIN_ID, localhost discovery) with this name.
+  // Default options with this name, then the WBI_* environment (dds::apply_environment).
   explicit Participant(const std::string& name);
   ~Participant();
   Participant(const Participant&) = delete;

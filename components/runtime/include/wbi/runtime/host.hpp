@@ -2,7 +2,7 @@
 // one DDS participant and one clock.
 //
 //   # robot.yaml
-//   domain_id: 3              # optional; default WBI_DOMAIN_ID (else 0)
+//   domain_id: 3              # optional; WBI_DOMAIN_ID wins (else 0)
 //   clock: system             # system | simulation (wbi/clock)
 //   status_period_s: 1.0      # heartbeat period on wbi/status
 //   components:
@@ -16,6 +16,7 @@
 // duplicate names, unknown types, and the components' own parameter errors.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,21 +25,38 @@
 #include "wbi/runtime/registry.hpp"
 #include "wbi/runtime/runner.hpp"
 
+namespace YAML {
+class Node;
+}
+
 namespace wbi::dds {
 class Participant;
-}
+struct ParticipantOptions;
+}  // namespace wbi::dds
 
 namespace wbi::runtime {
 
+// Reads a host file's `network` and `security` blocks into the participant's
+// options (the deploy reader does: wbi::deploy::read_placement), for the
+// process named `identity`. Injected, so that the runtime does not depend on
+// the deploy-file reader: it produces join options; the runtime uses them.
+using PlacementReader =
+    std::function<void(const YAML::Node& root, const std::string& file,
+                       const std::string& identity, dds::ParticipantOptions& options)>;
+
+// The participant joins as dds/README.md "Joining a deployment" says:
+// defaults < the file (domain_id, qos_file, network, security) < WBI_* environment.
 class Host {
  public:
   // Reads the file and creates the participant, the clock and the components
   // (UNCONFIGURED). Throws ParameterError (bad file) or std::invalid_argument.
-  Host(const std::string& file, const Registry& registry);
+  // Without a placement reader, a file with `network` or `security` is refused.
+  Host(const std::string& file, const Registry& registry, PlacementReader placement = {});
   // The components of one process of a deploy file (deploy/README.md): the
   // entry of `processes` named `process`, its `components` list in the format
   // above. Errors still name the deploy file and its lines.
-  Host(const std::string& deploy_file, const std::string& process, const Registry& registry);
+  Host(const std::string& deploy_file, const std::string& process, const Registry& registry,
+       PlacementReader placement = {});
   // Same, from YAML text; `file` names it in messages.
   static std::unique_ptr<Host> from_string(const std::string& yaml, const Registry& registry,
                                            const std::string& file = "<string>");
@@ -65,7 +83,8 @@ class Host {
   };
   Host() = default;
   void load(const std::string& yaml_or_file, bool is_text, const std::string& file,
-            const Registry& registry, const std::string& process = "");
+            const Registry& registry, const std::string& process = "",
+            const PlacementReader& placement = {});
 
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<Clock> clock_;

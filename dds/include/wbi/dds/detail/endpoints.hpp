@@ -56,6 +56,9 @@ struct ReaderOverrides {
   bool set = false;
   bool reliable = false;
   bool transient_local = false;
+  // > 0: KEEP_LAST of this depth instead of the profile's (a recorder wants
+  // every sample, also when its thread lags a burst behind).
+  int history_depth = 0;
 };
 
 class Writer {

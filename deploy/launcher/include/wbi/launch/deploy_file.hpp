@@ -1,7 +1,7 @@
 // A deploy file: which processes run, what each hosts, how they start, stop
 // and restart. YAML; every error names the file, the line and the field.
 //
-//   domain_id: 7                      # optional: else WBI_DOMAIN_ID, else 0
+//   domain_id: 7                      # optional; WBI_DOMAIN_ID and --domain win
 //   qos_file: my_qos.xml              # optional, relative to the deploy file
 //   environment: {KEY: value}         # for every process
 //   network: {...}                    # across hosts; security: {...}  (wbi/deploy/placement.hpp)

@@ -9,11 +9,16 @@
 
 #include "wbi/launch/deploy_file.hpp"
 
+#include <wbi/dds/join_options.hpp>
+
 namespace wbi::launch {
 
 struct LaunchOptions {
   double duration_s = 0.0;    // stop after this long; 0: until something else stops the launch
   double stop_grace_s = 5.0;  // SIGTERM → SIGKILL delay
+  // Command-line join options (`wbi launch --domain ...`): above the deploy
+  // file and the environment, for the launcher and every process it starts.
+  dds::JoinOverrides join;
 };
 
 // Returns the exit code: 0, 1 when a required process failed or could not

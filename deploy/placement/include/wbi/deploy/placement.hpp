@@ -10,10 +10,10 @@
 //     directory: secure_demo              # relative to the file; from scripts/wbi-security-setup
 //     identity: controller                # default: the process's name
 //
-// WBI_DDS_DISCOVERY, WBI_DDS_PEERS, WBI_DDS_INTERFACES (comma-separated
-// lists), WBI_DDS_DISCOVERY_SERVER and WBI_DDS_SECURITY_DIRECTORY, when set,
-// replace the file's values: the same deploy file on another network or with
-// other keys (a security directory from the environment turns security on).
+// The file is one layer of the join options (dds/README.md, "Joining a
+// deployment"): callers apply the WBI_DDS_* environment (dds::apply_environment)
+// and their command-line flags on top, so the same deploy file serves on
+// another network or with other keys.
 #pragma once
 
 #include <string>
@@ -26,9 +26,16 @@ namespace wbi::deploy {
 
 // Reads root["network"] and root["security"] into `options` (discovery,
 // network, security). `identity` names the participant's identity when the
-// security block does not. Throws std::runtime_error "FILE:LINE: field: what".
+// security block does not (and is recorded without one, for a security
+// directory given later). Throws std::runtime_error "FILE:LINE: field: what".
 void read_placement(const YAML::Node& root, const std::string& file, const std::string& identity,
                     dds::ParticipantOptions& options);
+
+// Joins the deployment `file` describes: its domain_id, qos_file (relative to
+// it), network and security blocks, on top of `options`. For tools pointed at
+// a deploy file (`wbi ... --deploy FILE`). Throws std::runtime_error "FILE:LINE: ...".
+void read_join_options(const std::string& file, const std::string& identity,
+                       dds::ParticipantOptions& options);
 
 // The keys read_placement handles, for the callers' unknown-key checks.
 inline constexpr const char* kNetworkKey = "network";

@@ -1,0 +1,175 @@
+#!/usr/bin/env bash
+# The `wbi` tools joining a deployment spread over two "hosts" (network
+# namespaces joined by a veth pair, tests/multihost/netns_pair.sh): the robot
+# of deploy/multihost_lockstep.yaml on host A; the estimator, the model service
+# and the controller on host B; the tool on host B, given only the deploy file
+# and the join flags (dds/README.md, "Joining a deployment").
+#   tools_across_hosts.sh BINARY_DIR SOURCE_DIR MODE
+# MODE: multicast  `wbi topic list --deploy FILE` lists the deployment's topics
+#       peers      the same with static peers (--peers), multicast off on the link
+#       server     the same through a discovery server (--discovery-server) on host A
+#       record     `wbi record --deploy FILE` records the two-host run; `wbi bag info`
+#                  counts >= 99 % of the sensor samples the robot published
+#       secure     the same secured (scripts/wbi-security-setup): the observer records,
+#                  a tool without identity sees no topic and no data, the observer's
+#                  command is refused and never reaches the robot
+# Exit 0 pass, 1 fail, 77 skipped (no root, or no fastdds tool for "server").
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+source "$here/netns_pair.sh"
+[[ $# -eq 3 ]] || { sed -n '2,17p' "$0"; exit 2; }
+bin="$1/bin" deploy="$2/deploy/multihost_lockstep.yaml" mode="$3"
+netns_pair_create || exit $?
+logs=$(mktemp -d /tmp/wbi-tools.XXXXXX)
+NETNS_TEMP_DIR=$logs
+
+overrides=() tool_flags=()
+case "$mode" in
+  multicast|record) ;;
+  peers)
+    overrides=(WBI_DDS_DISCOVERY=peers "WBI_DDS_PEERS=$HOST_A_ADDRESS,$HOST_B_ADDRESS")
+    tool_flags=(--peers "$HOST_A_ADDRESS,$HOST_B_ADDRESS")
+    ip -n "$NETNS_A" link set "$VETH_A" multicast off
+    ip -n "$NETNS_B" link set "$VETH_B" multicast off ;;
+  server)
+    command -v fastdds >/dev/null || { echo "skipped: no fastdds tool (apt-get install fastdds-tools)"; exit 77; }
+    overrides=(WBI_DDS_DISCOVERY=server "WBI_DDS_DISCOVERY_SERVER=$HOST_A_ADDRESS:11811")
+    tool_flags=(--discovery-server "$HOST_A_ADDRESS:11811")
+    on_host_a "$logs/server.log" stdbuf -oL fastdds discovery -i 0 -l "$HOST_A_ADDRESS" -p 11811
+    wait_for_text "$logs/server.log" "Server is running" 10 || { cat "$logs/server.log"; echo "FAIL: the discovery server did not start"; exit 1; } ;;
+  secure)
+    "$2/scripts/wbi-security-setup" "$deploy" "$logs/keys" >/dev/null
+    overrides=("WBI_DDS_SECURITY_DIRECTORY=$logs/keys")
+    tool_flags=(--security "$logs/keys") ;;
+  *) echo "unknown mode '$mode' (multicast, peers, server, record, secure)"; exit 2 ;;
+esac
+
+domain="WBI_DOMAIN_ID=${WBI_DOMAIN_ID:-0}"
+host() {  # host a|b PROCESS
+  "on_host_$1" "$logs/$2.log" env "$domain" "${overrides[@]}" \
+    stdbuf -oL "$bin/wbi_host" "$deploy" --process "$2"
+}
+# tool LOG ARGS...: `wbi ARGS... --deploy FILE FLAGS...` on host B, in the
+# background; the environment has only the domain (no WBI_DDS_*): the tool
+# joins through the deploy file and its flags alone.
+tool() {
+  local log=$1; shift
+  on_host_b "$log" env -u WBI_DDS_SECURITY_DIRECTORY "$domain" \
+    stdbuf -oL "$bin/wbi" "$@" --deploy "$deploy" "${tool_flags[@]}"
+}
+show_logs() { for log in "$logs"/*.log; do echo "== $(basename "$log")"; cat "$log"; done; }
+fail() { netns_stop_processes; show_logs; echo "FAIL: $* ($mode)"; exit 1; }
+
+# The robot's run: 3 s of simulated time at 1 kHz in lockstep, one sensor
+# sample per tick (deploy/robots/arm.yaml step 0.001, the deploy's duration_s 3).
+published=3000
+
+# sensors LOG FILE: wbi/arm/sensors messages in FILE, per `wbi bag info --json`.
+sensors_in() {
+  "$bin/wbi" bag info --json "$1" | python3 -c '
+import json, sys
+info = json.load(sys.stdin)
+print(sum(t["count"] for t in info["topics"] if t["name"] == "wbi/arm/sensors"))'
+}
+# stop PID: SIGTERM, then wait (bounded: netns_stop_processes kills later ones).
+stop() {
+  kill -TERM "$1" 2>/dev/null || true
+  for _ in $(seq 100); do kill -0 "$1" 2>/dev/null || return 0; sleep 0.1; done
+  return 1
+}
+
+if [[ $mode == record || $mode == secure ]]; then
+  # The recorders first.
+  tool "$logs/record.log" record -o "$logs/run.mcap" wbi/arm/sensors
+  recorder=$!
+  wait_for_text "$logs/record.log" "recording to" 10 || fail "wbi record did not start"
+  if [[ $mode == secure ]]; then
+    # A tool with no identity (no security directory): the plain domain.
+    on_host_b "$logs/record_plain.log" env "$domain" stdbuf -oL "$bin/wbi" record \
+      -o "$logs/plain.mcap" --all --deploy "$deploy"
+    plain_recorder=$!
+    wait_for_text "$logs/record_plain.log" "recording to" 10 || fail "the plain wbi record did not start"
+  fi
+fi
+if [[ $mode == record || $mode == secure ]]; then
+  # The robot before the rest: it publishes its first tick, then waits for the
+  # controller (lockstep, up to 2 s a tick); the controller starts once the
+  # recorder subscribes to the sensors, so no sample goes before the recorder hears it.
+  host a robot
+  wait_for_text "$logs/record.log" "recording wbi/arm/sensors" 15 || fail "wbi record on host B never found host A's wbi/arm/sensors"
+fi
+host b estimator
+host b model_service
+host b controller
+controller=$!
+[[ $mode == record || $mode == secure ]] || host a robot
+
+wait_for_text "$logs/controller.log" "t =   0.00" 30 || fail "the controller never received the robot's state"
+case "$mode" in
+  multicast|peers|server)
+    ip netns exec "$NETNS_B" env "$domain" "$bin/wbi" topic list --wait 2 --deploy "$deploy" \
+      "${tool_flags[@]}" >"$logs/topics.log" 2>&1 || fail "wbi topic list failed"
+    for topic in wbi/arm/sensors wbi/arm/commands wbi/arm/state wbi/arm/model/request; do
+      grep -q "^$topic " "$logs/topics.log" || fail "wbi topic list on host B did not list $topic"
+    done
+    # The robot, on host A, is the sensors' writer: the tool reached the other host.
+    grep -q "^wbi/arm/sensors .*writers: 1 " "$logs/topics.log" || fail "wbi topic list on host B did not see host A's writer of wbi/arm/sensors"
+    cat "$logs/topics.log"
+    echo "PASS: wbi topic list on host B lists the two-host deployment's $(wc -l <"$logs/topics.log") topics ($mode)"
+    exit 0 ;;
+esac
+
+if [[ $mode == secure ]]; then
+  # The observer may subscribe to the commands too: 1 s of them, to replay below.
+  ip netns exec "$NETNS_B" env "$domain" "$bin/wbi" record -o "$logs/commands.mcap" wbi/arm/commands \
+    --duration 1 --deploy "$deploy" --security "$logs/keys" >"$logs/record_commands.log" 2>&1 ||
+    fail "the observer could not record the commands"
+  commands=$("$bin/wbi" bag info --json "$logs/commands.mcap" | python3 -c 'import json,sys; print(json.load(sys.stdin)["messages"])')
+  ((commands > 0)) || fail "the observer recorded no command"
+fi
+wait_for_text "$logs/robot.log" "reached: stopped stepping" 40 || fail "the robot did not finish its simulated run"
+stop "$recorder" || fail "wbi record did not stop on SIGTERM"
+recorded=$(sensors_in "$logs/run.mcap") || fail "wbi bag info failed on the recording"
+echo "sensor samples: published $published, recorded on host B $recorded ($mode)"
+((recorded * 100 >= published * 99)) || fail "recorded $recorded of $published sensor samples (< 99 %)"
+
+if [[ $mode == secure ]]; then
+  # A tool without identity sees no topic and records no data.
+  ip netns exec "$NETNS_B" env "$domain" "$bin/wbi" topic list --wait 1 --deploy "$deploy" \
+    >"$logs/topics_plain.log" 2>&1 || fail "wbi topic list without identity failed"
+  [[ ! -s "$logs/topics_plain.log" ]] || fail "a tool without identity listed topics: $(head -1 "$logs/topics_plain.log")"
+  stop "$plain_recorder" || fail "the plain wbi record did not stop on SIGTERM"
+  plain=$("$bin/wbi" bag info --json "$logs/plain.mcap" | python3 -c 'import json,sys; print(json.load(sys.stdin)["messages"])')
+  ((plain == 0)) || fail "a recorder without identity recorded $plain messages"
+  # The observer may not command the robot: it replays the commands it
+  # recorded. The controller stops first, so that a command the robot's host
+  # hears could only be the observer's; a listener there, as the robot's identity.
+  stop "$controller" || fail "the controller did not stop"
+  on_host_a "$logs/robot_hears.log" env "$domain" stdbuf -oL "$bin/wbi" topic echo wbi/arm/commands \
+    --deploy "$deploy" --security "$logs/keys" --identity robot --timeout 10
+  listener=$!
+  set +e
+  ip netns exec "$NETNS_B" env "$domain" "$bin/wbi" play "$logs/commands.mcap" \
+    --deploy "$deploy" --security "$logs/keys" --identity observer >"$logs/play_observer.log" 2>&1
+  play_status=$?
+  # Without an identity, play says it needs one.
+  ip netns exec "$NETNS_B" env "$domain" "$bin/wbi" play "$logs/commands.mcap" \
+    --deploy "$deploy" --security "$logs/keys" >"$logs/play_nobody.log" 2>&1
+  nobody_status=$?
+  set -e
+  echo "wbi play as the observer (exit $play_status): $(grep "^wbi play:" "$logs/play_observer.log")"
+  echo "wbi play without identity (exit $nobody_status): $(cat "$logs/play_nobody.log")"
+  ((play_status != 0)) || fail "the observer's wbi play was not refused"
+  grep -q "identity 'observer' may not publish" "$logs/play_observer.log" || fail "the refusal does not say why"
+  # One line of wbi's (Fast DDS may log its own SECURITY error before it).
+  [[ $(grep -c "^wbi play:" "$logs/play_observer.log") -eq 1 ]] || fail "the refusal is not one line"
+  ((nobody_status != 0)) && grep -q -- "--identity NAME" "$logs/play_nobody.log" ||
+    fail "wbi play on a secured deployment without identity did not ask for one"
+  # The listener subscribed (it found the topic) and heard nothing.
+  stop "$listener" || true
+  grep -q -- "^---" "$logs/robot_hears.log" && fail "a command reached the robot's host: $(head -5 "$logs/robot_hears.log")"
+  grep -q "not found" "$logs/robot_hears.log" && fail "the listener on the robot's host never found wbi/arm/commands"
+  echo "PASS: secured: the observer recorded $recorded/$published sensor samples and $commands commands; a tool without identity saw no topic and recorded $plain messages; the observer's command was refused and never reached the robot's host"
+  exit 0
+fi
+echo "PASS: wbi record on host B recorded $recorded of $published sensor samples ($mode)"
