@@ -91,11 +91,16 @@ PythonInterface make_interface(
     const std::optional<std::vector<std::string>>& peers,
     const std::optional<std::vector<std::string>>& interfaces,
     const std::optional<std::string>& discovery_server, const std::optional<std::string>& security,
-    const std::optional<std::string>& identity) {
+    const std::optional<std::string>& identity, const std::string& claim) {
   DdsInterfaceOptions options;
   options.robot = robot;
   options.urdf = urdf;
   options.controller = controller;
+  const auto claim_mode = claim_from_text(claim);
+  if (!claim_mode) {
+    throw py::value_error("claim is '" + claim + "': expected 'claim', 'force' or 'none'");
+  }
+  options.claim = *claim_mode;
   options.model_source = model_source_from(model);
   options.locked_positions = locked_positions;
   options.armature = armature;
@@ -486,7 +491,7 @@ void bind_interface(py::module_& module) {
            arg("armature") = std::map<std::string, double>{}, arg("deploy") = py::none(),
            arg("peers") = py::none(), arg("interfaces") = py::none(),
            arg("discovery_server") = py::none(), arg("security") = py::none(),
-           arg("identity") = py::none())
+           arg("identity") = py::none(), arg("claim") = "claim")
       .def(
           "add_joints",
           [](PythonInterface& self, const IdList& joints) { self.robot().add_joints(joints); },

@@ -170,7 +170,7 @@ class Launcher {
     if (flags.security_directory) env["WBI_DDS_SECURITY_DIRECTORY"] = *flags.security_directory;
     // Each process joins as its own name, not as one identity for all.
     env.erase("WBI_DDS_SECURITY_IDENTITY");
-    // wbi_host stops when this process dies, even by SIGKILL (components/host/main.cpp).
+    // wbi_host stops when this process dies, even by SIGKILL (apps/host/main.cpp).
     env[kLauncherPidVariable] = std::to_string(getpid());
     for (const auto& [key, value] : deploy_.environment) {
       env[key] = value;
