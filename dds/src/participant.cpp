@@ -290,8 +290,10 @@ std::optional<ParticipantInfo> ParticipantImpl::participant_of(const Guid& write
 }
 
 bool ParticipantImpl::writer_has_ended(const Guid& writer) const {
+  // A participant no longer in discovery has left (a clean shutdown announces
+  // it, possibly before its writers' unmatch reaches the readers).
   const auto owner = participant_of(writer);
-  return owner && ended_on_host(*owner, self.host);
+  return !owner || ended_on_host(*owner, self.host);
 }
 
 std::string ParticipantImpl::describe_writer(const Guid& writer) const {
@@ -457,8 +459,7 @@ detail::Guid Participant::oldest_writer_of(const std::string& topic) const {
 }
 
 bool Participant::participant_gone(const detail::Guid& guid) const {
-  const auto owner = impl_->participant_of(guid);
-  return !owner || detail::ended_on_host(*owner, impl_->self.host);
+  return impl_->writer_has_ended(guid);
 }
 
 std::string Participant::describe_writer(const detail::Guid& writer) const {

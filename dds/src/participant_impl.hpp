@@ -49,8 +49,9 @@ class ParticipantImpl : public fdds::DomainParticipantListener {
 
   std::vector<ParticipantInfo> publishers_of(const std::string& topic) const;
 
-  // Whether the process of `writer`'s participant is known to have ended
-  // (a participant of this host whose pid is gone). Allocates: once per new writer.
+  // Whether the process of `writer`'s participant is known to have ended: it
+  // left discovery, or it is of this host and its pid is gone. Allocates: once
+  // per new writer.
   bool writer_has_ended(const Guid& writer) const;
   // "participant 'robot' on host h, pid 12 (writer <32 hex digits>)", as far
   // as discovery knows it, for log lines.

@@ -22,7 +22,9 @@
 #                    0.3-1.3 rad). Bound: the first start's error.   8 s
 #   estimator, model_service, controller stall or restart: the robot's
 #                    watchdog holds the arm (0.1 s without commands) until the
-#                    controller's commands return.        0.05 rad, 5 s
+#                    controller's commands return.        0.05 rad (stall,
+#                    1 s), 0.1 rad (restart, term: the outage is the new
+#                    process's start, longer under load), 5 s
 #   process_faults.sh BINARY_DIR SOURCE_DIR robot|estimator|model_service|controller stall|restart|term
 # Exit 0 pass, 1 fail.
 set -euo pipefail
@@ -75,6 +77,10 @@ before=$(progress_lines)
 initial=$(errors_after 0 | head -n 1)
 bound=0.05 recovery=5
 [[ $target != robot ]] || recovery=3
+# A restart's outage is the new process's start, not 1 s: 0.5-1 s here alone,
+# over 2 s with the suite at ctest -j4 on 2 cores (0.058 rad seen after a
+# controller's term). The watchdog's hold sags for as long: 0.1 rad.
+[[ $target == robot || $fault == stall ]] || bound=0.1
 [[ "$target $fault" != "robot restart" && "$target $fault" != "robot term" ]] || { bound=$(awk -v i="$initial" 'BEGIN { print i + 0.01 }'); recovery=8; }
 
 start=$(date +%s.%N)

@@ -227,6 +227,35 @@ TEST_F(BagCli, CorruptFileIsAOneLineError) {
   EXPECT_TRUE(contains(magic.output, "byte 0: not an MCAP file (bad magic)")) << magic.output;
 }
 
+TEST_F(BagCli, PlayRefusesWhatIsNotARecordingInOneLine) {
+  const auto empty = dir_ / "empty.mcap";
+  wbi::test::write_bytes(empty, {}, 0);
+  const auto run = wbi_cli({"play", empty.string()});
+  EXPECT_EQ(run.code, 1);
+  EXPECT_EQ(run.output,
+            "wbi play: " + empty.string() + ": empty file (0 bytes), not an MCAP recording\n");
+
+  const auto text = dir_ / "notes.mcap";
+  const std::string words = "not a recording, just some words\n";
+  wbi::test::write_bytes(text, std::vector<std::uint8_t>(words.begin(), words.end()), words.size());
+  const auto magic = wbi_cli({"play", text.string()});
+  EXPECT_EQ(magic.code, 1);
+  EXPECT_EQ(magic.output,
+            "wbi play: " + text.string() + ": byte 0: not an MCAP file (bad magic)\n");
+}
+
+TEST_F(BagCli, PlayOfATruncatedFilePlaysWhatIsReadableThenSaysWhatWasLost) {
+  const auto bytes = wbi::test::read_bytes(file_);
+  const auto cut = dir_ / "cut.mcap";
+  wbi::test::write_bytes(cut, bytes, bytes.size() / 2);
+  const auto run = wbi_cli({"play", cut.string(), "--rate", "100"});
+  EXPECT_EQ(run.code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "played ")) << run.output;
+  const auto errors = lines_starting(run.output, "wbi play: ");
+  ASSERT_EQ(errors.size(), 1u) << run.output;
+  EXPECT_TRUE(contains(errors[0], "wbi play: " + cut.string() + ": file truncated")) << errors[0];
+}
+
 TEST_F(BagCli, VerifyReadsEveryChunk) {
   auto bytes = wbi::test::read_bytes(file_);
   // A byte of the first MessageIndex record: only the data-section CRC covers it.

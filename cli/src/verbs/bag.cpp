@@ -16,6 +16,7 @@
 #include <wbi/mcap/reader.hpp>
 
 #include "../options.hpp"
+#include "recording_file.hpp"
 #include "verbs.hpp"
 
 namespace wbi::cli {
@@ -23,17 +24,6 @@ namespace wbi::cli {
 namespace {
 
 constexpr double kNsPerSecond = 1e9;
-
-// "2026-11-22 00:39:55.123456789 UTC"
-std::string utc_time(std::uint64_t ns) {
-  const auto seconds = static_cast<std::time_t>(ns / 1'000'000'000u);
-  std::tm utc{};
-  gmtime_r(&seconds, &utc);
-  std::ostringstream out;
-  out << std::put_time(&utc, "%Y-%m-%d %H:%M:%S") << '.' << std::setw(9) << std::setfill('0')
-      << ns % 1'000'000'000u << " UTC";
-  return out.str();
-}
 
 // "1.2 MiB"
 std::string human_size(std::uint64_t bytes) {
@@ -200,27 +190,6 @@ void print_text(const std::string& file, const mcap::FileInfo& info, const Summa
   }
 }
 
-// The one line that ends `bag info` on a truncated file: where it ends, what of
-// it is lost, what was read (printed above it).
-std::string truncation_line(const std::string& file, const mcap::FileInfo& info) {
-  const auto& cut = info.truncation;
-  std::ostringstream line;
-  line << file << ": " << cut.description;
-  if (!cut.cut_record.empty()) {
-    const std::uint64_t record_end = cut.cut_record_offset + cut.cut_record_bytes;
-    line << "; lost: its last " << record_end - info.file_size << " bytes";
-    if (cut.lost_times_known) {
-      line << std::fixed << std::setprecision(3) << ", so all its messages, logged from "
-           << utc_time(cut.lost_start_time) << " to " << utc_time(cut.lost_end_time) << " ("
-           << static_cast<double>(cut.lost_end_time - cut.lost_start_time) / kNsPerSecond << " s)";
-    }
-    line << ", and whatever was recorded after it";
-  }
-  line << "; readable: " << info.statistics.message_count << " messages in " << cut.readable_bytes
-       << " bytes (above)";
-  return line.str();
-}
-
 int run_info(Args args) {
   Options options("wbi bag info FILE [options]",
                   "Prints what an MCAP recording holds: its duration, start and end, size and\n"
@@ -241,13 +210,7 @@ int run_info(Args args) {
     reader.verify();
   }
   const auto& info = reader.info();
-  // Nothing to summarise: one line, no summary.
-  if (info.file_size == 0) {
-    throw std::runtime_error(file + ": empty file (0 bytes), not an MCAP recording");
-  }
-  if (info.truncated && info.truncation.readable_bytes == 0) {
-    throw std::runtime_error(file + ": " + info.truncation.description);
-  }
+  require_readable_recording(file, info);  // else nothing to summarise: one line
   for (const auto& warning : info.warnings) {
     if (!info.truncated || warning != info.truncation.description) {
       std::cerr << "wbi bag: warning: " << file << ": " << warning << "\n";

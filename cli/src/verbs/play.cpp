@@ -23,6 +23,7 @@
 #include "../join_options.hpp"
 #include "../options.hpp"
 #include "../terminal.hpp"
+#include "recording_file.hpp"
 #include "verbs.hpp"
 
 namespace wbi::cli {
@@ -168,6 +169,10 @@ int run_play(Args raw_args) {
   if (!std::filesystem::exists(player_options.file)) {
     throw std::runtime_error(player_options.file.string() + ": no such file");
   }
+  // Not a recording: one line, before anything joins the domain. A truncated
+  // one plays what is readable, then says what was lost (exit 1).
+  const mcap::FileInfo file_info = mcap::Reader(player_options.file.string()).info();
+  require_readable_recording(player_options.file.string(), file_info);
 
   // No default identity: on a secured deployment, play publishes, so the
   // user names an identity allowed to publish what it replays.
@@ -242,7 +247,14 @@ int run_play(Args raw_args) {
     std::cout << ", " << done.refused << " refused by DDS";
   }
   std::cout << std::endl;
-  return interrupted ? kExitInterrupted : kExitOk;
+  if (interrupted) {
+    return kExitInterrupted;
+  }
+  if (file_info.truncated) {
+    std::cerr << "wbi play: " << truncation_line(player_options.file.string(), file_info) << "\n";
+    return kExitError;
+  }
+  return kExitOk;
 }
 
 }  // namespace wbi::cli
