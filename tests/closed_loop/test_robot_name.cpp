@@ -46,7 +46,9 @@ TEST(RobotName, TheDemoLaunchedTwiceRefusesTheSecondAndTheFirstRunsOn) {
   const std::string final_marker = "\nfinal max joint error: ";
   const auto final_at = first.output().rfind(final_marker);
   ASSERT_NE(final_at, std::string::npos) << first.output();
-  EXPECT_LT(std::stod(first.output().substr(final_at + final_marker.size())), 0.001)
+  // The real-time demo settles at 0.0003-0.002 rad (0.00115 seen with the suite
+  // at ctest -j4 on 2 cores); a second robot mixed in would throw it far off.
+  EXPECT_LT(std::stod(first.output().substr(final_at + final_marker.size())), 0.01)
       << first.output();
 }
 

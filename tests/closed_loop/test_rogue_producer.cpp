@@ -47,15 +47,35 @@ DemoRun run_demo() {
   return run;
 }
 
+// The demo run beside a rogue (wbi_test_rogue ARGS), started first.
+struct RogueRun {
+  bool rogue_started = false;  // it said it was publishing
+  bool rogue_lived = false;    // it was still running when the demo ended
+  pid_t rogue_pid = 0;
+  std::string rogue_output;
+  DemoRun demo;
+};
+
+RogueRun run_beside_rogue(const std::vector<std::string>& args) {
+  ChildProcess rogue(wbi::test::binary_dir() / "tests" / "wbi_test_rogue", args);
+  RogueRun run;
+  run.rogue_pid = rogue.pid();
+  run.rogue_started = rogue.wait_for_output("rogue: publishing", 20s);
+  if (run.rogue_started) {
+    run.demo = run_demo();
+    run.rogue_lived = rogue.running();
+  }
+  rogue.stop(SIGTERM, 10s);
+  run.rogue_output = rogue.output();
+  return run;
+}
+
 class Rogue : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { alone_ = new DemoRun(run_demo()); }
   static void TearDownTestSuite() { delete alone_; }
   // The demo without any rogue: what every run beside one must end with.
   static const DemoRun& alone() { return *alone_; }
-  static ChildProcess start_rogue(const std::vector<std::string>& args) {
-    return ChildProcess(wbi::test::binary_dir() / "tests" / "wbi_test_rogue", args);
-  }
 
  private:
   static inline DemoRun* alone_ = nullptr;
@@ -65,11 +85,10 @@ TEST_F(Rogue, ASensorPublisherChangesNothingAndIsNamed) {
   ASSERT_EQ(alone().code, 0) << alone().output;
   ASSERT_FALSE(alone().final_error.empty()) << alone().output;
 
-  ChildProcess rogue = start_rogue({"arm", "sensors", "7"});
-  ASSERT_TRUE(rogue.wait_for_output("rogue: publishing", 20s)) << rogue.output();
-  const DemoRun beside = run_demo();
-  EXPECT_TRUE(rogue.running()) << rogue.output();
-  rogue.stop(SIGTERM, 10s);
+  const RogueRun run = run_beside_rogue({"arm", "sensors", "7"});
+  ASSERT_TRUE(run.rogue_started) << run.rogue_output;
+  EXPECT_TRUE(run.rogue_lived) << run.rogue_output;
+  const DemoRun& beside = run.demo;
 
   ASSERT_EQ(beside.code, 0) << beside.output;
   EXPECT_EQ(beside.final_error, alone().final_error) << "the rogue's samples changed the run\n"
@@ -80,7 +99,7 @@ TEST_F(Rogue, ASensorPublisherChangesNothingAndIsNamed) {
         beside.output.find(std::string(process) + " wbi: 'wbi/arm/sensors': " + named);
     EXPECT_NE(line, std::string::npos) << process << " did not name the rogue\n" << beside.output;
   }
-  EXPECT_NE(beside.output.find("pid " + std::to_string(rogue.pid())), std::string::npos)
+  EXPECT_NE(beside.output.find("pid " + std::to_string(run.rogue_pid)), std::string::npos)
       << beside.output;
 }
 
@@ -88,11 +107,10 @@ TEST_F(Rogue, ACommandPublisherNeverMovesAClaimedJoint) {
   ASSERT_EQ(alone().code, 0) << alone().output;
   ASSERT_FALSE(alone().final_error.empty()) << alone().output;
 
-  ChildProcess rogue = start_rogue({"arm", "commands", "0", "40"});
-  ASSERT_TRUE(rogue.wait_for_output("rogue: publishing", 20s)) << rogue.output();
-  const DemoRun beside = run_demo();
-  EXPECT_TRUE(rogue.running()) << rogue.output();
-  rogue.stop(SIGTERM, 10s);
+  const RogueRun run = run_beside_rogue({"arm", "commands", "0", "40"});
+  ASSERT_TRUE(run.rogue_started) << run.rogue_output;
+  EXPECT_TRUE(run.rogue_lived) << run.rogue_output;
+  const DemoRun& beside = run.demo;
 
   ASSERT_EQ(beside.code, 0) << beside.output;
   EXPECT_EQ(beside.final_error, alone().final_error) << "the rogue's 40 N·m reached joint_1\n"

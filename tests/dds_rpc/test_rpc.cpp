@@ -22,12 +22,14 @@
 #include <wbi/dds/subscriber.hpp>
 
 #include "rpc_fixture.hpp"
+#include "test_support.hpp"
 
 namespace {
 
 using namespace std::chrono_literals;
 using wbi::dds::CallStatus;
 using wbi::dds::Participant;
+using wbi::test::eventually;
 using Request = wbi::msg::ModelRequest;
 using Reply = wbi::msg::ModelReply;
 using Client = wbi::dds::Client<Request, Reply>;
@@ -37,17 +39,6 @@ using Clock = std::chrono::steady_clock;
 const std::string kService = "wbi/test/toy";
 
 // Waits for pred, checking every millisecond, at most timeout.
-bool eventually(const std::function<bool()>& pred, std::chrono::milliseconds timeout = 10s) {
-  const auto end = Clock::now() + timeout;
-  while (!pred()) {
-    if (Clock::now() > end) {
-      return false;
-    }
-    std::this_thread::sleep_for(1ms);
-  }
-  return true;
-}
-
 // Handlers that block (the gates below) run on the server's worker thread, so
 // that the DDS threads keep taking requests and match events meanwhile.
 wbi::dds::ServerOptions worker_thread() {

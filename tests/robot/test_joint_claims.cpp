@@ -19,6 +19,7 @@
 
 #include "actuator_side.hpp"
 #include "joint_claims.hpp"
+#include "test_support.hpp"
 #include "two_joint_toy.hpp"
 
 namespace {
@@ -26,6 +27,7 @@ namespace {
 using wbi::robot::Claimant;
 using wbi::robot::JointClaims;
 using namespace std::chrono_literals;
+using wbi::test::eventually;
 
 constexpr std::int64_t kLapse = 100'000'000;  // 0.1 s, the default watchdog time
 
@@ -128,18 +130,6 @@ TEST(JointClaimRules, ForceTakesAndReleaseFrees) {
 // ----- over DDS: the actuator side of robot "claimed" (joints a, b) -----
 
 constexpr const char* kRobot = "claimed";
-
-template <class Condition>
-bool eventually(Condition condition, std::chrono::milliseconds timeout = 5s) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  while (!condition()) {
-    if (std::chrono::steady_clock::now() > deadline) {
-      return false;
-    }
-    std::this_thread::sleep_for(1ms);
-  }
-  return true;
-}
 
 // A controller: its own participant, a claim client and a command publisher in it.
 struct Controller {

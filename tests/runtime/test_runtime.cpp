@@ -21,6 +21,8 @@
 #include <wbi/runtime/builtin.hpp>
 #include <wbi/runtime/host.hpp>
 
+#include "test_support.hpp"
+
 namespace {
 
 using namespace std::chrono_literals;
@@ -30,17 +32,7 @@ using wbi::runtime::LifecycleState;
 using wbi::runtime::ParameterError;
 using wbi::runtime::Parameters;
 using wbi::runtime::TransitionError;
-
-bool eventually(const std::function<bool()>& pred, std::chrono::milliseconds timeout = 10s) {
-  const auto end = std::chrono::steady_clock::now() + timeout;
-  while (!pred()) {
-    if (std::chrono::steady_clock::now() > end) {
-      return false;
-    }
-    std::this_thread::sleep_for(1ms);
-  }
-  return true;
-}
+using wbi::test::eventually;
 
 // Records its hooks and cycles; can be told to fail a hook or to be slow.
 struct Probe {

@@ -1,10 +1,12 @@
-// Paths and DDS domain ids for tests.
+// Paths, DDS domain ids and bounded waits for tests.
 #pragma once
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <thread>
 
 namespace wbi::test {
 
@@ -37,5 +39,19 @@ inline std::optional<std::filesystem::path> shared_models_dir() {
 }
 
 inline constexpr const char* kSharedMissing = "skipped: ../shared not found";
+
+// Polls `condition` every millisecond until it holds (true) or `timeout`
+// passes (false): a bounded wait on a condition, not a sleep.
+template <class Condition>
+bool eventually(Condition condition, std::chrono::milliseconds timeout = std::chrono::seconds(10)) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (!condition()) {
+    if (std::chrono::steady_clock::now() > deadline) {
+      return false;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return true;
+}
 
 }  // namespace wbi::test
