@@ -1,6 +1,7 @@
 #include "joint_claim.hpp"
 
 #include <iostream>
+#include <thread>
 
 #include <wbi/dds/topics.hpp>
 #include <wbi/types.hpp>
@@ -45,13 +46,21 @@ wbi::msg::JointClaimReply JointClaim::request(wbi::msg::ClaimAction action,
 }
 
 void JointClaim::claim(std::chrono::nanoseconds timeout, bool force) {
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  standing_ = Standing::unknown;
   const auto reply = request(wbi::msg::ClaimAction::CLAIM, timeout, force);
   if (reply.error().size() > 0) {
     throw Error("robot '" + robot_ + "': " + std::string(reply.error().c_str()));
   }
   claimed_ = true;
-  // Until the owners topic shows the claim, nothing is known to be wrong.
-  standing_ = Standing::unknown;
+  while (standing_.load() != Standing::held) {
+    if (std::chrono::steady_clock::now() > deadline) {
+      throw TimeoutError("robot '" + robot_ + "' granted the claim of '" + controller_ +
+                         "' but its owners topic " + dds::topics::joint_owners(robot_) +
+                         " did not show it in time");
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
 }
 
 void JointClaim::on_owners(const wbi::msg::JointOwners& owners) {

@@ -32,6 +32,10 @@ class JointClaim {
   JointClaim(const JointClaim&) = delete;
   JointClaim& operator=(const JointClaim&) = delete;
 
+  // Returns once the robot granted the claim and its owners topic shows it:
+  // from then on, every owners sample is newer than the claim (one writer's
+  // samples arrive in order), so a late copy of an older one cannot read as
+  // a takeover.
   void claim(std::chrono::nanoseconds timeout, bool force = false);
   void check();
   void release() noexcept;
