@@ -41,8 +41,8 @@ namespace wbi::runtime {
 // process named `identity`. Injected, so that the runtime does not depend on
 // the deploy-file reader: it produces join options; the runtime uses them.
 using PlacementReader =
-    std::function<void(const YAML::Node& root, const std::string& file,
-                       const std::string& identity, dds::ParticipantOptions& options)>;
+    std::function<void(const YAML::Node& root, const std::string& file, const std::string& identity,
+                       dds::ParticipantOptions& options)>;
 
 // The participant joins as dds/README.md "Joining a deployment" says:
 // defaults < the file (domain_id, qos_file, network, security) < WBI_* environment.
