@@ -64,16 +64,8 @@ class PythonInterface {
     return static_cast<Eigen::Index>(robot_->sensor_list(kind).size());
   }
   Eigen::Index estimate_count(EstimateKind kind) const {
-    switch (kind) {
-      case EstimateKind::base_pose:
-      case EstimateKind::base_velocity:
-      case EstimateKind::base_acceleration:
-        return 1;
-      case EstimateKind::force_torque:
-        return sensor_count(SensorKind::force_torque);
-      default:
-        return robot_->dofs();
-    }
+    return wbi::estimate_count(kind, robot_->dofs(),
+                               static_cast<int>(sensor_count(SensorKind::force_torque)));
   }
 
  private:

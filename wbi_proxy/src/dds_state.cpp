@@ -92,16 +92,8 @@ void DdsState::set_estimation_parameter(const std::string& name, double value) {
 }
 
 int DdsState::estimate_count(EstimateKind kind) const {
-  switch (kind) {
-    case EstimateKind::base_pose:
-    case EstimateKind::base_velocity:
-    case EstimateKind::base_acceleration:
-      return 1;
-    case EstimateKind::force_torque:
-      return static_cast<int>(robot_.force_torque_names.size());
-    default:
-      return static_cast<int>(robot_.controlled.size());
-  }
+  return wbi::estimate_count(kind, static_cast<int>(robot_.controlled.size()),
+                             static_cast<int>(robot_.force_torque_names.size()));
 }
 
 Stamp DdsState::read_range(EstimateKind kind, int first, int count, VectorRef out, ReadMode mode) {

@@ -88,6 +88,21 @@ constexpr int estimate_width(EstimateKind kind) {
   }
 }
 
+// Estimates of a kind (the counts above), for a robot with `joints` controlled
+// joints and `force_torque_sensors` F/T sensors.
+constexpr int estimate_count(EstimateKind kind, int joints, int force_torque_sensors) {
+  switch (kind) {
+    case EstimateKind::base_pose:
+    case EstimateKind::base_velocity:
+    case EstimateKind::base_acceleration:
+      return 1;
+    case EstimateKind::force_torque:
+      return force_torque_sensors;
+    default:
+      return joints;
+  }
+}
+
 enum class ReadMode {
   latest,    // the newest sample received (fails when older than the age limit)
   blocking,  // waits for a sample newer than the previous read of the same kind
