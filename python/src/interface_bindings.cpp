@@ -64,8 +64,12 @@ class PythonInterface {
     return static_cast<Eigen::Index>(robot_->sensor_list(kind).size());
   }
   Eigen::Index estimate_count(EstimateKind kind) const {
-    return wbi::estimate_count(kind, robot_->dofs(),
-                               static_cast<int>(sensor_count(SensorKind::force_torque)));
+    // The sensor list only when asked for: before init() it throws, and a
+    // size check of the other kinds must still name the size.
+    const auto sensors = kind == EstimateKind::force_torque
+                             ? static_cast<int>(sensor_count(SensorKind::force_torque))
+                             : 0;
+    return wbi::estimate_count(kind, robot_->dofs(), sensors);
   }
 
  private:
