@@ -155,7 +155,7 @@ echo "sensor samples: published $published, recorded on host B $recorded ($mode)
 ((recorded * 100 >= published * 99)) || fail "recorded $recorded of $published sensor samples (< 99 %)"
 # The commands' writer (the controller) started after the recorder: the
 # recorder must find it too. In lockstep the robot steps on a command, so at
-# least one per tick was published (5500-8200 seen); half of the 3000 ticks
+# least one per tick was published (5470-8050 seen); half of the 3000 ticks
 # bounds a late match. Secured, a recorder that never finished the controller's
 # DDS Security handshake recorded none (tests/multihost/README.md).
 commands=$(messages_in "$logs/run.mcap" wbi/arm/commands)
