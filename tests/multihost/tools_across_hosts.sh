@@ -9,7 +9,8 @@
 #       peers      the same with static peers (--peers), multicast off on the link
 #       server     the same through a discovery server (--discovery-server) on host A
 #       record     `wbi record --deploy FILE` records the two-host run; `wbi bag info`
-#                  counts >= 99 % of the sensor samples the robot published
+#                  counts >= 99 % of the sensor samples the robot published and the
+#                  commands of the controller, started after the recorder
 #       secure     the same secured (scripts/wbi-security-setup): the observer, started
 #                  before the controller, records the sensors and the commands; a tool
 #                  without identity sees no topic and no data, the observer's command is
@@ -18,7 +19,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 source "$here/netns_pair.sh"
-[[ $# -eq 3 ]] || { sed -n '2,17p' "$0"; exit 2; }
+[[ $# -eq 3 ]] || { sed -n '2,19p' "$0"; exit 2; }
 bin="$1/bin" deploy="$2/deploy/multihost_lockstep.yaml" mode="$3"
 netns_pair_create || exit $?
 logs=$(mktemp -d /tmp/wbi-tools.XXXXXX)
