@@ -19,7 +19,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 source "$here/netns_pair.sh"
-[[ $# -eq 3 ]] || { sed -n '2,19p' "$0"; exit 2; }
+[[ $# -eq 3 ]] || { sed -n '2,18p' "$0"; exit 2; }
 bin="$1/bin" deploy="$2/deploy/multihost_lockstep.yaml" mode="$3"
 netns_pair_create || exit $?
 logs=$(mktemp -d /tmp/wbi-tools.XXXXXX)
