@@ -107,17 +107,3 @@ wait_for_text() {
   done
   return 1
 }
-
-# wait_for_text_while_running FILE TEXT PID SECONDS: 0 once FILE contains TEXT;
-# 1 once PID has ended without writing it, or after SECONDS. For a run whose
-# length depends on the machine's load (a lockstep run slows with it), where
-# the sign of a fault is the process ending or the generous bound, not a short one.
-wait_for_text_while_running() {
-  local deadline=$((SECONDS + $4))
-  while ((SECONDS < deadline)); do
-    grep -qF -- "$2" "$1" 2>/dev/null && return 0
-    kill -0 "$3" 2>/dev/null || { grep -qF -- "$2" "$1" 2>/dev/null; return; }
-    sleep 0.1
-  done
-  return 1
-}

@@ -13,7 +13,9 @@ std::int64_t system_now_ns() {
 
 RobotConnection::RobotConnection(const DdsInterfaceOptions& options_)
     : options(options_),
-      participant(options.participant),
+      participant(options.shared_participant != nullptr
+                      ? *options.shared_participant
+                      : own_participant.emplace(options.participant)),
       description(participant, dds::topics::description(options.robot), dds::qos::kLatched, nullptr,
                   dds::ProducerPolicy::one(options.on_producer_event)),
       sensors(participant, dds::topics::sensors(options.robot), dds::qos::kStream,

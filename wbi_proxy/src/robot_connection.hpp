@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,7 +52,8 @@ class RobotConnection {
   void require_init() const;
 
   const DdsInterfaceOptions options;
-  dds::Participant participant;
+  std::optional<dds::Participant> own_participant;  // unless options.shared_participant
+  dds::Participant& participant;
   dds::Subscriber<wbi::msg::RobotDescription> description;
   dds::Received<wbi::msg::RobotDescription> description_rx;
   Stream<wbi::msg::SensorSample, kSensorReads> sensors;

@@ -51,6 +51,12 @@ struct DdsInterfaceOptions {
   std::chrono::milliseconds model_timeout{200};
 
   dds::ParticipantOptions participant{};  // domain, discovery, QoS file
+  // When set, the interface's endpoints join this participant (a host's, which
+  // must outlive the interface) and `participant` is not used. A process with
+  // one secured participant, not two created at the same instant: Fast DDS
+  // 2.9.1 can leave the DDS Security handshake of one of two participants
+  // discovered at once unfinished for good (dds/README.md, "DDS Security").
+  dds::Participant* shared_participant = nullptr;
 
   // The robot's streams (description, sensors, state, model replies) are each
   // taken from one writer (wbi/dds/producers.hpp); this hears the samples of

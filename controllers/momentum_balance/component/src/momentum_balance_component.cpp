@@ -66,8 +66,10 @@ class MomentumBalanceComponent final : public runtime::Component {
     options.local_model_backend = parameters.get<std::string>("model_backend", "wbi");
     options.controller = parameters.get<std::string>("controller", context.instance);
     options.max_age_s = parameters.get<double>("max_age_s", 0.05);
-    // The host's domain, discovery and DDS Security identity; the proxy's own participant.
+    // The host's participant: one secured participant per process (see
+    // DdsInterfaceOptions::shared_participant).
     options.participant = context.participant->options();
+    options.shared_participant = context.participant;
     const auto joints = parameters.require<std::vector<std::string>>("joints");
     const auto posture = parameters.get<std::vector<double>>("posture", {});
     reference_.amplitude = parameters.get<double>("com_amplitude", 0.05);

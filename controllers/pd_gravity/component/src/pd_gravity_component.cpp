@@ -55,8 +55,10 @@ class PdGravityComponent final : public runtime::Component {
     // A cycle waits at most this long for the next estimate (then: a stale cycle).
     options.blocking_read_timeout = std::chrono::milliseconds(
         static_cast<std::int64_t>(parameters.get<double>("state_timeout_s", 0.005) * 1000));
-    // The host's domain, discovery and DDS Security identity; the proxy's own participant.
+    // The host's participant: one secured participant per process (see
+    // DdsInterfaceOptions::shared_participant).
     options.participant = context.participant->options();
+    options.shared_participant = context.participant;
     const auto joints = parameters.require<std::vector<std::string>>("joints");
     const auto target = parameters.require<std::vector<double>>("target");
     const auto kp = parameters.get<std::vector<double>>("kp", {});
