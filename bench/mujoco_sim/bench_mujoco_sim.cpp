@@ -7,6 +7,7 @@
 // runs the config's `mujoco:` section (argument 0) or, to show what each option
 // costs, the config with options taken back one by one (arguments 1–4):
 //   0  the config: 1 × 1 ms, Euler, elliptic cone, joint friction as a torque
+//      (joint damping too: the backend applies it explicitly with Euler)
 //   1  as 0 with the pyramidal cone
 //   2  as 1 with joint friction as frictionloss constraint rows
 //   3  as 2 with 2 × 0.5 ms per tick (the config before, 2026-11)

@@ -72,11 +72,14 @@ struct MujocoBackend::Impl {
   std::vector<sim::DcMotor> motor;
   std::vector<OutputMode> cmd_mode;
   Eigen::VectorXd cmd_value, tau_act, pwm;
-  // Joint Coulomb friction as a torque (mujoco.joint_friction: torque): F_c, and
-  // the effective inertia 1/(M⁻¹)_jj at the initial state that bounds it (the
-  // own plant's model); tau_friction = the torque applied in the last step.
+  // Joint dissipation applied by us as a torque, the own plant's model: Coulomb
+  // friction F_c (mujoco.joint_friction: torque) and, with the Euler integrator,
+  // viscous damping (explicit: MuJoCo 2.2's Euler would integrate it implicitly
+  // at the cost of a second factorisation of M + h·D per step); both bounded by
+  // the effective inertia 1/(M⁻¹)_jj at the initial state. tau_dissipation =
+  // the torque applied in the last step.
   bool friction_torque = false;
-  Eigen::VectorXd friction, m_eff, tau_friction;
+  Eigen::VectorXd friction, damping, m_eff, tau_dissipation;
 
   // contacts: geom → contact link (−1: none), and a site at each contact link's frame
   std::vector<int> geom_link;
@@ -248,8 +251,9 @@ actuation::BackendDescription MujocoBackend::on_configure() {
   for (int j = 0; j < n; ++j) {
     s.friction[j] = c.joints.at(model.joint_name[static_cast<std::size_t>(j)]).friction;
   }
+  s.damping = Eigen::VectorXd::Zero(n);
   s.m_eff = Eigen::VectorXd::Zero(n);
-  s.tau_friction = Eigen::VectorXd::Zero(n);
+  s.tau_dissipation = Eigen::VectorXd::Zero(n);
   s.noise = sim::Gaussian(c.wbi.seed);
   s.encoder_step = sim::encoder_step(c.wbi.encoders);
 
@@ -304,6 +308,26 @@ actuation::BackendDescription MujocoBackend::on_configure() {
       impl_->m_eff[j] = 1.0 / x[dof];
     }
   }
+  // With Euler, viscous damping leaves MuJoCo's model (the written MJCF keeps
+  // it) for the explicit torque of apply_controls() when x = h·d/m_eff ≤ 0.1 on
+  // every joint: the explicit decay 1 − x per step is then as close to the exact
+  // e^−x as MuJoCo's implicit 1/(1 + x) (≈ x²/2 ≤ 0.5 %), and 5× below the bound
+  // of apply_controls() (x = ½), for m_eff changes with the posture. One joint
+  // above keeps MuJoCo's damping for all: it factorises M + h·D for one as for all.
+  if (m->opt.integrator == mjINT_EULER) {
+    constexpr double kExplicitDamping = 0.1;
+    bool explicit_ok = true;
+    for (int j = 0; j < n; ++j) {
+      const int dof = impl_->index.dof[static_cast<std::size_t>(j)];
+      explicit_ok = explicit_ok &&
+                    m->opt.timestep * m->dof_damping[dof] <= kExplicitDamping * impl_->m_eff[j];
+    }
+    for (int j = 0; explicit_ok && j < n; ++j) {
+      mjtNum& damping = m->dof_damping[impl_->index.dof[static_cast<std::size_t>(j)]];
+      impl_->damping[j] = damping;
+      damping = 0.0;
+    }
+  }
   collect_dynamics();
   collect_state();
   return desc;
@@ -343,14 +367,15 @@ void MujocoBackend::apply_controls() {
         sim::actuator_output(s.cmd_mode[js], s.cmd_value[j], dq, s.motor[js], s.effort[j]);
     s.tau_act[j] = out.torque;
     s.pwm[j] = out.pwm;
+    // The own plant's viscous + smoothed Coulomb friction, bounded so that it
+    // never reverses q̇ within one step (components/sim): explicit, no constraint row.
+    double diss = -s.damping[j] * dq;
     if (s.friction_torque) {
-      // The own plant's smoothed Coulomb friction, bounded so that it never
-      // reverses q̇ within one step (components/sim): explicit, no constraint row.
-      const double f = -s.friction[j] * std::tanh(dq / config_.wbi.friction_velocity);
-      const double bound = 0.5 * s.m_eff[j] * std::abs(dq) / s.m->opt.timestep;
-      s.tau_friction[j] = std::clamp(f, -bound, bound);
+      diss -= s.friction[j] * std::tanh(dq / config_.wbi.friction_velocity);
     }
-    d->qfrc_applied[dof] = out.torque + s.tau_friction[j];
+    const double bound = 0.5 * s.m_eff[j] * std::abs(dq) / s.m->opt.timestep;
+    s.tau_dissipation[j] = std::clamp(diss, -bound, bound);
+    d->qfrc_applied[dof] = out.torque + s.tau_dissipation[j];
   }
   // Pushes: force f at the point p → wrench (f, (p − c) × f) at the body's CoM c.
   for (const auto& push : s.pushes) {
@@ -418,10 +443,11 @@ void MujocoBackend::collect_dynamics() {
   if (model.floating_base) {
     truth_.base_acceleration = truth_.dnu.head<6>();
   }
-  // Joint torque: actuator + friction torque + passive (damping) + the joint's
-  // friction-loss and limit constraint forces (scalar rows of J = ±1 on the joint's dof).
+  // Joint torque: actuator + dissipation torque + passive (MuJoCo's damping with
+  // RK4 / implicit) + the joint's friction-loss and limit constraint forces
+  // (scalar rows of J = ±1 on the joint's dof).
   for (int j = 0; j < s.n; ++j) {
-    truth_.tau[j] = s.tau_act[j] + s.tau_friction[j] +
+    truth_.tau[j] = s.tau_act[j] + s.tau_dissipation[j] +
                     d->qfrc_passive[s.index.dof[static_cast<std::size_t>(j)]];
   }
   const bool sparse = mj_isSparse(m) != 0;
