@@ -26,8 +26,9 @@ class ProducerBinding {
   };
 
   // A sample of `writer` arrived at now_ns (steady clock). `ended(guid)` says
-  // whether the bound writer's process is known to have ended; it is called at
-  // most once per new writer, when that writer is first heard. On a rebind,
+  // whether the process of a writer (the bound one, or the owner) is known to
+  // have ended; it is called at most once per new writer, when that writer is
+  // first heard. On a rebind,
   // `previous` is set to the writer that was bound.
   //
   // owner (ProducerPolicy::owner): nullptr for none; else the writer whose
@@ -38,7 +39,7 @@ class ProducerBinding {
     std::lock_guard lock(mutex_);
     previous = bound_;
     if (owner != nullptr) {
-      return admit_owned(writer, now_ns, *owner);
+      return admit_owned(writer, now_ns, *owner, ended);
     }
     if (bound_ == writer && has_bound_) {
       last_bound_ns_ = now_ns;
@@ -102,8 +103,12 @@ class ProducerBinding {
   // Before the owner is heard (a robot's sensors can arrive before its latched
   // description), the first writer is taken, provisionally: dropping its
   // samples would lose a lockstep robot's first tick. Once the owner is known,
-  // a provisional writer of another participant is foreign.
-  Verdict admit_owned(const Guid& writer, std::int64_t now_ns, const Guid& owner) {
+  // a provisional writer of another participant is foreign. The same once the
+  // owner's process has ended (a restarted robot's first sensor sample can
+  // come before its description moves the owner): the first new writer is
+  // taken until the owner moves on. `ended` is asked once per new writer.
+  template <class Ended>
+  Verdict admit_owned(const Guid& writer, std::int64_t now_ns, const Guid& owner, Ended& ended) {
     if (owner == Guid{}) {
       if (!has_bound_) {
         bind(writer, now_ns);
@@ -123,6 +128,19 @@ class ProducerBinding {
       if (Foreign* known = find(writer)) {
         forget(*known);  // foreign under the owner before
       }
+      if (!has_bound_) {
+        bind(writer, now_ns);
+        return Verdict::take;
+      }
+      rebind(writer, now_ns);
+      return Verdict::rebound;
+    }
+    if (owner == ended_owner_ && has_bound_ && bound_ == writer) {
+      last_bound_ns_ = now_ns;
+      return Verdict::take;
+    }
+    if (owner != ended_owner_ && find(writer) == nullptr && !full() && ended(owner)) {
+      ended_owner_ = owner;
       if (!has_bound_) {
         bind(writer, now_ns);
         return Verdict::take;
@@ -197,6 +215,7 @@ class ProducerBinding {
   std::int64_t last_bound_ns_ = 0;  // its last sample
   std::array<Foreign, kRememberedWriters> foreign_{};
   bool overflow_said_ = false;
+  Guid ended_owner_{};  // an owner whose process had ended when a new writer came
   ProducerCounts counts_;
 };
 

@@ -3,7 +3,8 @@
 // second writer's, counted and said once naming it; when the bound writer's
 // participant leaves, a new writer is taken, the second one still not; with
 // an owner, a writer of another participant taken before the owner was heard
-// is dropped once it is.
+// is dropped once it is, and once the owner's participant has left, the first
+// sample of a restarted robot that comes before its description is taken.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,6 +19,8 @@
 #include <wbi/dds/publisher.hpp>
 #include <wbi/dds/subscriber.hpp>
 #include <wbi/dds/topics.hpp>
+
+#include "test_support.hpp"
 
 namespace {
 
@@ -204,6 +207,78 @@ TEST(ProducerBinding, AStreamOwnedByTheDescriptionDropsAWriterTakenBeforeTheOwne
   EXPECT_EQ(sensors.producers().bound, robot_sensors.guid());
   ASSERT_FALSE(seen.lines.empty());
   EXPECT_NE(seen.lines.back().find("participant 'rogue'"), std::string::npos) << seen.lines.back();
+}
+
+// The fault that found it (test_fault_balance_robot, lockstep): the robot is
+// stopped and started again; the estimator heard the new robot's first sensor
+// sample before its description, dropped it as a second writer's, and the
+// lockstep robot, waiting for a command computed from that sample, never stepped.
+TEST(ProducerBinding, ARestartedOwnersFirstSampleBeforeItsDescriptionIsTaken) {
+  Participant reader_side("reader");
+  Seen seen;
+  Subscriber<wbi::msg::RobotDescription> description(reader_side, topics::description("bound"),
+                                                     qos::kLatched, nullptr, ProducerPolicy::one());
+  Subscriber<Sample> sensors(
+      reader_side, kTopic, qos::kCommand,
+      [&](const Sample& sample, const wbi::dds::detail::SampleInfo&) { seen.take(sample); },
+      ProducerPolicy::owned_by(wbi::dds::description_owner(reader_side, description),
+                               [&](const ProducerEvent& event) { seen.hear(event); }));
+  wbi::msg::RobotDescription latched;
+  latched.header().robot("bound");
+  wbi::dds::Received<wbi::msg::RobotDescription> heard;
+  wbi::dds::detail::Guid first_description{};
+  {
+    Participant first("robot");
+    Publisher<wbi::msg::RobotDescription> first_writer(first, topics::description("bound"),
+                                                       qos::kLatched);
+    first_description = first_writer.guid();
+    first_writer.publish(latched);
+    ASSERT_TRUE(description.wait_newer(heard, 0, 10s));
+    Publisher<Sample> first_sensors(first, kTopic, qos::kCommand);
+    ASSERT_TRUE(send_until(first_sensors, "robot", seen, [](Seen& s) { return s.count("robot"); }));
+  }  // the robot stops: its participant leaves discovery
+  ASSERT_TRUE(
+      wbi::test::eventually([&] { return reader_side.participant_gone(first_description); }, 10s))
+      << "the stopped robot's participant is still in discovery";
+
+  // The restarted robot's sensors before its description: its first sample heard is taken.
+  Participant second("robot_again");
+  Publisher<Sample> second_sensors(second, kTopic, qos::kCommand);
+  ASSERT_TRUE(second_sensors.wait_for_subscribers(1, 10s));
+  send(second_sensors, "again", 0);
+  ASSERT_TRUE(seen.wait([](Seen& s) { return s.count("again") == 1; }))
+      << "the restarted robot's first sample was dropped";
+  // A rogue now is not taken; the robot's description then moves the owner.
+  Participant rogue("rogue");
+  Publisher<Sample> rogue_writer(rogue, kTopic, qos::kCommand);
+  ASSERT_TRUE(
+      send_until(rogue_writer, "rogue", seen, [](Seen& s) { return s.foreign_events >= 1; }));
+  Publisher<wbi::msg::RobotDescription> second_description(second, topics::description("bound"),
+                                                           qos::kLatched);
+  second_description.publish(latched);
+  ASSERT_TRUE(wbi::test::eventually(
+      [&] { return description.producers().bound == second_description.guid(); }, 10s));
+  ASSERT_TRUE(
+      send_until(second_sensors, "again", seen, [](Seen& s) { return s.count("again") >= 2; }));
+  const std::size_t rogue_events = [&] {
+    std::lock_guard lock(seen.mutex);
+    return seen.foreign_events;
+  }();
+  send(rogue_writer, "rogue", 1000);
+  ASSERT_TRUE(seen.wait([&](Seen& s) { return s.foreign_events > rogue_events; }));
+
+  std::lock_guard lock(seen.mutex);
+  EXPECT_EQ(seen.count("rogue"), 0u);
+  EXPECT_EQ(sensors.producers().bound, second_sensors.guid());
+  const auto said = [&](const std::string& text) {
+    return std::any_of(seen.lines.begin(), seen.lines.end(), [&](const std::string& line) {
+      return line.find(text) != std::string::npos;
+    });
+  };
+  EXPECT_TRUE(said("now taking the samples of participant 'robot_again'"));
+  EXPECT_FALSE(said("dropping the samples of a second writer, participant 'robot_again'"))
+      << "a sample of the restarted robot was dropped";
+  EXPECT_TRUE(said("dropping the samples of a second writer, participant 'rogue'"));
 }
 
 }  // namespace

@@ -55,6 +55,7 @@ $respawn
     command: [sh, -c, 'exec "$bin/wbi" record -o "$work/rec_\$(date +%s%N).mcap" "wbi/humanoid/(description|ground_truth|signals/balance)"']
 EOF
 (($(grep -c "respawn: {enabled: true" "$deploy") == 4)) || fail "could not add respawn to the processes of deploy/balance.yaml"
+: >"$log"  # before the first poll: the launch's redirection may come after it
 "$bin/wbi" launch "$deploy" --grace 3 >"$log" 2>&1 &
 launch_pid=$!
 
