@@ -90,6 +90,26 @@ bool send_until(Publisher<Sample>& publisher, const std::string& sender, Seen& s
 
 const std::string kTopic = topics::sensors("bound");
 
+using Description = Subscriber<wbi::msg::RobotDescription>;
+
+// A reader of a robot's description and one of its sensors owned by it, as the
+// estimator and the proxy read them; `owner(description)` makes the owner.
+struct OwnedSensors {
+  template <class MakeOwner>
+  OwnedSensors(Participant& participant, Seen& seen, MakeOwner make_owner)
+      : description(participant, topics::description("bound"), qos::kLatched, nullptr,
+                    ProducerPolicy::one()),
+        sensors(
+            participant, kTopic, qos::kCommand,
+            [&seen](const Sample& sample, const wbi::dds::detail::SampleInfo&) {
+              seen.take(sample);
+            },
+            ProducerPolicy::owned_by(make_owner(description),
+                                     [&seen](const ProducerEvent& event) { seen.hear(event); })) {}
+  Description description;
+  Subscriber<Sample> sensors;
+};
+
 TEST(ProducerBinding, TheFirstWriterIsTakenAndASecondIsDroppedCountedAndNamedOnce) {
   Participant reader_side("reader");
   Participant robot("robot");
@@ -173,13 +193,11 @@ TEST(ProducerBinding, AStreamOwnedByTheDescriptionDropsAWriterTakenBeforeTheOwne
   Participant rogue("rogue");
   Participant robot("robot");
   Seen seen;
-  Subscriber<wbi::msg::RobotDescription> description(reader_side, topics::description("bound"),
-                                                     qos::kLatched, nullptr, ProducerPolicy::one());
-  Subscriber<Sample> sensors(
-      reader_side, kTopic, qos::kCommand,
-      [&](const Sample& sample, const wbi::dds::detail::SampleInfo&) { seen.take(sample); },
-      ProducerPolicy::owned_by([&] { return description.producers().bound; },
-                               [&](const ProducerEvent& event) { seen.hear(event); }));
+  OwnedSensors owned(reader_side, seen, [](const Description& description) {
+    return [&description] { return description.producers().bound; };
+  });
+  auto& description = owned.description;
+  auto& sensors = owned.sensors;
 
   // The rogue publishes before any description: taken, provisionally.
   Publisher<Sample> rogue_writer(rogue, kTopic, qos::kCommand);
@@ -216,13 +234,11 @@ TEST(ProducerBinding, AStreamOwnedByTheDescriptionDropsAWriterTakenBeforeTheOwne
 TEST(ProducerBinding, ARestartedOwnersFirstSampleBeforeItsDescriptionIsTaken) {
   Participant reader_side("reader");
   Seen seen;
-  Subscriber<wbi::msg::RobotDescription> description(reader_side, topics::description("bound"),
-                                                     qos::kLatched, nullptr, ProducerPolicy::one());
-  Subscriber<Sample> sensors(
-      reader_side, kTopic, qos::kCommand,
-      [&](const Sample& sample, const wbi::dds::detail::SampleInfo&) { seen.take(sample); },
-      ProducerPolicy::owned_by(wbi::dds::description_owner(reader_side, description),
-                               [&](const ProducerEvent& event) { seen.hear(event); }));
+  OwnedSensors owned(reader_side, seen, [&](const Description& description) {
+    return wbi::dds::description_owner(reader_side, description);
+  });
+  auto& description = owned.description;
+  auto& sensors = owned.sensors;
   wbi::msg::RobotDescription latched;
   latched.header().robot("bound");
   wbi::dds::Received<wbi::msg::RobotDescription> heard;
