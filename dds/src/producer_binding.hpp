@@ -28,8 +28,7 @@ class ProducerBinding {
   // A sample of `writer` arrived at now_ns (steady clock). `ended(guid)` says
   // whether the process of a writer (the bound one, or the owner) is known to
   // have ended; it is called at most once per new writer, when that writer is
-  // first heard. On a rebind,
-  // `previous` is set to the writer that was bound.
+  // first heard. On a rebind, `previous` is set to the writer that was bound.
   //
   // owner (ProducerPolicy::owner): nullptr for none; else the writer whose
   // participant's writer is the one taken, all zero while not known yet.
@@ -128,12 +127,7 @@ class ProducerBinding {
       if (Foreign* known = find(writer)) {
         forget(*known);  // foreign under the owner before
       }
-      if (!has_bound_) {
-        bind(writer, now_ns);
-        return Verdict::take;
-      }
-      rebind(writer, now_ns);
-      return Verdict::rebound;
+      return take_over(writer, now_ns);
     }
     if (owner == ended_owner_ && has_bound_ && bound_ == writer) {
       last_bound_ns_ = now_ns;
@@ -141,12 +135,7 @@ class ProducerBinding {
     }
     if (owner != ended_owner_ && find(writer) == nullptr && !full() && ended(owner)) {
       ended_owner_ = owner;
-      if (!has_bound_) {
-        bind(writer, now_ns);
-        return Verdict::take;
-      }
-      rebind(writer, now_ns);
-      return Verdict::rebound;
+      return take_over(writer, now_ns);
     }
     return drop_foreign(writer, now_ns);
   }
@@ -180,6 +169,15 @@ class ProducerBinding {
   void rebind(const Guid& writer, std::int64_t now_ns) {
     bind(writer, now_ns);
     ++counts_.rebinds;
+  }
+  // `writer` is taken from now on: a first binding, or a rebind.
+  Verdict take_over(const Guid& writer, std::int64_t now_ns) {
+    if (!has_bound_) {
+      bind(writer, now_ns);
+      return Verdict::take;
+    }
+    rebind(writer, now_ns);
+    return Verdict::rebound;
   }
   Foreign* find(const Guid& writer) {
     for (auto& foreign : foreign_) {
