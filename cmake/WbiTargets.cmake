@@ -81,3 +81,11 @@ function(wbi_add_test)
     LABELS "${ARG_LABELS}"
     ENVIRONMENT "WBI_SOURCE_DIR=${PROJECT_SOURCE_DIR};WBI_BINARY_DIR=${PROJECT_BINARY_DIR};WBI_DOMAIN_ID=${domain}")
 endfunction()
+
+# wbi_test_no_malloc(<test>): Eigen fails the test on any heap allocation
+# (EIGEN_RUNTIME_NO_MALLOC, checked by eigen_assert, so asserts stay on in
+# every build type).
+function(wbi_test_no_malloc target)
+  target_compile_definitions(${target} PRIVATE EIGEN_RUNTIME_NO_MALLOC)
+  target_compile_options(${target} PRIVATE -UNDEBUG)
+endfunction()

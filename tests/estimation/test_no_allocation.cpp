@@ -1,34 +1,19 @@
 // update() of every estimator and of the low-pass allocates nothing.
 // This file and the library sources are compiled with EIGEN_RUNTIME_NO_MALLOC
 // (see CMakeLists.txt), so any Eigen heap allocation inside the checked region
-// asserts; a replaced operator new also counts every other heap allocation.
+// asserts; the replaced operator new (tests/support/allocation_counter) also
+// counts every other heap allocation.
 #ifndef EIGEN_RUNTIME_NO_MALLOC
 #error "this test must be built with EIGEN_RUNTIME_NO_MALLOC"
 #endif
 
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cmath>
-#include <cstdlib>
-#include <new>
 
+#include "allocation_counter.hpp"
 #include "wbi/estimation/estimator_factory.hpp"
 #include "wbi/estimation/low_pass_filter.hpp"
-
-namespace {
-std::atomic<long> g_allocations{0};
-}
-
-void* operator new(std::size_t size) {
-  ++g_allocations;
-  if (void* p = std::malloc(size == 0 ? 1 : size)) {
-    return p;
-  }
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace wbi::estimation {
 namespace {
@@ -38,11 +23,11 @@ constexpr Eigen::Index kJoints = 32;
 // Runs `body` with Eigen's allocation check on; returns the operator-new count.
 template <typename Body>
 long allocations_during(Body body) {
-  const long before = g_allocations.load();
+  const long before = wbi::test::allocation_count();
   Eigen::internal::set_is_malloc_allowed(false);
   body();
   Eigen::internal::set_is_malloc_allowed(true);
-  return g_allocations.load() - before;
+  return wbi::test::allocation_count() - before;
 }
 
 TEST(NoAllocation, EveryEstimatorUpdate) {
