@@ -8,7 +8,7 @@
 #include <thread>
 
 #include <fcntl.h>
-#include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -63,16 +63,50 @@ ChildProcess::ChildProcess(const std::filesystem::path& program,
   }
   envp.push_back(nullptr);
 
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  posix_spawn_file_actions_addclose(&actions, STDIN_FILENO);
-  const int rc = posix_spawn(&pid_, program.c_str(), &actions, nullptr, argv.data(), envp.data());
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) {
-    throw std::runtime_error("cannot start " + program.string() + ": " + std::strerror(rc));
+  // fork and exec rather than posix_spawn, for PR_SET_PDEATHSIG: a test that
+  // crashes or that ctest kills at its timeout takes its children with it,
+  // instead of leaving them on its DDS domain for the next run of the same
+  // test. (The signal follows the forking thread: tests start children from
+  // their main thread.) Until exec the child makes only async-signal-safe
+  // calls; an exec failure comes back through a close-on-exec pipe.
+  int exec_error_pipe[2];
+  if (pipe2(exec_error_pipe, O_CLOEXEC) != 0) {
+    throw std::runtime_error(std::string("cannot start a child process: pipe: ") +
+                             std::strerror(errno));
+  }
+  const pid_t parent = getpid();
+  pid_ = fork();
+  if (pid_ == 0) {
+    close(exec_error_pipe[0]);
+    int error = 0;
+    if (prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || getppid() != parent) {
+      _exit(127);  // the parent is already gone
+    }
+    const int log = open(log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (log < 0 || dup2(log, STDOUT_FILENO) < 0 || dup2(log, STDERR_FILENO) < 0) {
+      error = errno;
+    } else {
+      close(STDIN_FILENO);
+      execve(program.c_str(), argv.data(), envp.data());
+      error = errno;
+    }
+    const ssize_t ignored = write(exec_error_pipe[1], &error, sizeof error);
+    static_cast<void>(ignored);
+    _exit(127);
+  }
+  const int fork_error = errno;
+  close(exec_error_pipe[1]);
+  if (pid_ < 0) {
+    close(exec_error_pipe[0]);
+    throw std::runtime_error("cannot start " + program.string() + ": " + std::strerror(fork_error));
+  }
+  int exec_error = 0;
+  const ssize_t got = read(exec_error_pipe[0], &exec_error, sizeof exec_error);
+  close(exec_error_pipe[0]);
+  if (got == static_cast<ssize_t>(sizeof exec_error)) {
+    waitpid(pid_, nullptr, 0);
+    pid_ = -1;
+    throw std::runtime_error("cannot start " + program.string() + ": " + std::strerror(exec_error));
   }
 }
 
