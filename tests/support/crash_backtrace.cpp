@@ -2,7 +2,8 @@
 // (SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT) prints its stack to stderr first,
 // so that a crash seen once under ctest -j4 or in CI leaves more in the log
 // than "***Exception: SegFault". Frames of a PIE read "program(+0xOFFSET)":
-// `addr2line -f -C -e build/tests/PROGRAM 0xOFFSET` names the function and line.
+// `addr2line -f -C -e build/tests/PROGRAM 0xOFFSET` names the function (and the
+// line, in a build with debug information).
 // Sanitizer builds keep their own, better reports.
 #include <execinfo.h>
 #include <unistd.h>
