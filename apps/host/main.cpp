@@ -16,6 +16,7 @@
 #include <wbi/deploy/placement.hpp>
 #include <wbi/launch/launcher.hpp>
 #include <wbi/runtime/builtin.hpp>
+#include <wbi/runtime/console_line.hpp>
 #include <wbi/runtime/host.hpp>
 #include <wbi/runtime/process_exit.hpp>
 
@@ -70,19 +71,21 @@ int main(int argc, char** argv) {
                     : std::make_unique<wbi::runtime::Host>(argv[1], registry, placement);
     auto& host = *host_ptr;
     host.start();
-    std::cout << "wbi_host: running " << host.size() << " component(s) from " << argv[1]
-              << " on domain " << host.participant().domain_id() << std::endl;
+    // The components already run and print: this line goes out whole (console_line.hpp).
+    wbi::runtime::print_line(stdout, "wbi_host: running " + std::to_string(host.size()) +
+                                         " component(s) from " + argv[1] + " on domain " +
+                                         std::to_string(host.participant().domain_id()));
     int signal_number = 0;
     sigwait(&signals, &signal_number);
     const auto errors = host.stop();
     for (const auto& error : errors) {
-      std::cerr << "wbi_host: " << error << "\n";
+      wbi::runtime::print_line(stderr, "wbi_host: " + error);
     }
     const auto requested = wbi::runtime::requested_process_exit_code();
     const std::string why =
         requested ? "a component ended the process, exit code " + std::to_string(*requested)
                   : (signal_number == SIGINT ? "SIGINT" : "SIGTERM");
-    std::cout << "wbi_host: stopped (" << why << ")" << std::endl;
+    wbi::runtime::print_line(stdout, "wbi_host: stopped (" + why + ")");
     if (!errors.empty()) {
       return 1;
     }
@@ -91,7 +94,7 @@ int main(int argc, char** argv) {
     }
     return signal_number == SIGINT ? 130 : 0;
   } catch (const std::exception& error) {
-    std::cerr << "wbi_host: " << error.what() << "\n";
+    wbi::runtime::print_line(stderr, std::string("wbi_host: ") + error.what());
     return 1;
   }
 }

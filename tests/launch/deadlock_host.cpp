@@ -8,11 +8,13 @@
 #include <csignal>
 #include <iostream>
 #include <mutex>
+#include <string>
 
 #include <pthread.h>
 
 #include <wbi/launch/launcher.hpp>
 #include <wbi/runtime/builtin.hpp>
+#include <wbi/runtime/console_line.hpp>
 #include <wbi/runtime/host.hpp>
 
 namespace {
@@ -59,8 +61,8 @@ int main(int argc, char** argv) {
   try {
     wbi::runtime::Host host(argv[1], argv[3], registry);
     host.start();
-    std::cout << "wbi_host: running " << host.size() << " component(s) from " << argv[1]
-              << std::endl;
+    wbi::runtime::print_line(stdout, "wbi_host: running " + std::to_string(host.size()) +
+                                         " component(s) from " + argv[1]);
     int signal_number = 0;
     sigwait(&signals, &signal_number);
     return host.stop().empty() ? 0 : 1;

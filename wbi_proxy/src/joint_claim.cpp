@@ -1,6 +1,6 @@
 #include "joint_claim.hpp"
 
-#include <iostream>
+#include <cstdio>
 #include <thread>
 
 #include <wbi/dds/topics.hpp>
@@ -97,8 +97,10 @@ void JointClaim::check() {
     case Standing::free:
       // The robot holds no claim of ours: it restarted (a released claim ends
       // with close()). Claim again before commanding.
-      std::cerr << "[" << controller_ << "] robot '" << robot_
-                << "' shows our joints unclaimed (restarted?): claiming them again\n";
+      // One call: the controller's other threads print too (runtime/console_line.hpp).
+      std::fprintf(stderr,
+                   "[%s] robot '%s' shows our joints unclaimed (restarted?): claiming them again\n",
+                   controller_.c_str(), robot_.c_str());
       claim(std::chrono::seconds(1));
       return;
   }

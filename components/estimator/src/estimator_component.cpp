@@ -4,8 +4,8 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
-#include <iostream>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -17,6 +17,7 @@
 #include <wbi/dds/topics.hpp>
 #include <wbi/estimation/estimator_factory.hpp>
 #include <wbi/estimation/low_pass_filter.hpp>
+#include <wbi/runtime/console_line.hpp>
 #include <wbi/runtime/producer_counters.hpp>
 
 #include "wbi/estimator/base_estimator.hpp"
@@ -281,7 +282,7 @@ class EstimatorComponent final : public runtime::Component {
       estimator_.reset();
       const std::string text = "estimator of robot '" + robot_ + "': " + e.what();
       report().set_error(text);
-      std::cerr << text << std::endl;
+      runtime::print_line(stderr, text);
       return false;
     }
   }
@@ -380,7 +381,7 @@ class EstimatorComponent final : public runtime::Component {
                              "writer " + dds::detail::guid_hex(writer) +
                              " (the robot restarted?): filters restarted";
     report().set_error(text);
-    std::cerr << text << std::endl;
+    runtime::print_line(stderr, text);
     if (estimator_) {
       earlier_counts_ += estimator_->stamp_counters();
     }
@@ -534,7 +535,7 @@ class EstimatorComponent final : public runtime::Component {
       const std::string text = "estimator of robot '" + robot_ + "': parameter '" +
                                parameter.name().to_string() + "' rejected: " + e.what();
       report().set_error(text);
-      std::cerr << text << std::endl;
+      runtime::print_line(stderr, text);
     }
   }
 

@@ -1,8 +1,9 @@
 #include "claim_desk.hpp"
 
-#include <iostream>
+#include <string>
 
 #include <wbi/dds/topics.hpp>
+#include <wbi/runtime/console_line.hpp>
 
 namespace wbi::robot {
 
@@ -112,7 +113,8 @@ void ClaimDesk::answer(const wbi::msg::JointClaimRequest& request,
       released = claims_.release(who, joints);
     }
     if (released > 0) {
-      std::cerr << "claims: " << describe(who) << " released " << released << " joint(s)\n";
+      runtime::print_line(stderr, "claims: " + describe(who) + " released " +
+                                      std::to_string(released) + " joint(s)");
       publish_owners();
     }
     return;
@@ -153,11 +155,11 @@ void ClaimDesk::answer(const wbi::msg::JointClaimRequest& request,
     return;
   }
   granted_.add();
-  std::cerr << "claims: " << describe(who) << " holds " << joint_list(claims_, joints) << "\n";
+  runtime::print_line(stderr, "claims: " + describe(who) + " holds " + joint_list(claims_, joints));
   for (const auto& taken : outcome.taken) {
-    std::cerr << "claims: joint " << claims_.joint_name(taken.joint) << " taken from "
-              << describe(taken.owner) << (request.force() ? " by force" : ": its claim had ended")
-              << "\n";
+    runtime::print_line(stderr, "claims: joint " + claims_.joint_name(taken.joint) +
+                                    " taken from " + describe(taken.owner) +
+                                    (request.force() ? " by force" : ": its claim had ended"));
   }
   publish_owners();
 }

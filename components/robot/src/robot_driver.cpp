@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <iostream>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
 
@@ -14,6 +14,7 @@
 #include "sensor_side.hpp"
 #include "simulation_side.hpp"
 #include "step_clock.hpp"
+#include "wbi/runtime/console_line.hpp"
 #include "wbi/runtime/process_exit.hpp"
 
 namespace wbi::robot {
@@ -276,17 +277,22 @@ class RobotDriver final : public runtime::Component {
     try {
       GroundTruthSummary summary(backend_->description(), simulation_->ground_truth());
       step_until_stopped(summary);
-      summary.print(std::cout, who_);
+      std::ostringstream report;
+      summary.print(report, who_);
       for (const auto& clock : step_clocks_) {
         if (const std::string line = clock->summary(); !line.empty()) {
-          std::cout << who_ << ": " << line << std::endl;
+          report << who_ << ": " << line << "\n";
         }
+      }
+      if (std::string text = std::move(report).str(); !text.empty()) {
+        text.pop_back();  // print_line adds the last newline
+        runtime::print_line(stdout, text);
       }
     } catch (const std::exception& e) {
       const std::string what =
           "simulation stopped at t = " + std::to_string(simulation_->time()) + " s: " + e.what();
       report().set_error(what);
-      std::cerr << who_ << ": " << what << std::endl;
+      runtime::print_line(stderr, who_ + ": " + what);
       runtime::request_process_exit(1);
     }
   }
@@ -296,8 +302,9 @@ class RobotDriver final : public runtime::Component {
     while (running_) {
       if (duration_s_ > 0.0 && simulation_->time() >= duration_s_) {
         // A line to wait for: a lockstep run's outcome is fixed from here on.
-        std::cout << who_ << ": duration_s " << duration_s_ << " reached: stopped stepping"
-                  << std::endl;
+        std::ostringstream line;
+        line << who_ << ": duration_s " << duration_s_ << " reached: stopped stepping";
+        runtime::print_line(stdout, line.str());
         break;
       }
       const Time now = simulation_->stamp();

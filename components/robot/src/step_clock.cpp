@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <iostream>
+#include <sstream>
+
+#include "wbi/runtime/console_line.hpp"
 
 namespace wbi::robot {
 
@@ -62,14 +64,15 @@ void RealTimeClock::wait(std::uint64_t tick) {
     ++stalls_seen_;
     stalls_.add();  // every stall, printed or not: the status counter real_time_stalls
     if (stall_lines_.print(now, dropped, unprinted)) {
-      std::cerr << who_ << ": tick " << tick << " came "
-                << std::chrono::duration<double>(dropped).count()
-                << " s late (the process stalled?): the simulation paused with it, the time "
-                   "is not caught up";
+      std::ostringstream line;
+      line << who_ << ": tick " << tick << " came "
+           << std::chrono::duration<double>(dropped).count()
+           << " s late (the process stalled?): the simulation paused with it, the time "
+              "is not caught up";
       if (unprinted > 0) {
-        std::cerr << " (" << unprinted << " more stall(s) since the last such line)";
+        line << " (" << unprinted << " more stall(s) since the last such line)";
       }
-      std::cerr << std::endl;
+      runtime::print_line(stderr, line.str());
     }
   }
   std::unique_lock lock(mutex_);
@@ -123,8 +126,10 @@ void LockstepClock::wait(std::uint64_t tick) {
   if (!changed_.wait_for(lock, std::chrono::duration<double>(timeout_s),
                          [&] { return stopped_ || all_answered(tick); })) {
     timeouts_.add();
-    std::cerr << who_ << ": tick " << tick << " not answered by every controller within "
-              << timeout_s << " s: stepping on" << std::endl;
+    std::ostringstream line;
+    line << who_ << ": tick " << tick << " not answered by every controller within " << timeout_s
+         << " s: stepping on";
+    runtime::print_line(stderr, line.str());
   }
 }
 

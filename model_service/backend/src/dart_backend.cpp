@@ -13,6 +13,7 @@
 #include "dart_backend.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <mutex>
 #include <sstream>
@@ -70,7 +71,7 @@ dd::SkeletonPtr load_skeleton(const std::string& urdf, const Model& model) {
   std::istringstream lines(messages.str());
   for (std::string line; std::getline(lines, line);) {
     if (line.find("negative or zero mass [0]") == std::string::npos) {
-      std::cerr << line << "\n";
+      std::fprintf(stderr, "%s\n", line.c_str());  // one call: the line stays whole
     }
   }
   if (!skeleton) {
