@@ -105,9 +105,8 @@ void run_ticks(benchmark::State& state, const BalancedRobot& balanced, const std
       start_ns = stamp.source_ns;
     }
     const double t = 1e-9 * static_cast<double>(stamp.source_ns - start_ns);
-    if (reference.settling(t)) {
-      reference.origin = balance.com_of_state();
-    }
+    reference.follow(
+        t, [&] { return balance.com_of_state(); }, [&] { return balance.feet_center_of_state(); });
     const auto begin = std::chrono::steady_clock::now();
     Eigen::Vector3d x, v, a;
     reference.at(t, x, v, a);

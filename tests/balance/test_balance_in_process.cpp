@@ -269,9 +269,8 @@ BalanceRun run_balance(const std::string& robot, const std::vector<std::string>&
       start_ns = stamp.source_ns;
     }
     const double t = 1e-9 * static_cast<double>(stamp.source_ns - start_ns);
-    if (reference.settling(t)) {
-      reference.origin = balance.com_of_state();
-    }
+    reference.follow(
+        t, [&] { return balance.com_of_state(); }, [&] { return balance.feet_center_of_state(); });
     Eigen::Vector3d x, v, a;
     reference.at(t, x, v, a);
     balance.set_com_reference(x, v, a);

@@ -204,6 +204,15 @@ Eigen::Vector3d MomentumBalance::com_of_state() {
   return c;
 }
 
+Eigen::Vector3d MomentumBalance::feet_center_of_state() {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const int sole : {left_, right_}) {
+    robot_.frame_pose(state_.q, state_.world_H_base, sole, world_H_sole_);
+    sum += world_H_sole_.topRightCorner<3, 1>();
+  }
+  return 0.5 * sum;
+}
+
 void MomentumBalance::update(ReadMode mode) {
   read_state(mode);
   control();

@@ -229,9 +229,9 @@ class MomentumBalanceComponent final : public runtime::Component {
   }
 
   void set_reference(double t) {
-    if (reference_.settling(t)) {
-      reference_.origin = controller_->com_of_state();
-    }
+    reference_.follow(
+        t, [&] { return controller_->com_of_state(); },
+        [&] { return controller_->feet_center_of_state(); });
     Eigen::Vector3d x, v, a;
     reference_.at(t, x, v, a);
     controller_->set_com_reference(x, v, a);
