@@ -23,6 +23,26 @@ function(wbi_add_library)
   endif()
 endfunction()
 
+# wbi_add_header_library(NAME <name> [INCLUDE_DIR <dir>] [DEPS ...])
+# A header-only library wbi_<name> (alias wbi::<name>): its headers in
+# INCLUDE_DIR (default <dir>/include), installed.
+function(wbi_add_header_library)
+  cmake_parse_arguments(ARG "" "NAME;INCLUDE_DIR" "DEPS" ${ARGN})
+  if(NOT ARG_INCLUDE_DIR)
+    set(ARG_INCLUDE_DIR ${CMAKE_CURRENT_SOURCE_DIR}/include)
+  endif()
+  set(target wbi_${ARG_NAME})
+  add_library(${target} INTERFACE)
+  add_library(wbi::${ARG_NAME} ALIAS ${target})
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${ARG_NAME})
+  target_include_directories(${target} INTERFACE
+    $<BUILD_INTERFACE:${ARG_INCLUDE_DIR}>
+    $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+  target_link_libraries(${target} INTERFACE ${ARG_DEPS})
+  set_property(GLOBAL APPEND PROPERTY WBI_INSTALLED_TARGETS ${target})
+  install(DIRECTORY ${ARG_INCLUDE_DIR}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endfunction()
+
 # wbi_add_executable(NAME <exe> SOURCES ... [DEPS ...] [NO_INSTALL])
 function(wbi_add_executable)
   cmake_parse_arguments(ARG "NO_INSTALL" "NAME" "SOURCES;DEPS" ${ARGN})

@@ -90,7 +90,7 @@ void standing(benchmark::State& state) {
   actuation::JointController ctl(d, cc);
   const Eigen::VectorXd q0 = sim.ground_truth().q.tail(d.n_joints());
   actuation::JointCommandBatch batch;
-  batch.modes.assign(static_cast<std::size_t>(d.n_joints()), actuation::ControlMode::kPosition);
+  batch.modes.assign(static_cast<std::size_t>(d.n_joints()), wbi::ControlMode::position);
   batch.values.assign(q0.data(), q0.data() + q0.size());
   ctl.submit(batch, sim.stamp());
   const actuation::Duration period = sim.step_period();

@@ -46,7 +46,7 @@ void BM_HumanoidStanding(benchmark::State& state) {
   const Eigen::VectorXd q0 = sim.ground_truth().q.tail(d.n_joints());
   actuation::JointCommandBatch batch;
   batch.modes.assign(static_cast<std::size_t>(d.n_joints()),
-                     actuation::ControlMode::kPositionDirect);
+                     wbi::ControlMode::position_direct);
   batch.values.assign(q0.data(), q0.data() + q0.size());
   const actuation::Duration period(1000000);
 

@@ -81,7 +81,7 @@ Errors stand_and_sway(double seconds, double roll, const LeggedBaseOptions& opti
       target[hip_roll[foot]] = q0[hip_roll[foot]] + axis * s;
       target[ankle_roll[foot]] = q0[ankle_roll[foot]] - axis * s;
     }
-    ctl.submit(all_joints(n, ControlMode::kPositionDirect, target), sim.stamp());
+    ctl.submit(all_joints(n, ControlMode::position_direct, target), sim.stamp());
     truth_q = sim.ground_truth().q;  // the state the sensors read before the step
     truth_nu = sim.ground_truth().nu;
     tick(sim, ctl);

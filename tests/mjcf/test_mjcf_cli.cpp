@@ -77,7 +77,7 @@ TEST_F(MjcfCli, WritesTheLibrarysTextForTheModel) {
   wbi::mjcf::MjcfOptions options;
   options.welded_links = {"l_foot", "r_foot"};
   options.timestep = 0.002;
-  options.integrator = wbi::mjcf::Integrator::kRK4;
+  options.integrator = wbi::Integrator::rk4;
   EXPECT_EQ(read(file), wbi::mjcf::write_mjcf(wm::load_urdf_file(urdf, load), options));
 
   const Output stdout_only = run({"mjcf", urdf, "--fixed-base", "-o", "-"});

@@ -135,7 +135,7 @@ TEST(MjcfWriter, OptionsSitesSensorsContactsAndGround) {
   const wm::Model model = humanoid();
   wj::MjcfOptions options;
   options.timestep = 0.0005;
-  options.integrator = wj::Integrator::kRK4;
+  options.integrator = wbi::Integrator::rk4;
   options.ground.enabled = true;
   options.ground.friction = 0.8;
   options.sites.push_back(
@@ -149,7 +149,7 @@ TEST(MjcfWriter, OptionsSitesSensorsContactsAndGround) {
   options.contacts.push_back(sole);
   wj::ContactGeometry heel;
   heel.link = "r_sole";
-  heel.shape = wj::ContactShape::kCapsule;
+  heel.shape = wbi::ContactShape::capsule;
   heel.radius = 0.02;
   heel.length = 0.1;
   options.contacts.push_back(heel);
@@ -207,7 +207,7 @@ TEST(MjcfWriter, BadOptionsAreOneClearError) {
   EXPECT_EQ(with([](wj::MjcfOptions& o) {
               wj::ContactGeometry g;
               g.link = "l_sole";
-              g.shape = wj::ContactShape::kSphere;
+              g.shape = wbi::ContactShape::sphere;
               o.contacts.push_back(g);
             }),
             "MJCF: contact 0 ('l_sole_contact_0'): a box needs size > 0 in x, y, z; a sphere "

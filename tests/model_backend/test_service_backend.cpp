@@ -85,7 +85,7 @@ TEST_F(ServiceBackendComponent, UnknownBackendIsRejectedNamingTheParameter) {
   EXPECT_NE(runner.last_error().find("backend"), std::string::npos) << runner.last_error();
   EXPECT_NE(runner.last_error().find("unknown model backend 'pinocchio'"), std::string::npos)
       << runner.last_error();
-  EXPECT_EQ(runner.state(), wbi::runtime::LifecycleState::unconfigured);
+  EXPECT_EQ(runner.state(), wbi::LifecycleState::unconfigured);
 }
 
 }  // namespace

@@ -187,7 +187,7 @@ TEST_F(ComponentTest, BadParametersAreRejectedWithFileAndKey) {
           "urdf: " + wbi::test::project_model("humanoid.urdf").string() + "\nfixed: true")),
       wbi::runtime::TransitionError);
   EXPECT_NE(runner->last_error().find("unknown parameter 'fixed'"), std::string::npos);
-  EXPECT_EQ(runner->state(), wbi::runtime::LifecycleState::unconfigured);
+  EXPECT_EQ(runner->state(), wbi::LifecycleState::unconfigured);
 }
 
 }  // namespace

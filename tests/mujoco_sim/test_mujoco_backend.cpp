@@ -95,7 +95,7 @@ struct Hold {
   Hold(Backend& backend, double f) : ctl(backend.description(), config(backend, f)) {
     const int n = backend.description().n_joints();
     act::JointCommandBatch batch;
-    batch.modes.assign(static_cast<std::size_t>(n), act::ControlMode::kPosition);
+    batch.modes.assign(static_cast<std::size_t>(n), wbi::ControlMode::position);
     const Eigen::VectorXd q0 = backend.ground_truth().q.tail(n);
     batch.values.assign(q0.data(), q0.data() + n);
     const auto result = ctl.submit(batch, backend.stamp());
@@ -358,7 +358,7 @@ TEST(MujocoBackend, LifecycleAndBadOptions) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("'mujoco.timestep'"), std::string::npos) << e.what();
   }
-  EXPECT_EQ(bad.state(), act::LifecycleState::kUnconfigured);
+  EXPECT_EQ(bad.state(), wbi::LifecycleState::unconfigured);
 }
 
 // MuJoCo resets a diverging simulation and carries on; the backend throws.

@@ -17,7 +17,7 @@
 
 namespace {
 
-using wbi::actuation::ControlMode;
+using wbi::ControlMode;
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -126,14 +126,14 @@ TEST(CommandChecks, EveryClassOfBadCommandIsRejectedNamedAndCounted) {
     EXPECT_NE(s.report.last_error().find(bad.error), std::string::npos)
         << bad.what << ": " << s.report.last_error();
     for (auto mode : s.side.status().mode) {
-      EXPECT_EQ(mode, ControlMode::kPosition) << bad.what << ": nothing applied (initial hold)";
+      EXPECT_EQ(mode, ControlMode::position) << bad.what << ": nothing applied (initial hold)";
     }
   }
   EXPECT_EQ(s.counter("rejected_from/pd"), rejected - 1);  // the empty one has no controller
   EXPECT_EQ(s.counter("rejected_from/(unnamed)"), 1u);
   s.side.handle(good_command());
   s.update();
-  EXPECT_EQ(s.side.status().mode[0], ControlMode::kTorque);
+  EXPECT_EQ(s.side.status().mode[0], ControlMode::torque);
   EXPECT_EQ(s.counter("rejected_commands"), rejected);
 }
 

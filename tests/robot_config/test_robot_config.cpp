@@ -82,15 +82,15 @@ mujoco: {timestep: 0.001, substeps: 1, integrator: RK4, solref: [0.01, 0.9],
   EXPECT_TRUE(c.place_on_ground);
   EXPECT_EQ(c.ground.height, 0.01);
   ASSERT_EQ(c.contacts.size(), 3u);
-  EXPECT_EQ(c.contacts[0].shape, ContactGeometry::Shape::kBox);
+  EXPECT_EQ(c.contacts[0].shape, wbi::ContactShape::box);
   EXPECT_EQ(c.contacts[0].size.x(), 0.2);
   EXPECT_NEAR((c.contacts[0].rotation * Eigen::Vector3d::UnitX() - Eigen::Vector3d::UnitY()).norm(),
               0.0, 1e-15);                 // yaw 90°
   EXPECT_EQ(c.contacts[0].friction, 0.7);  // the ground's
-  EXPECT_EQ(c.contacts[1].shape, ContactGeometry::Shape::kSphere);
+  EXPECT_EQ(c.contacts[1].shape, wbi::ContactShape::sphere);
   EXPECT_EQ(c.contacts[1].radius, 0.03);
   EXPECT_EQ(c.contacts[1].friction, 0.5);
-  EXPECT_EQ(c.contacts[2].shape, ContactGeometry::Shape::kCapsule);
+  EXPECT_EQ(c.contacts[2].shape, wbi::ContactShape::capsule);
   EXPECT_EQ(c.contacts[2].length, 0.1);
   EXPECT_EQ(c.joints.size(), 30u);  // every model joint
   EXPECT_EQ(c.joints.at("l_knee").armature, 0.2);
@@ -122,7 +122,7 @@ mujoco: {timestep: 0.001, substeps: 1, integrator: RK4, solref: [0.01, 0.9],
   EXPECT_EQ(c.wbi.seed, 7u);
   EXPECT_EQ(c.mujoco.timestep, 0.001);
   EXPECT_EQ(c.mujoco.substeps, 1);
-  EXPECT_EQ(c.mujoco.integrator, MujocoOptions::Integrator::kRK4);
+  EXPECT_EQ(c.mujoco.integrator, wbi::Integrator::rk4);
   EXPECT_EQ(c.mujoco.solref[1], 0.9);
   EXPECT_EQ(c.mujoco.solimp[4], 3.0);
   EXPECT_EQ(c.mujoco.cone, MujocoOptions::Cone::kElliptic);
@@ -147,7 +147,7 @@ TEST(RobotConfig, DefaultsComeFromTheUrdf) {
   }
   EXPECT_EQ(c.wbi.step, 1e-3);
   EXPECT_EQ(c.wbi.substeps, 2);
-  EXPECT_EQ(c.mujoco.integrator, MujocoOptions::Integrator::kImplicit);
+  EXPECT_EQ(c.mujoco.integrator, wbi::Integrator::implicit);
   EXPECT_EQ(c.mujoco.joint_friction, MujocoOptions::JointFriction::kTorque);
 
   // A configuration built in code is completed the same way, idempotently.

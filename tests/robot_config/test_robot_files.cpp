@@ -64,7 +64,7 @@ void expect_soles_at(const RobotConfig& c, const std::vector<std::string>& links
     if (std::find(links.begin(), links.end(), g.link) == links.end()) {
       continue;
     }
-    ASSERT_EQ(g.shape, ContactGeometry::Shape::kBox) << g.link;
+    ASSERT_EQ(g.shape, wbi::ContactShape::box) << g.link;
     const Pose L = frame_pose(m, d, c, g.link);
     const Eigen::Vector3d bottom_L =
         g.position + g.rotation * Eigen::Vector3d(0, 0, -0.5 * g.size.z());

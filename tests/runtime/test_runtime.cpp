@@ -28,7 +28,7 @@ namespace {
 using namespace std::chrono_literals;
 using wbi::runtime::ComponentContext;
 using wbi::runtime::ComponentRunner;
-using wbi::runtime::LifecycleState;
+using wbi::LifecycleState;
 using wbi::runtime::ParameterError;
 using wbi::runtime::Parameters;
 using wbi::runtime::TransitionError;
@@ -146,7 +146,7 @@ TEST_F(Lifecycle, InvalidTransitionNamesTheComponentAndStates) {
     FAIL();
   } catch (const TransitionError& error) {
     EXPECT_STREQ(error.what(),
-                 "component 'probe': cannot deactivate from unconfigured (only from active)");
+                 "component 'probe': cannot deactivate from UNCONFIGURED (only from ACTIVE)");
   }
 }
 

@@ -10,7 +10,7 @@
 
 namespace wbi::sim::test {
 
-using actuation::ControlMode;
+using wbi::ControlMode;
 using actuation::JointCommandBatch;
 using actuation::JointController;
 using actuation::JointControllerConfig;

@@ -51,7 +51,7 @@ TEST(SimActuation, ArmPositionModeReachesTargets) {
   sim.configure();
   sim.activate();
   JointController ctl(sim.description(), arm_control());
-  JointCommandBatch b = all_joints(7, ControlMode::kPosition, kHome);
+  JointCommandBatch b = all_joints(7, ControlMode::position, kHome);
   b.reference_speeds.assign(7, 1.0);
   ASSERT_TRUE(ctl.submit(b, sim.stamp()).ok);
   double peak_ref_speed = 0.0;
@@ -65,7 +65,7 @@ TEST(SimActuation, ArmPositionModeReachesTargets) {
   // a second target from there
   const Eigen::VectorXd target2 =
       (Eigen::VectorXd(7) << 0.8, -0.3, 0.5, 1.0, -0.6, 0.7, 1.0).finished();
-  ASSERT_TRUE(ctl.submit(all_joints(7, ControlMode::kPosition, target2), sim.stamp()).ok);
+  ASSERT_TRUE(ctl.submit(all_joints(7, ControlMode::position, target2), sim.stamp()).ok);
   for (int k = 0; k < 5000; ++k) {  // default 0.5 rad/s: 1.875 × 1.0 / 0.5 = 3.75 s, then 1.25 s
     tick(sim, ctl);
   }
@@ -117,7 +117,7 @@ TEST(SimActuation, ArmTorqueModeGravityCompensationHoldsStill) {
     sim.read(t, std::chrono::milliseconds(1));
     const Eigen::VectorXd& g =
         model::gravity_forces(m, data, sim.readings().position, sim.config().gravity);
-    ctl.submit(all_joints(7, ControlMode::kTorque, g), t);
+    ctl.submit(all_joints(7, ControlMode::torque, g), t);
     ctl.update(t, std::chrono::milliseconds(1), sim.readings(), sim.commands());
     sim.write(t, std::chrono::milliseconds(1));
     sim.step();
@@ -142,7 +142,7 @@ TEST(SimActuation, WatchdogTripsAndHolds) {
   sim.activate();
   JointController ctl(sim.description(), arm_control(0.1));
   for (int k = 0; k < 300; ++k) {  // stream for 0.3 s
-    ctl.submit(all_joints(7, ControlMode::kPositionDirect, kHome), sim.stamp());
+    ctl.submit(all_joints(7, ControlMode::position_direct, kHome), sim.stamp());
     tick(sim, ctl);
   }
   EXPECT_EQ(ctl.status().watchdog_trips, 0u);
@@ -164,7 +164,7 @@ TEST(SimActuation, WatchdogTripsAndHolds) {
   EXPECT_LE(trip_tick, 102);
   EXPECT_LT(dev, 5e-3);
   // a new command clears the trip
-  ctl.submit(all_joints(7, ControlMode::kPositionDirect, kHome), sim.stamp());
+  ctl.submit(all_joints(7, ControlMode::position_direct, kHome), sim.stamp());
   tick(sim, ctl);
   EXPECT_EQ(ctl.status().watchdog_tripped[0], 0);
 }
@@ -176,7 +176,7 @@ TEST(SimActuation, WatchdogDampsToRest) {
   JointControllerConfig cc = arm_control(0.05);
   cc.watchdog_action = actuation::WatchdogAction::kDamp;  // τ = −kd q̇
   JointController ctl(sim.description(), cc);
-  ctl.submit(all_joints(7, ControlMode::kTorque, Eigen::VectorXd::Zero(7)), sim.stamp());
+  ctl.submit(all_joints(7, ControlMode::torque, Eigen::VectorXd::Zero(7)), sim.stamp());
   double max_speed = 0.0;
   for (int k = 0; k < 1000; ++k) {
     tick(sim, ctl);
@@ -194,7 +194,7 @@ TEST(SimActuation, BadCommandsAreRejectedAndNothingIsApplied) {
   JointController ctl(sim.description(), arm_control());
   JointCommandBatch bad;
   bad.joints = {"joint_1", "joint_9"};
-  bad.modes = {ControlMode::kTorque, ControlMode::kTorque};
+  bad.modes = {ControlMode::torque, ControlMode::torque};
   bad.values = {1.0, 2.0};
   auto r = ctl.submit(bad, sim.stamp());
   EXPECT_FALSE(r.ok);
@@ -217,7 +217,7 @@ TEST(SimActuation, BadCommandsAreRejectedAndNothingIsApplied) {
   EXPECT_NE(r.error.find("IDLE"), std::string::npos) << r.error;
   tick(sim, ctl);
   for (auto mode : ctl.status().mode) {
-    EXPECT_EQ(mode, ControlMode::kIdle);  // nothing applied
+    EXPECT_EQ(mode, ControlMode::idle);  // nothing applied
   }
   EXPECT_EQ(ctl.status().rejected_batches, 5u);
   EXPECT_EQ(ctl.status().last_error, r.error);
@@ -231,19 +231,19 @@ TEST(SimActuation, ModeSwitchesAreAtomic) {
   JointController ctl(sim.description(), arm_control());
   JointCommandBatch a;
   a.joints = {"joint_1", "joint_2", "joint_3"};
-  a.modes.assign(3, ControlMode::kPositionDirect);
+  a.modes.assign(3, ControlMode::position_direct);
   JointCommandBatch b;
   b.joints = {"joint_4", "joint_5", "joint_6", "joint_7"};
-  b.modes.assign(4, ControlMode::kPosition);
+  b.modes.assign(4, ControlMode::position);
   ASSERT_TRUE(ctl.submit(a, sim.stamp()).ok);
   for (auto mode : ctl.status().mode) {
-    EXPECT_EQ(mode, ControlMode::kIdle);  // staged, not yet applied
+    EXPECT_EQ(mode, ControlMode::idle);  // staged, not yet applied
   }
   ASSERT_TRUE(ctl.submit(b, sim.stamp()).ok);
   tick(sim, ctl);
   for (int j = 0; j < 7; ++j) {
     EXPECT_EQ(ctl.status().mode[static_cast<std::size_t>(j)],
-              j < 3 ? ControlMode::kPositionDirect : ControlMode::kPosition);
+              j < 3 ? ControlMode::position_direct : ControlMode::position);
   }
   // and the switched joints hold the posture they were in (bumpless)
   for (int k = 0; k < 50; ++k) {
@@ -261,12 +261,12 @@ TEST(SimActuation, JointsByIndex) {
   JointController ctl(sim.description(), arm_control());
   JointCommandBatch by_index;
   by_index.joint_indices = {6, 1};
-  by_index.modes = {ControlMode::kTorque, ControlMode::kPositionDirect};
+  by_index.modes = {ControlMode::torque, ControlMode::position_direct};
   ASSERT_TRUE(ctl.submit(by_index, sim.stamp()).ok);
   tick(sim, ctl);
-  EXPECT_EQ(ctl.status().mode[6], ControlMode::kTorque);
-  EXPECT_EQ(ctl.status().mode[1], ControlMode::kPositionDirect);
-  EXPECT_EQ(ctl.status().mode[0], ControlMode::kIdle);
+  EXPECT_EQ(ctl.status().mode[6], ControlMode::torque);
+  EXPECT_EQ(ctl.status().mode[1], ControlMode::position_direct);
+  EXPECT_EQ(ctl.status().mode[0], ControlMode::idle);
 
   by_index.joint_indices = {6, 7};
   auto r = ctl.submit(by_index, sim.stamp());
@@ -288,8 +288,8 @@ TEST(SimActuation, PwmDrivesTheMotorModel) {
   sim.activate();
   JointController ctl(sim.description(), arm_control());
   // joint_1 (vertical axis: no gravity torque) in PWM, the others hold the posture
-  JointCommandBatch b = all_joints(7, ControlMode::kPositionDirect, kHome);
-  b.modes[0] = ControlMode::kPwm;
+  JointCommandBatch b = all_joints(7, ControlMode::position_direct, kHome);
+  b.modes[0] = ControlMode::pwm;
   b.values[0] = 0.25;
   for (int k = 0; k < 200; ++k) {
     ctl.submit(b, sim.stamp());

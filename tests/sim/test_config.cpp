@@ -168,10 +168,10 @@ TEST(SimConfig, UnknownNamesAreErrors) {
 
 TEST(SimConfig, LifecycleTransitions) {
   SimBackend sim(humanoid_config());
-  using actuation::LifecycleState;
-  EXPECT_EQ(sim.state(), LifecycleState::kUnconfigured);
+  using wbi::LifecycleState;
+  EXPECT_EQ(sim.state(), LifecycleState::unconfigured);
   sim.configure();
-  EXPECT_EQ(sim.state(), LifecycleState::kInactive);
+  EXPECT_EQ(sim.state(), LifecycleState::inactive);
   // INACTIVE: readable, commands not applied (a torque command is replaced by IDLE)
   sim.read(sim.stamp(), Duration(1000000));
   sim.commands().mode.assign(30, actuation::OutputMode::kTorque);
@@ -194,12 +194,12 @@ TEST(SimConfig, LifecycleTransitions) {
         sim.step();
       },
       {"configure() first"});
-  EXPECT_EQ(sim.state(), LifecycleState::kUnconfigured);
+  EXPECT_EQ(sim.state(), LifecycleState::unconfigured);
   sim.configure();  // again, from the initial state
   EXPECT_EQ(sim.time(), 0.0);
   sim.activate();
   sim.shutdown();
-  EXPECT_EQ(sim.state(), LifecycleState::kFinalized);
+  EXPECT_EQ(sim.state(), LifecycleState::finalized);
   expect_error([&] { sim.read(sim.stamp(), Duration(1000000)); }, {"FINALIZED"});
 }
 

@@ -132,7 +132,7 @@ StandResult stand(RobotConfig c, double seconds) {
   Eigen::Vector3d mean_late = Eigen::Vector3d::Zero();
   for (int k = 0; k < steps; ++k) {
     // a controller streaming the initial posture every tick
-    ctl.submit(all_joints(d.n_joints(), ControlMode::kPositionDirect, q_j0), sim.stamp());
+    ctl.submit(all_joints(d.n_joints(), ControlMode::position_direct, q_j0), sim.stamp());
     tick(sim, ctl);
     const auto& gt = sim.ground_truth();
     const Eigen::Vector3d p = gt.base_position;
@@ -230,7 +230,7 @@ TEST(SimPlant, HumanoidSurvivesAPush) {
   double min_z = 1.0;
   double max_ft_x = 0.0;
   for (int k = 0; k < 3000; ++k) {
-    ctl.submit(all_joints(d.n_joints(), ControlMode::kPositionDirect, q_j0), sim.stamp());
+    ctl.submit(all_joints(d.n_joints(), ControlMode::position_direct, q_j0), sim.stamp());
     tick(sim, ctl);
     min_x = std::min(min_x, sim.ground_truth().base_position.x());
     min_z = std::min(min_z, sim.ground_truth().base_position.z());

@@ -73,7 +73,7 @@ int joint_of(const Humanoid& h) { return h.joint; }
 template <class Robot>
 void prepare(Robot& robot, bool trip_first) {
   const int n = robot.ctl.n_joints();
-  const auto mode = trip_first ? ControlMode::kPositionDirect : ControlMode::kPosition;
+  const auto mode = trip_first ? ControlMode::position_direct : ControlMode::position;
   for (int k = 0; k < 200; ++k) {
     if (k == 0 || trip_first) {
       ASSERT_TRUE(robot.ctl.submit(all_joints(n, mode, robot.posture()), robot.sim.stamp()).ok);
@@ -101,7 +101,7 @@ template <class Robot>
 double time_to_reach(Robot& robot, double target, int every, double tolerance) {
   const int n = robot.ctl.n_joints();
   const int j = joint_of(robot);
-  JointCommandBatch command = all_joints(n, ControlMode::kPosition, robot.posture());
+  JointCommandBatch command = all_joints(n, ControlMode::position, robot.posture());
   command.values[static_cast<std::size_t>(j)] = target;
   for (int k = 0; k < 10000; ++k) {
     if (k == 0 || (every > 0 && k % every == 0)) {
@@ -159,7 +159,7 @@ void expect_ramp_tracked(const char* name, double v, double lag_bound) {
   const int n = robot.ctl.n_joints();
   const int j = joint_of(robot);
   const double start = robot.posture()[j];
-  JointCommandBatch command = all_joints(n, ControlMode::kPosition, robot.posture());
+  JointCommandBatch command = all_joints(n, ControlMode::position, robot.posture());
   double max_reference_lag = 0.0, max_joint_lag = 0.0, max_speed_error = 0.0, max_accel = 0.0;
   double previous_speed = 0.0;
   const int ticks = 3000;
@@ -204,7 +204,7 @@ TEST(PositionStreaming, RepeatedTargetLeavesTheTrajectoryUntouched) {
   Arm once, streamed;
   prepare(once, false);
   prepare(streamed, false);
-  JointCommandBatch command = all_joints(7, ControlMode::kPosition, kArmHome);
+  JointCommandBatch command = all_joints(7, ControlMode::position, kArmHome);
   command.values[0] = 1.0;
   ASSERT_TRUE(once.ctl.submit(command, once.sim.stamp()).ok);
   for (int k = 0; k < 1000; ++k) {

@@ -33,7 +33,7 @@ void run_without_allocation(RobotConfig c, ControlMode mode, bool ramp = false) 
   const Eigen::VectorXd& q_j0 = held.q_j0;
   JointCommandBatch batch =
       all_joints(d.n_joints(), mode,
-                 mode == ControlMode::kTorque ? Eigen::VectorXd::Zero(d.n_joints()) : q_j0);
+                 mode == ControlMode::torque ? Eigen::VectorXd::Zero(d.n_joints()) : q_j0);
   ctl.submit(batch, sim.stamp());
   tick(sim, ctl);  // first tick outside (nothing should allocate there either)
 
@@ -70,12 +70,12 @@ TEST(SimNoMallocDeathTest, EigenCheckIsLive) {
 }
 
 TEST(SimNoMalloc, HumanoidLoopDoesNotAllocate) {
-  run_without_allocation(humanoid_config(), ControlMode::kPositionDirect);
+  run_without_allocation(humanoid_config(), ControlMode::position_direct);
   RobotConfig c = humanoid_config();
   c.wbi.contact.tangential = robot_config::ContactModel::Tangential::kRegularized;
-  run_without_allocation(c, ControlMode::kPosition);
-  run_without_allocation(humanoid_config(), ControlMode::kPosition, true);
-  run_without_allocation(humanoid_config(), ControlMode::kTorque);
+  run_without_allocation(c, ControlMode::position);
+  run_without_allocation(humanoid_config(), ControlMode::position, true);
+  run_without_allocation(humanoid_config(), ControlMode::torque);
 }
 
 }  // namespace

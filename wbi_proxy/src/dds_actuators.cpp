@@ -3,29 +3,13 @@
 #include <algorithm>
 #include <limits>
 
+#include <wbi/msg/wire_vocabulary.hpp>
+
 #include "size_check.hpp"
 
 namespace wbi::proxy {
 
 namespace {
-
-wbi::msg::ControlMode to_message(ControlMode mode) {
-  switch (mode) {
-    case ControlMode::idle:
-      return wbi::msg::ControlMode::IDLE;
-    case ControlMode::position:
-      return wbi::msg::ControlMode::POSITION;
-    case ControlMode::position_direct:
-      return wbi::msg::ControlMode::POSITION_DIRECT;
-    case ControlMode::velocity:
-      return wbi::msg::ControlMode::VELOCITY;
-    case ControlMode::torque:
-      return wbi::msg::ControlMode::TORQUE;
-    case ControlMode::pwm:
-      return wbi::msg::ControlMode::PWM;
-  }
-  throw Error("unknown control mode");
-}
 
 constexpr double kUnchanged = std::numeric_limits<double>::quiet_NaN();
 
@@ -154,7 +138,7 @@ void DdsActuators::publish_command() {
   // estimate carries its sensor sample's stamp).
   command_.source_stamp_ns(std::max(sensors.stamp_ns(), state.stamp_ns()));
   for (std::size_t k = 0; k < modes_.size(); ++k) {
-    command_.modes()[k] = to_message(modes_[k]);
+    command_.modes()[k] = msg::to_wire(modes_[k]);
     command_.references()[k] = references_[static_cast<Eigen::Index>(k)];
   }
   if (!commands_.publish(command_)) {

@@ -713,15 +713,11 @@ int run_mjcf(Args args) {
     }
   }
   if (const auto integrator = opts.get_optional("integrator")) {
-    if (*integrator == "euler") {
-      options.integrator = wbi::mjcf::Integrator::kEuler;
-    } else if (*integrator == "rk4") {
-      options.integrator = wbi::mjcf::Integrator::kRK4;
-    } else if (*integrator == "implicit") {
-      options.integrator = wbi::mjcf::Integrator::kImplicit;
-    } else {
+    const auto parsed = enum_from_name_any_case<Integrator>(*integrator);
+    if (!parsed) {
       throw UsageError("--integrator: unknown '" + *integrator + "' (euler, rk4 or implicit)");
     }
+    options.integrator = *parsed;
   }
   if (const auto welded = opts.get_optional("welded")) {
     for (const std::string& link : split_list(*welded, "welded", "link")) {

@@ -13,18 +13,6 @@ namespace wbi::cli {
 
 namespace {
 
-const char* shape_name(robot_config::ContactGeometry::Shape shape) {
-  switch (shape) {
-    case robot_config::ContactGeometry::Shape::kBox:
-      return "box";
-    case robot_config::ContactGeometry::Shape::kSphere:
-      return "sphere";
-    case robot_config::ContactGeometry::Shape::kCapsule:
-      return "capsule";
-  }
-  return "?";
-}
-
 int run_check(Args args) {
   Options opts("wbi robot check FILE",
                "Load a robot config file, check it against its URDF (every key, type, size, "
@@ -45,7 +33,7 @@ int run_check(Args args) {
   std::cout << "  ground: z = " << c.ground.height << " m, friction " << c.ground.friction
             << "\n  contacts: " << c.contacts.size() << "\n";
   for (const auto& g : c.contacts) {
-    std::cout << "    " << g.link << ": " << shape_name(g.shape) << ", friction " << g.friction
+    std::cout << "    " << g.link << ": " << to_string(g.shape) << ", friction " << g.friction
               << "\n";
   }
   std::cout << "  imus: " << c.imus.size() << "\n";

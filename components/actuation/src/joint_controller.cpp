@@ -7,39 +7,6 @@
 
 namespace wbi::actuation {
 
-const char* to_string(ControlMode mode) {
-  switch (mode) {
-    case ControlMode::kIdle:
-      return "IDLE";
-    case ControlMode::kPosition:
-      return "POSITION";
-    case ControlMode::kPositionDirect:
-      return "POSITION_DIRECT";
-    case ControlMode::kVelocity:
-      return "VELOCITY";
-    case ControlMode::kTorque:
-      return "TORQUE";
-    case ControlMode::kPwm:
-      return "PWM";
-  }
-  return "?";
-}
-
-std::optional<ControlMode> control_mode_from_string(std::string_view name) {
-  for (auto m : {ControlMode::kIdle, ControlMode::kPosition, ControlMode::kPositionDirect,
-                 ControlMode::kVelocity, ControlMode::kTorque, ControlMode::kPwm}) {
-    if (name == to_string(m)) {
-      return m;
-    }
-  }
-  return std::nullopt;
-}
-
-bool is_streaming(ControlMode mode) {
-  return mode == ControlMode::kPositionDirect || mode == ControlMode::kVelocity ||
-         mode == ControlMode::kTorque || mode == ControlMode::kPwm;
-}
-
 namespace {
 double seconds(Duration d) { return static_cast<double>(d.count()) * 1e-9; }
 // The description's position PD where it gives one, else kp from the effort
@@ -83,7 +50,7 @@ JointController::JointController(const BackendDescription& description,
   joints_.resize(n);
   staged_.resize(n);
   scratch_index_.resize(n);
-  status_.mode.assign(n, ControlMode::kIdle);
+  status_.mode.assign(n, ControlMode::idle);
   status_.watchdog_tripped.assign(n, 0);
   status_.position_reference = Eigen::VectorXd::Zero(n_);
   status_.velocity_reference = Eigen::VectorXd::Zero(n_);
@@ -177,7 +144,7 @@ CommandResult JointController::submit(const JointCommandBatch& batch, Time now) 
       }
       // A value for a joint left IDLE is a mistake; a value that comes with an
       // explicit switch to IDLE (the wire carries one per joint) is ignored.
-      if (mode == ControlMode::kIdle && batch.modes.empty()) {
+      if (mode == ControlMode::idle && batch.modes.empty()) {
         return reject("joint '" + name + "' is IDLE: it takes no value");
       }
       clamped += outside_limits(mode, batch.values[b], i) ? 1 : 0;
@@ -212,17 +179,17 @@ CommandResult JointController::submit(const JointCommandBatch& batch, Time now) 
 // ±velocity_limit, torques to ±effort_limit, PWM to [−1, 1].
 bool JointController::outside_limits(ControlMode mode, double value, std::size_t joint) const {
   switch (mode) {
-    case ControlMode::kPosition:
-    case ControlMode::kPositionDirect:
+    case ControlMode::position:
+    case ControlMode::position_direct:
       return value < description_.position_lower[joint] ||
              value > description_.position_upper[joint];
-    case ControlMode::kVelocity:
+    case ControlMode::velocity:
       return std::abs(value) > description_.velocity_limit[joint];
-    case ControlMode::kTorque:
+    case ControlMode::torque:
       return std::abs(value) > description_.effort_limit[joint];
-    case ControlMode::kPwm:
+    case ControlMode::pwm:
       return std::abs(value) > 1.0;
-    case ControlMode::kIdle:
+    case ControlMode::idle:
       return false;
   }
   return false;
@@ -297,11 +264,11 @@ void JointController::update(Time now, Duration period, const SensorReadings& in
         j.dq_r = 0.0;
         j.ddq_r = 0.0;
         j.target =
-            j.mode == ControlMode::kPosition || j.mode == ControlMode::kPositionDirect ? q : 0.0;
-        j.start_trajectory = j.mode == ControlMode::kPosition;
+            j.mode == ControlMode::position || j.mode == ControlMode::position_direct ? q : 0.0;
+        j.start_trajectory = j.mode == ControlMode::position;
       }
       if (s.has_value) {
-        if (j.mode == ControlMode::kPosition) {
+        if (j.mode == ControlMode::position) {
           // the same target again (a controller streaming it) leaves the
           // trajectory in progress alone; a new one re-plans from the reference
           const double target =
@@ -314,7 +281,7 @@ void JointController::update(Time now, Duration period, const SensorReadings& in
       }
       if (s.speed > 0.0 && s.speed != j.speed) {
         j.speed = s.speed;
-        j.start_trajectory = j.start_trajectory || j.mode == ControlMode::kPosition;
+        j.start_trajectory = j.start_trajectory || j.mode == ControlMode::position;
       }
       j.tripped = false;
       j.last_command = s.time;
@@ -352,12 +319,12 @@ void JointController::update(Time now, Duration period, const SensorReadings& in
       }
     } else {
       switch (j.mode) {
-        case ControlMode::kIdle:
+        case ControlMode::idle:
           out_mode = OutputMode::kIdle;
           j.q_r = q;
           j.dq_r = 0.0;
           break;
-        case ControlMode::kPosition: {
+        case ControlMode::position: {
           j.target = std::clamp(j.target, lower, upper);
           if (j.start_trajectory) {
             // from the reference's (q_r, q̇_r, q̈_r), which are those of the last tick
@@ -380,7 +347,7 @@ void JointController::update(Time now, Duration period, const SensorReadings& in
           value = pid(j, i, q, dq, dt);
           break;
         }
-        case ControlMode::kPositionDirect: {
+        case ControlMode::position_direct: {
           const double target = std::clamp(j.target, lower, upper);
           const double step = std::isfinite(v_max) ? v_max * dt : std::abs(target - j.q_r);
           const double next = j.q_r + std::clamp(target - j.q_r, -step, step);
@@ -389,7 +356,7 @@ void JointController::update(Time now, Duration period, const SensorReadings& in
           value = pid(j, i, q, dq, dt);
           break;
         }
-        case ControlMode::kVelocity: {
+        case ControlMode::velocity: {
           j.dq_r = std::clamp(j.target, -v_max, v_max);
           j.q_r = std::clamp(j.q_r + j.dq_r * dt, lower, upper);
           if (j.q_r == lower || j.q_r == upper) {
@@ -398,7 +365,7 @@ void JointController::update(Time now, Duration period, const SensorReadings& in
           value = pid(j, i, q, dq, dt);
           break;
         }
-        case ControlMode::kTorque: {
+        case ControlMode::torque: {
           double tau = j.target;
           const PidGains& g = gains_[u];
           if (q > upper) {
@@ -416,7 +383,7 @@ void JointController::update(Time now, Duration period, const SensorReadings& in
           j.dq_r = dq;
           break;
         }
-        case ControlMode::kPwm:
+        case ControlMode::pwm:
           out_mode = OutputMode::kPwm;
           value = std::clamp(j.target, -1.0, 1.0);
           j.q_r = q;

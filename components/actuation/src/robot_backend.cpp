@@ -4,20 +4,6 @@
 
 namespace wbi::actuation {
 
-const char* to_string(LifecycleState state) {
-  switch (state) {
-    case LifecycleState::kUnconfigured:
-      return "UNCONFIGURED";
-    case LifecycleState::kInactive:
-      return "INACTIVE";
-    case LifecycleState::kActive:
-      return "ACTIVE";
-    case LifecycleState::kFinalized:
-      return "FINALIZED";
-  }
-  return "?";
-}
-
 int BackendDescription::joint_index(const std::string& name) const {
   for (std::size_t i = 0; i < joint_names.size(); ++i) {
     if (joint_names[i] == name) {
@@ -59,7 +45,7 @@ void require(LifecycleState actual, LifecycleState wanted, const char* what) {
 }  // namespace
 
 void RobotBackend::configure() {
-  require(state_, LifecycleState::kUnconfigured, "configure()");
+  require(state_, LifecycleState::unconfigured, "configure()");
   BackendDescription d = on_configure();
   const std::size_t n = d.joint_names.size();
   if (d.position_lower.size() != n || d.position_upper.size() != n ||
@@ -74,50 +60,50 @@ void RobotBackend::configure() {
   readings_.resize(description_);
   commands_.resize(description_.n_joints());
   idle_.resize(description_.n_joints());
-  state_ = LifecycleState::kInactive;
+  state_ = LifecycleState::inactive;
 }
 
 void RobotBackend::activate() {
-  require(state_, LifecycleState::kInactive, "activate()");
+  require(state_, LifecycleState::inactive, "activate()");
   on_activate();
   commands_.set_idle();
-  state_ = LifecycleState::kActive;
+  state_ = LifecycleState::active;
 }
 
 void RobotBackend::deactivate() {
-  require(state_, LifecycleState::kActive, "deactivate()");
+  require(state_, LifecycleState::active, "deactivate()");
   on_deactivate();
   commands_.set_idle();
-  state_ = LifecycleState::kInactive;
+  state_ = LifecycleState::inactive;
 }
 
 void RobotBackend::cleanup() {
-  require(state_, LifecycleState::kInactive, "cleanup()");
+  require(state_, LifecycleState::inactive, "cleanup()");
   on_cleanup();
-  state_ = LifecycleState::kUnconfigured;
+  state_ = LifecycleState::unconfigured;
 }
 
 void RobotBackend::shutdown() {
-  if (state_ == LifecycleState::kFinalized) {
+  if (state_ == LifecycleState::finalized) {
     return;
   }
-  if (state_ == LifecycleState::kActive) {
+  if (state_ == LifecycleState::active) {
     on_deactivate();
     commands_.set_idle();
   }
   on_shutdown();
-  state_ = LifecycleState::kFinalized;
+  state_ = LifecycleState::finalized;
 }
 
 void RobotBackend::read(Time time, Duration period) {
-  if (state_ != LifecycleState::kInactive && state_ != LifecycleState::kActive) {
-    require(state_, LifecycleState::kInactive, "read()");
+  if (state_ != LifecycleState::inactive && state_ != LifecycleState::active) {
+    require(state_, LifecycleState::inactive, "read()");
   }
   on_read(time, period, readings_);
 }
 
 void RobotBackend::write(Time time, Duration period) {
-  if (state_ == LifecycleState::kActive) {
+  if (state_ == LifecycleState::active) {
     const auto n = static_cast<std::size_t>(description_.n_joints());
     if (commands_.mode.size() != n || static_cast<std::size_t>(commands_.value.size()) != n) {
       throw std::invalid_argument("robot backend '" + description_.robot +
@@ -127,7 +113,7 @@ void RobotBackend::write(Time time, Duration period) {
     on_write(time, period, commands_);
     return;
   }
-  require(state_, LifecycleState::kInactive, "write()");
+  require(state_, LifecycleState::inactive, "write()");
   on_write(time, period, idle_);
 }
 

@@ -6,7 +6,7 @@
 namespace wbi::actuation {
 
 void SimulationBackend::step() {
-  if (state() != LifecycleState::kInactive && state() != LifecycleState::kActive) {
+  if (state() != LifecycleState::inactive && state() != LifecycleState::active) {
     throw std::logic_error(std::string("simulation backend: step() needs configure() first (the "
                                        "backend is ") +
                            to_string(state()) + ")");

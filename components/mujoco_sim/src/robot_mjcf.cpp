@@ -17,17 +17,7 @@ mjcf::ContactGeometry to_mjcf(const robot_config::ContactGeometry& g, const std:
   mjcf::ContactGeometry out;
   out.name = name;
   out.link = g.link;
-  switch (g.shape) {
-    case robot_config::ContactGeometry::Shape::kBox:
-      out.shape = mjcf::ContactShape::kBox;
-      break;
-    case robot_config::ContactGeometry::Shape::kSphere:
-      out.shape = mjcf::ContactShape::kSphere;
-      break;
-    case robot_config::ContactGeometry::Shape::kCapsule:
-      out.shape = mjcf::ContactShape::kCapsule;
-      break;
-  }
+  out.shape = g.shape;
   out.size = g.size;
   out.radius = g.radius;
   out.length = g.length;
@@ -56,10 +46,7 @@ RobotMjcf robot_mjcf(const robot_config::RobotConfig& config, const model::Model
   const int n = model.n_joints;
   mo.gravity = c.gravity;
   mo.timestep = o.timestep;
-  mo.integrator =
-      o.integrator == robot_config::MujocoOptions::Integrator::kEuler ? mjcf::Integrator::kEuler
-      : o.integrator == robot_config::MujocoOptions::Integrator::kRK4 ? mjcf::Integrator::kRK4
-                                                                      : mjcf::Integrator::kImplicit;
+  mo.integrator = o.integrator;
   // Coulomb friction as MuJoCo's frictionloss rows, or none here: MujocoBackend
   // then applies the own plant's smoothed model as a torque (mujoco.joint_friction).
   const bool friction_rows =

@@ -59,7 +59,7 @@ void ActuatorSide::hold(const actuation::SensorReadings& readings, actuation::Ti
   // Like a real robot's boards: joints hold where they are until a controller
   // commands them (no watchdog: POSITION is not a streaming mode).
   actuation::JointCommandBatch hold;
-  hold.modes.assign(joint_names_.size(), actuation::ControlMode::kPosition);
+  hold.modes.assign(joint_names_.size(), wbi::ControlMode::position);
   hold.values.assign(readings.position.data(), readings.position.data() + readings.position.size());
   std::lock_guard lock(mutex_);
   const auto result = controller_.submit(hold, now);

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <cstdio>
 
+#include <wbi/msg/wire_vocabulary.hpp>
+
 namespace wbi::robot {
 
 namespace {
@@ -30,30 +32,6 @@ std::string element(const char* field, std::size_t k) {
 
 }  // namespace
 
-bool to_mode(wbi::msg::ControlMode mode, actuation::ControlMode& out) {
-  switch (mode) {
-    case wbi::msg::ControlMode::IDLE:
-      out = actuation::ControlMode::kIdle;
-      return true;
-    case wbi::msg::ControlMode::POSITION:
-      out = actuation::ControlMode::kPosition;
-      return true;
-    case wbi::msg::ControlMode::POSITION_DIRECT:
-      out = actuation::ControlMode::kPositionDirect;
-      return true;
-    case wbi::msg::ControlMode::VELOCITY:
-      out = actuation::ControlMode::kVelocity;
-      return true;
-    case wbi::msg::ControlMode::TORQUE:
-      out = actuation::ControlMode::kTorque;
-      return true;
-    case wbi::msg::ControlMode::PWM:
-      out = actuation::ControlMode::kPwm;
-      return true;
-  }
-  return false;  // the wire carries any 32-bit value
-}
-
 std::string to_batch(const wbi::msg::ActuatorCommand& command, std::string_view robot,
                      const std::vector<double>& reference_speed,
                      actuation::JointCommandBatch& batch) {
@@ -73,12 +51,13 @@ std::string to_batch(const wbi::msg::ActuatorCommand& command, std::string_view 
   batch.values.resize(joints.size());
   batch.reference_speeds.resize(joints.size());
   for (std::size_t k = 0; k < joints.size(); ++k) {
-    if (!to_mode(command.modes()[k], batch.modes[k])) {
+    const auto mode = msg::from_wire(command.modes()[k]);
+    if (!mode) {
       return element("modes", k) + " = " +
              std::to_string(static_cast<std::uint32_t>(command.modes()[k])) +
-             " is not a ControlMode (0 IDLE, 1 POSITION, 2 POSITION_DIRECT, 3 VELOCITY, 4 TORQUE, "
-             "5 PWM)";
+             " is not a ControlMode (" + enum_values_text<ControlMode>() + ")";
     }
+    batch.modes[k] = *mode;
     const double value = command.references()[k];
     if (!std::isfinite(value)) {
       return element("references", k) + " = " + format(value) + " is not finite";

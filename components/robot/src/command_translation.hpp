@@ -29,7 +29,4 @@ std::string to_batch(const wbi::msg::ActuatorCommand& command, std::string_view 
 std::string check_parameters(const wbi::msg::ControlParameters& message, std::string_view robot,
                              const std::vector<std::string>& joint_names);
 
-// The wire's mode as the controller's; false for a value outside the enum.
-bool to_mode(wbi::msg::ControlMode mode, actuation::ControlMode& out);
-
 }  // namespace wbi::robot

@@ -163,7 +163,7 @@ class RobotDriver final : public runtime::Component {
 
   void on_deactivate() override {
     stop_simulation();
-    if (backend_->state() == actuation::LifecycleState::kActive) {
+    if (backend_->state() == wbi::LifecycleState::active) {
       backend_->deactivate();
     }
   }

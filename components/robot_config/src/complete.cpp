@@ -40,7 +40,7 @@ void complete_from_urdf(RobotConfig& config) {
         const auto& o = collision->origin;
         ContactGeometry g;
         g.link = link_name;
-        g.shape = ContactGeometry::Shape::kBox;
+        g.shape = wbi::ContactShape::box;
         g.size = Eigen::Vector3d(box->dim.x, box->dim.y, box->dim.z);
         g.position = Eigen::Vector3d(o.position.x, o.position.y, o.position.z);
         g.rotation = Eigen::Quaterniond(o.rotation.w, o.rotation.x, o.rotation.y, o.rotation.z)

@@ -150,7 +150,7 @@ class Parser {
       int shapes = 0;
       if (const auto b = n["box"]) {
         ++shapes;
-        g.shape = ContactGeometry::Shape::kBox;
+        g.shape = wbi::ContactShape::box;
         r_.check_keys(b, p + ".box", {"size"});
         if (!r_.get_vec<3>(b, p + ".box", "size", g.size)) {
           r_.fail(b, p + ".box.size", "required");
@@ -161,7 +161,7 @@ class Parser {
       }
       if (const auto s = n["sphere"]) {
         ++shapes;
-        g.shape = ContactGeometry::Shape::kSphere;
+        g.shape = wbi::ContactShape::sphere;
         r_.check_keys(s, p + ".sphere", {"radius"});
         if (!r_.get_positive(s, p + ".sphere", "radius", g.radius, false)) {
           r_.fail(s, p + ".sphere.radius", "required");
@@ -169,7 +169,7 @@ class Parser {
       }
       if (const auto s = n["capsule"]) {
         ++shapes;
-        g.shape = ContactGeometry::Shape::kCapsule;
+        g.shape = wbi::ContactShape::capsule;
         r_.check_keys(s, p + ".capsule", {"radius", "length"});
         if (!r_.get_positive(s, p + ".capsule", "radius", g.radius, false) ||
             !r_.get_positive(s, p + ".capsule", "length", g.length, true)) {
@@ -385,10 +385,10 @@ class Parser {
     if (r_.get(n, p, "substeps", m.substeps) && m.substeps < 1) {
       r_.fail(n["substeps"], "mujoco.substeps", "must be >= 1");
     }
-    r_.get_enum<MujocoOptions::Integrator>(n, p, "integrator",
-                                           {{"Euler", MujocoOptions::Integrator::kEuler},
-                                            {"implicit", MujocoOptions::Integrator::kImplicit},
-                                            {"RK4", MujocoOptions::Integrator::kRK4}},
+    r_.get_enum<Integrator>(n, p, "integrator",
+                                           {{to_string(Integrator::euler), Integrator::euler},
+                                            {to_string(Integrator::implicit), Integrator::implicit},
+                                            {to_string(Integrator::rk4), Integrator::rk4}},
                                            m.integrator);
     Eigen::Vector2d solref(m.solref[0], m.solref[1]);
     if (r_.get_vec<2>(n, p, "solref", solref)) {

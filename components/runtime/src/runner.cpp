@@ -6,38 +6,11 @@
 
 #include <wbi/dds/publisher.hpp>
 #include <wbi/dds/topics.hpp>
+#include <wbi/msg/wire_vocabulary.hpp>
 
 namespace wbi::runtime {
 
-const char* to_string(LifecycleState state) {
-  switch (state) {
-    case LifecycleState::unconfigured:
-      return "unconfigured";
-    case LifecycleState::inactive:
-      return "inactive";
-    case LifecycleState::active:
-      return "active";
-    case LifecycleState::finalized:
-      return "finalized";
-  }
-  return "unknown";
-}
-
 namespace {
-msg::LifecycleState to_msg(LifecycleState state) {
-  switch (state) {
-    case LifecycleState::unconfigured:
-      return msg::UNCONFIGURED;
-    case LifecycleState::inactive:
-      return msg::INACTIVE;
-    case LifecycleState::active:
-      return msg::ACTIVE;
-    case LifecycleState::finalized:
-      return msg::FINALIZED;
-  }
-  return msg::FINALIZED;
-}
-
 // The report's counters and error into the sample; allocates only when a
 // counter was added (configure). last_error is a bounded string: no allocation.
 void copy_report(const StatusReport& report, msg::ComponentStatus& sample) {
@@ -322,7 +295,7 @@ void ComponentRunner::run_heartbeat() {
     const LoopStats s = stats();
     msg::ComponentStatus& sample = status.sample;
     sample.header().stamp_ns(context_.clock->now_ns());
-    sample.state(to_msg(state()));
+    sample.state(msg::to_wire(state()));
     sample.period_mean_s(s.period_mean_s);
     sample.period_jitter_s(s.period_jitter_s);
     sample.overruns(s.overruns);

@@ -131,18 +131,6 @@ double value_or_zero(const std::vector<double>& v, int k) {
   return v.empty() ? 0.0 : v[static_cast<std::size_t>(k)];
 }
 
-const char* integrator_name(Integrator integrator) {
-  switch (integrator) {
-    case Integrator::kRK4:
-      return "RK4";
-    case Integrator::kImplicit:
-      return "implicit";
-    case Integrator::kEuler:
-      break;
-  }
-  return "Euler";
-}
-
 struct Pose {
   Vector3d p = Vector3d::Zero();
   Matrix3d R = Matrix3d::Identity();
@@ -212,7 +200,7 @@ class Writer {
          << "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n"
          << "  <option" << attr("gravity", vec3(options_.gravity))
          << attr("timestep", num(options_.timestep))
-         << attr("integrator", integrator_name(options_.integrator)) << "/>\n"
+         << attr("integrator", to_string(options_.integrator)) << "/>\n"
          << "  <size" << attr("njmax", std::to_string(options_.njmax))
          << attr("nconmax", std::to_string(options_.nconmax)) << "/>\n"
          << "  <worldbody>\n";
@@ -260,8 +248,8 @@ class Writer {
       if (!geoms.insert(geom_name(c)).second) {
         fail(what + ": geom name used twice");
       }
-      const bool ok = g.shape == ContactShape::kBox      ? (g.size.array() > 0.0).all()
-                      : g.shape == ContactShape::kSphere ? g.radius > 0.0
+      const bool ok = g.shape == ContactShape::box      ? (g.size.array() > 0.0).all()
+                      : g.shape == ContactShape::sphere ? g.radius > 0.0
                                                          : g.radius > 0.0 && g.length > 0.0;
       if (!ok || !g.size.allFinite() || !std::isfinite(g.radius) || !std::isfinite(g.length)) {
         fail(what +
@@ -373,13 +361,13 @@ class Writer {
       const Pose X = in_group(frame, g.position, g.rotation);
       out_ << pad << "<geom" << attr("name", geom_name(c));
       switch (g.shape) {
-        case ContactShape::kBox:
+        case ContactShape::box:
           out_ << attr("type", "box") << attr("size", vec3(0.5 * g.size));
           break;
-        case ContactShape::kSphere:
+        case ContactShape::sphere:
           out_ << attr("type", "sphere") << attr("size", num(g.radius));
           break;
-        case ContactShape::kCapsule:
+        case ContactShape::capsule:
           out_ << attr("type", "capsule") << attr("size", nums({g.radius, 0.5 * g.length}));
           break;
       }

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <wbi/vocabulary/control_mode.hpp>
+#include <wbi/vocabulary/sensor_kind.hpp>
 
 namespace wbi {
 
@@ -20,47 +22,14 @@ using ConstVectorRef = Eigen::Ref<const Eigen::VectorXd>;
 using MatrixRef = Eigen::Ref<Eigen::MatrixXd>;
 using Transform = Eigen::Matrix4d;  // homogeneous transform, e.g. world_H_base
 
-enum class ControlMode {
-  idle,      // no control: zero torque
-  position,  // reference [rad or m] reached by a minimum-jerk trajectory at the reference speed
-  position_direct,  // reference [rad or m] tracked directly by the joint PID (streaming)
-  velocity,         // reference [rad/s or m/s] (streaming)
-  torque,           // reference [N m or N] (streaming)
-  pwm,              // duty cycle reference [-1, 1] (streaming)
-};
+// ControlMode: idle, position, position_direct, velocity, torque, pwm
+// (wbi/vocabulary/control_mode.hpp).
 
 // Low-level control parameters, per joint.
 enum class ControlParameter { kp, ki, kd, reference_speed };
 
-// What the Sensors element measures. Values per sensor (stacked in this order
-// when all sensors of a kind are read):
-enum class SensorKind {
-  encoder_position,  // 1 per controlled joint [rad or m]
-  encoder_velocity,  // 1 per controlled joint [rad/s] (from the state estimate when the robot has
-                     // no speed sensor)
-  encoder_acceleration,  // 1 per controlled joint [rad/s^2] (likewise)
-  joint_torque,          // 1 per controlled joint [N m]
-  motor_pwm,             // 1 per controlled joint, duty cycle
-  imu,  // 10 per IMU: orientation (w, x, y, z), gyro [rad/s], accelerometer [m/s^2], IMU axes
-  force_torque,   // 6 per sensor: force [N], torque [N m], sensor frame
-  accelerometer,  // 3 per IMU [m/s^2], IMU axes, gravity included
-  gyroscope,      // 3 per IMU [rad/s], IMU axes
-};
-
-// Values per sensor of a kind (the counts above).
-constexpr int sensor_width(SensorKind kind) {
-  switch (kind) {
-    case SensorKind::imu:
-      return 10;
-    case SensorKind::force_torque:
-      return 6;
-    case SensorKind::accelerometer:
-    case SensorKind::gyroscope:
-      return 3;
-    default:
-      return 1;
-  }
-}
+// SensorKind, what the Sensors element measures, and sensor_width(kind), the
+// values per sensor of a kind: wbi/vocabulary/sensor_kind.hpp.
 
 // What the State element estimates:
 enum class EstimateKind {

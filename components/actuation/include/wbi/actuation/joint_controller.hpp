@@ -63,21 +63,13 @@
 
 #include <Eigen/Core>
 
+#include <wbi/vocabulary/control_mode.hpp>
+
 #include "wbi/actuation/robot_backend.hpp"
 
 namespace wbi::actuation {
 
-enum class ControlMode : std::uint8_t {
-  kIdle,
-  kPosition,
-  kPositionDirect,
-  kVelocity,
-  kTorque,
-  kPwm,
-};
-const char* to_string(ControlMode mode);
-std::optional<ControlMode> control_mode_from_string(std::string_view name);  // "POSITION", …
-bool is_streaming(ControlMode mode);  // POSITION_DIRECT, VELOCITY, TORQUE, PWM
+// Modes: wbi::ControlMode (wbi/vocabulary/control_mode.hpp), to_string, is_streaming.
 
 struct PidGains {
   double kp = 0.0;            // [N·m/rad]
@@ -150,7 +142,7 @@ class JointController {
  private:
   struct Staged {
     bool has_mode = false;
-    ControlMode mode = ControlMode::kIdle;
+    ControlMode mode = ControlMode::idle;
     bool has_value = false;
     double value = 0.0;
     double speed = 0.0;  // ≤ 0: default
@@ -158,7 +150,7 @@ class JointController {
     Time time{0};
   };
   struct Joint {
-    ControlMode mode = ControlMode::kIdle;
+    ControlMode mode = ControlMode::idle;
     double target = 0.0;  // command value (position, velocity, torque, PWM)
     double speed = 0.0;   // POSITION reference speed
     double q_r = 0.0, dq_r = 0.0;

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <wbi/vocabulary/lifecycle_state.hpp>
 
 namespace wbi::actuation {
 
@@ -43,8 +44,7 @@ using Vector3d = Eigen::Vector3d;
 using Vector4d = Eigen::Vector4d;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 
-enum class LifecycleState { kUnconfigured, kInactive, kActive, kFinalized };
-const char* to_string(LifecycleState state);
+// States: wbi::LifecycleState (wbi/vocabulary/lifecycle_state.hpp).
 
 // One inertial measurement unit, in the IMU frame's axes.
 struct ImuReading {
@@ -159,7 +159,7 @@ class RobotBackend {
   virtual void on_write(Time time, Duration period, const JointCommands& in) = 0;
 
  private:
-  LifecycleState state_ = LifecycleState::kUnconfigured;
+  LifecycleState state_ = LifecycleState::unconfigured;
   BackendDescription description_;
   SensorReadings readings_;
   JointCommands commands_;

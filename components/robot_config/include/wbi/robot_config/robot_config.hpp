@@ -12,6 +12,8 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <wbi/vocabulary/contact_shape.hpp>
+#include <wbi/vocabulary/integrator.hpp>
 
 namespace wbi::robot_config {
 
@@ -20,7 +22,7 @@ namespace wbi::robot_config {
 // point of that radius and a capsule into two (its end spheres).
 struct ContactGeometry {
   std::string link;  // URDF link (or frame)
-  enum class Shape { kBox, kSphere, kCapsule } shape = Shape::kBox;
+  ContactShape shape = ContactShape::box;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  // box: full extents [m]
   double radius = 0.0;                             // sphere, capsule [m]
   double length =
@@ -132,7 +134,7 @@ struct WbiOptions {
 struct MujocoOptions {
   double timestep = 5.0e-4;  // mjOption.timestep: one mj_step [s]
   int substeps = 2;          // mj_step per control period (period = timestep × substeps)
-  enum class Integrator { kEuler, kImplicit, kRK4 } integrator = Integrator::kImplicit;
+  Integrator integrator = Integrator::implicit;
   std::array<double, 2> solref{0.02, 1.0};  // contact (timeconst [s], dampratio), or (−k, −b)
   std::array<double, 5> solimp{0.9, 0.95, 0.001, 0.5, 2.0};  // (dmin, dmax, width [m], mid, power)
   enum class Cone { kPyramidal, kElliptic } cone = Cone::kPyramidal;

@@ -24,6 +24,8 @@
 #include <cstdint>
 #include <string>
 
+#include <wbi/vocabulary/lifecycle_state.hpp>
+
 #include "wbi/runtime/clock.hpp"
 #include "wbi/runtime/parameters.hpp"
 #include "wbi/runtime/status_report.hpp"
@@ -34,9 +36,7 @@ class Participant;
 
 namespace wbi::runtime {
 
-enum class LifecycleState { unconfigured, inactive, active, finalized };
-
-const char* to_string(LifecycleState state);
+// States: wbi::LifecycleState (wbi/vocabulary/lifecycle_state.hpp), ROS 2's.
 
 // What a component is given when it is configured.
 struct ComponentContext {

@@ -4,7 +4,7 @@
 // the floating base's pose. Only text is written: no MuJoCo dependency.
 //
 //   MjcfOptions options;
-//   options.contacts.push_back({.link = "l_sole", .shape = ContactShape::kBox,
+//   options.contacts.push_back({.link = "l_sole", .shape = ContactShape::box,
 //                               .size = {0.2, 0.1, 0.01}});
 //   options.ground.enabled = true;
 //   const std::string xml = wbi::mjcf::write_mjcf(model, options);
@@ -17,17 +17,18 @@
 #include <string>
 #include <vector>
 
+#include <wbi/vocabulary/contact_shape.hpp>
+#include <wbi/vocabulary/integrator.hpp>
+
 #include "wbi/model/model.hpp"
 
 namespace wbi::mjcf {
-
-enum class ContactShape { kBox, kSphere, kCapsule };
 
 // A collision geometry rigidly attached to a link (any frame of the model).
 struct ContactGeometry {
   std::string name;  // MJCF geom name; empty: "<link>_contact_<k>"
   std::string link;  // a frame of the model (a URDF link)
-  ContactShape shape = ContactShape::kBox;
+  ContactShape shape = ContactShape::box;
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  // box: full edge lengths along x, y, z [m]
   double radius = 0.0;                             // sphere, capsule [m]
   double length = 0.0;  // capsule: length of the cylinder between the caps, along z [m]
@@ -59,7 +60,6 @@ struct Ground {
   double friction = 1.0;
 };
 
-enum class Integrator { kEuler, kRK4, kImplicit };  // MuJoCo 2.2's three
 
 // How a body's rotational inertia is written (kept for measurement; see README).
 enum class InertiaForm {
@@ -94,7 +94,7 @@ struct MjcfOptions {
 
   Eigen::Vector3d gravity{0.0, 0.0, -9.81};
   double timestep = 0.001;  // [s]
-  Integrator integrator = Integrator::kEuler;
+  Integrator integrator = Integrator::euler;
   // Constraint and contact buffers (MuJoCo 2.2 allocates them at load time).
   int njmax = 1000;
   int nconmax = 200;

@@ -1,0 +1,45 @@
+// The wire's enums are the vocabulary's (vocabulary/), value for value: the
+// .idl files list the same enumerators in the same order, spelt as the
+// vocabulary's to_string spells them (tests/vocabulary checks the names).
+// Going onto the wire is a cast; coming off it is a range check, since a
+// sample may carry any 32-bit value.
+#pragma once
+
+#include <optional>
+
+#include <wbi/msg/commands.h>
+#include <wbi/msg/description.h>
+#include <wbi/msg/status.h>
+#include <wbi/vocabulary/control_mode.hpp>
+#include <wbi/vocabulary/lifecycle_state.hpp>
+#include <wbi/vocabulary/sensor_kind.hpp>
+
+namespace wbi::msg {
+
+static_assert(PWM == static_cast<int>(wbi::ControlMode::pwm) &&
+                  enum_count<wbi::ControlMode>() == PWM + 1,
+              "idl/commands.idl's ControlMode must follow wbi::ControlMode");
+static_assert(FINALIZED == static_cast<int>(wbi::LifecycleState::finalized) &&
+                  enum_count<wbi::LifecycleState>() == FINALIZED + 1,
+              "idl/status.idl's LifecycleState must follow wbi::LifecycleState");
+static_assert(GYROSCOPE == static_cast<int>(wbi::SensorKind::gyroscope) &&
+                  enum_count<wbi::SensorKind>() == GYROSCOPE + 1,
+              "idl/description.idl's SensorKind must follow wbi::SensorKind");
+
+constexpr ControlMode to_wire(wbi::ControlMode mode) { return static_cast<ControlMode>(mode); }
+constexpr LifecycleState to_wire(wbi::LifecycleState state) {
+  return static_cast<LifecycleState>(state);
+}
+constexpr SensorKind to_wire(wbi::SensorKind kind) { return static_cast<SensorKind>(kind); }
+
+constexpr std::optional<wbi::ControlMode> from_wire(ControlMode mode) {
+  return enum_from_value<wbi::ControlMode>(mode);
+}
+constexpr std::optional<wbi::LifecycleState> from_wire(LifecycleState state) {
+  return enum_from_value<wbi::LifecycleState>(state);
+}
+constexpr std::optional<wbi::SensorKind> from_wire(SensorKind kind) {
+  return enum_from_value<wbi::SensorKind>(kind);
+}
+
+}  // namespace wbi::msg
