@@ -1,8 +1,10 @@
-// make_model_backend: the one place that maps a backend name to its implementation.
+// The model backends by name (wbi::Registry): the one place that maps a
+// backend name to its implementation.
 #include "wbi/model/backend.hpp"
 
-#include <algorithm>
 #include <stdexcept>
+
+#include <wbi/registry.hpp>
 
 #include "wbi_backend.hpp"
 #ifdef WBI_WITH_DART
@@ -11,42 +13,46 @@
 
 namespace wbi::model {
 
-std::vector<std::string> model_backend_names() {
+namespace {
+
+using BackendRegistry = Registry<ModelBackend, const std::string&, const LoadOptions&>;
+
+const BackendRegistry& backends() {
+  static const BackendRegistry registry = [] {
+    BackendRegistry r("model backend");
+    // make_wbi_backend is overloaded (a file, or a model already loaded): the file one.
+    r.add(
+        "wbi",
+        [](const std::string& urdf, const LoadOptions& options) {
+          return make_wbi_backend(urdf, options);
+        },
+        "the project's own rigid-body library (wbi::model)");
 #ifdef WBI_WITH_DART
-  return {"wbi", "dart"};
-#else
-  return {"wbi"};
+    r.add("dart", make_dart_backend, "DART 6 (dartsim), loaded from the same URDF");
 #endif
+    return r;
+  }();
+  return registry;
 }
 
+}  // namespace
+
+std::vector<std::string> model_backend_names() { return backends().names(); }
+
 void check_model_backend_name(std::string_view name) {
-  const auto names = model_backend_names();
-  if (std::find(names.begin(), names.end(), name) != names.end()) {
-    return;
-  }
-  std::string available;
-  for (const auto& known : names) {
-    available += (available.empty() ? "" : ", ") + known;
-  }
-  if (name == "dart") {
+  if (!backends().contains(std::string(name)) && name == "dart") {
     throw std::invalid_argument(
         "model backend 'dart' is not built: DART 6 was not found when wbi was configured "
-        "(scripts/install-deps --with-dart, then reconfigure); available: " +
-        available);
+        "(scripts/install-deps --with-dart, then reconfigure); known: " +
+        backends().names_text());
   }
-  throw std::invalid_argument("unknown model backend '" + std::string(name) +
-                              "' (available: " + available + ")");
+  backends().description(std::string(name));  // throws naming the known backends
 }
 
 std::unique_ptr<ModelBackend> make_model_backend(std::string_view name, const std::string& urdf,
                                                  const LoadOptions& options) {
   check_model_backend_name(name);
-#ifdef WBI_WITH_DART
-  if (name == "dart") {
-    return make_dart_backend(urdf, options);
-  }
-#endif
-  return make_wbi_backend(urdf, options);
+  return backends().create(std::string(name), urdf, options);
 }
 
 }  // namespace wbi::model

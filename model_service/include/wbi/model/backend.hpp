@@ -75,7 +75,7 @@ class ModelBackend {
 };
 
 // The names make_model_backend accepts in this build ("wbi", and "dart" when
-// DART was found at configure time).
+// DART was found at configure time), sorted.
 std::vector<std::string> model_backend_names();
 
 // Throws std::invalid_argument naming name and the available backends unless

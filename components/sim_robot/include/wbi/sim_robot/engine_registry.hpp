@@ -8,12 +8,11 @@
 
 #include <filesystem>
 #include <functional>
-#include <map>
 #include <memory>
 #include <string>
-#include <vector>
 
 #include <wbi/actuation/simulation_backend.hpp>
+#include <wbi/registry.hpp>
 #include <wbi/runtime/parameters.hpp>
 
 namespace wbi::sim_robot {
@@ -28,28 +27,15 @@ struct EngineContext {
   const runtime::Parameters& parameters;
 };
 
-// Builds the backend, UNCONFIGURED (the driver configures and activates it).
-// Bad input: throw with a message naming the file and key.
+// An engine's factory builds the backend, UNCONFIGURED (the driver configures
+// and activates it). Bad input: throw with a message naming the file and key.
 using EngineFactory =
     std::function<std::unique_ptr<actuation::SimulationBackend>(const EngineContext&)>;
 
-class EngineRegistry {
+class EngineRegistry
+    : public Registry<actuation::SimulationBackend, const EngineContext&> {
  public:
-  // Throws std::invalid_argument when the name is taken.
-  void add(const std::string& name, EngineFactory factory, std::string description = "");
-  // Throws std::invalid_argument naming the engine and the registered ones.
-  std::unique_ptr<actuation::SimulationBackend> create(const std::string& name,
-                                                       const EngineContext& context) const;
-  bool contains(const std::string& name) const { return engines_.count(name) != 0; }
-  std::vector<std::string> names() const;  // sorted
-  const std::string& description(const std::string& name) const;
-
- private:
-  struct Entry {
-    EngineFactory factory;
-    std::string description;
-  };
-  std::map<std::string, Entry> engines_;
+  EngineRegistry() : Registry("engine") {}
 };
 
 // The engines built into wbi::sim_robot: "wbi" (the project's own plant, wbi::sim).
