@@ -3,7 +3,9 @@
 directly or through others, on the deploy-file reader (wbi_placement, or
 wbi_launch which links it) or on a controller (any target of controllers/):
 components never depend on controllers; the programs that assemble both live
-in apps/.
+in apps/. Also when a bottom layer reaches a project target above it (the
+vocabulary links none, the IDL only the vocabulary, dds/ only those two), and
+when a simulation engine reaches another (they share wbi_sim_models).
 
 Input: lines "TARGET|FOLDER|DEP;DEP;..." written by tests/placement/CMakeLists.txt
 at generate time; aliases wbi::x name wbi_x.
@@ -13,10 +15,62 @@ import sys
 
 DEPLOY_READER = {"wbi_placement", "wbi_launch"}
 
+# Simulation engines: none reaches another (what they share is wbi_sim_models).
+ENGINES = {"components/sim": "wbi_sim", "components/mujoco_sim": "wbi_mujoco_sim"}
+
+# The project targets each bottom layer may reach (its own folder's aside).
+BELOW = {
+    "vocabulary": set(),
+    "idl": {"wbi_vocabulary"},
+    "dds": {"wbi_vocabulary", "wbi_idl"},
+}
+
 
 def name_of(dependency):
     dependency = re.sub(r"^\$<LINK_ONLY:(.*)>$", r"\1", dependency.strip())
     return "wbi_" + dependency[len("wbi::"):] if dependency.startswith("wbi::") else dependency
+
+
+def reachable(edges, target):
+    """Every target reached from `target`, each with the path that reaches it."""
+    stack, paths = [(target, [target])], {}
+    while stack:
+        node, path_to = stack.pop()
+        for dependency in edges.get(node, ()):
+            if dependency not in paths:
+                paths[dependency] = path_to + [dependency]
+                stack.append((dependency, path_to + [dependency]))
+    return paths
+
+
+def layer_failures(edges, folder_of):
+    """A bottom layer's targets that reach a project target above the layer."""
+    failures, checked = [], 0
+    for target, folder in sorted(folder_of.items()):
+        layer = folder.split("/")[0]
+        if layer not in BELOW:
+            continue
+        checked += 1
+        for dependency, path_to in sorted(reachable(edges, target).items()):
+            above = dependency.startswith("wbi_") and dependency not in BELOW[layer]
+            if above and folder_of.get(dependency, "").split("/")[0] != layer:
+                failures.append(f"{target} ({folder}) reaches {dependency}, above its layer: " +
+                                " -> ".join(path_to))
+    return failures, checked
+
+
+def engine_failures(edges, folder_of):
+    """An engine's targets that reach another engine's library."""
+    failures = []
+    for target, folder in sorted(folder_of.items()):
+        if folder not in ENGINES:
+            continue
+        others = {library for engine, library in ENGINES.items() if engine != folder}
+        for dependency, path_to in sorted(reachable(edges, target).items()):
+            if dependency in others:
+                failures.append(f"{target} ({folder}) reaches the engine {dependency}: " +
+                                " -> ".join(path_to))
+    return failures
 
 
 def main(path):
@@ -45,13 +99,23 @@ def main(path):
                 elif dependency not in seen:
                     seen.add(dependency)
                     stack.append((dependency, path_to + [dependency]))
+    layer_failed, layer_checked = layer_failures(edges, folder_of)
+    failures += layer_failed
+    engine_failed = engine_failures(edges, folder_of)
+    failures += engine_failed
     for failure in failures:
         print("FAIL:", failure)
     if checked == 0:
         print(f"FAIL: no target of dds/ or components/ in {path}")
         return 1
+    if layer_checked == 0:
+        print(f"FAIL: no target of vocabulary/, idl/ or dds/ in {path}")
+        return 1
     print(f"{checked} targets of dds/ and components/ checked; "
-          f"{len(failures)} reach the deploy-file reader or a controller")
+          f"{len(failures) - len(layer_failed) - len(engine_failed)} reach the deploy-file reader "
+          f"or a controller; {layer_checked} targets of vocabulary/, idl/ and dds/: "
+          f"{len(layer_failed)} reach above their layer; {len(engine_failed)} engine targets "
+          f"reach another engine")
     return 1 if failures else 0
 
 

@@ -12,12 +12,12 @@
 #include <vector>
 
 #include <Eigen/Geometry>
+#include <wbi/sim_models/sensor_actuator_models.hpp>
 
 #include "wbi/mjcf/mjcf.hpp"
 #include "wbi/mjcf/mujoco_conventions.hpp"
 #include "wbi/mujoco_sim/load_mjcf.hpp"
 #include "wbi/mujoco_sim/robot_mjcf.hpp"
-#include "wbi/sim/sensor_actuator_models.hpp"
 
 namespace wbi::mujoco_sim {
 
@@ -69,7 +69,7 @@ struct MujocoBackend::Impl {
 
   // per joint
   Eigen::VectorXd effort;
-  std::vector<sim::DcMotor> motor;
+  std::vector<sim_models::DcMotor> motor;
   std::vector<OutputMode> cmd_mode;
   Eigen::VectorXd cmd_value, tau_act, pwm;
   // Joint dissipation applied by us as a torque, the own plant's model: Coulomb
@@ -104,7 +104,7 @@ struct MujocoBackend::Impl {
   std::int64_t mj_steps = 0;
   int bad_qacc = 0;  // MuJoCo's count of mjWARN_BADQACC (it resets the state on each)
 
-  sim::Gaussian noise{0};
+  sim_models::Gaussian noise{0};
   double encoder_step = 0.0;
 
   ~Impl() {
@@ -168,7 +168,7 @@ actuation::BackendDescription MujocoBackend::on_configure() {
   truth_.contact_wrenches.assign(truth_.contact_links.size(), Vector6d::Zero());
   truth_.contact_positions.assign(truth_.contact_links.size(), Vector3d::Zero());
 
-  actuation::BackendDescription desc = sim::joint_description(model, c);
+  actuation::BackendDescription desc = sim_models::joint_description(model, c);
   for (const auto& imu : c.imus) {
     desc.imu_names.push_back(imu.name);
     desc.imu_frames.push_back(imu.frame);
@@ -240,7 +240,7 @@ actuation::BackendDescription MujocoBackend::on_configure() {
   s.motor.resize(static_cast<std::size_t>(n));
   for (int j = 0; j < n; ++j) {
     s.effort[j] = model.joint_effort_limit[static_cast<std::size_t>(j)];
-    s.motor[static_cast<std::size_t>(j)] = sim::DcMotor::from(c.wbi.motor, s.effort[j]);
+    s.motor[static_cast<std::size_t>(j)] = sim_models::DcMotor::from(c.wbi.motor, s.effort[j]);
   }
   s.cmd_mode.assign(static_cast<std::size_t>(n), OutputMode::kIdle);
   s.cmd_value = Eigen::VectorXd::Zero(n);
@@ -254,8 +254,8 @@ actuation::BackendDescription MujocoBackend::on_configure() {
   s.damping = Eigen::VectorXd::Zero(n);
   s.m_eff = Eigen::VectorXd::Zero(n);
   s.tau_dissipation = Eigen::VectorXd::Zero(n);
-  s.noise = sim::Gaussian(c.wbi.seed);
-  s.encoder_step = sim::encoder_step(c.wbi.encoders);
+  s.noise = sim_models::Gaussian(c.wbi.seed);
+  s.encoder_step = sim_models::encoder_step(c.wbi.encoders);
 
   // ---- initial state ----
   Eigen::VectorXd q = Eigen::VectorXd::Zero(model.nq);
@@ -363,8 +363,8 @@ void MujocoBackend::apply_controls() {
     const auto js = static_cast<std::size_t>(j);
     const int dof = s.index.dof[js];
     const double dq = d->qvel[dof];
-    const sim::ActuatorOutput out =
-        sim::actuator_output(s.cmd_mode[js], s.cmd_value[j], dq, s.motor[js], s.effort[j]);
+    const sim_models::ActuatorOutput out =
+        sim_models::actuator_output(s.cmd_mode[js], s.cmd_value[j], dq, s.motor[js], s.effort[j]);
     s.tau_act[j] = out.torque;
     s.pwm[j] = out.pwm;
     // The own plant's viscous + smoothed Coulomb friction, bounded so that it
@@ -521,7 +521,7 @@ void MujocoBackend::on_read(Time /*time*/, Duration /*period*/, actuation::Senso
   for (int j = 0; j < s.n; ++j) {
     const auto js = static_cast<std::size_t>(j);
     out.position[j] =
-        sim::quantise(d->qpos[s.index.qpos[js]] + s.noise(enc.position_noise), s.encoder_step);
+        sim_models::quantise(d->qpos[s.index.qpos[js]] + s.noise(enc.position_noise), s.encoder_step);
     out.velocity[j] = d->qvel[s.index.dof[js]] + s.noise(enc.velocity_noise);
     out.torque[j] = s.tau_act[j] + s.noise(enc.torque_noise);
     out.pwm[j] = s.pwm[j];

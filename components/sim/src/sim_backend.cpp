@@ -12,13 +12,13 @@
 #include <urdf_parser/urdf_parser.h>
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
+#include <wbi/sim_models/sensor_actuator_models.hpp>
 
 #include "wbi/model/aba.hpp"
 #include "wbi/model/com.hpp"
 #include "wbi/model/crba.hpp"
 #include "wbi/model/kinematics.hpp"
 #include "wbi/model/urdf.hpp"
-#include "wbi/sim/sensor_actuator_models.hpp"
 
 namespace wbi::sim {
 
@@ -26,6 +26,14 @@ using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using actuation::OutputMode;
+// The models every engine shares.
+using sim_models::actuator_output;
+using sim_models::ActuatorOutput;
+using sim_models::DcMotor;
+using sim_models::encoder_step;
+using sim_models::Gaussian;
+using sim_models::joint_description;
+using sim_models::quantise;
 
 namespace {
 
@@ -244,7 +252,7 @@ actuation::BackendDescription SimBackend::on_configure() {
         truth_.contact_points.push_back(cp);
       };
       switch (g.shape) {
-        case robot_config::ContactGeometry::Shape::kBox:
+        case wbi::ContactShape::box:
           for (int sx : {1, -1}) {
             for (int sy : {1, -1}) {
               add(g.position + g.rotation * Vector3d(0.5 * sx * g.size.x(), 0.5 * sy * g.size.y(),
@@ -253,10 +261,10 @@ actuation::BackendDescription SimBackend::on_configure() {
             }
           }
           break;
-        case robot_config::ContactGeometry::Shape::kSphere:
+        case wbi::ContactShape::sphere:
           add(g.position, g.radius);
           break;
-        case robot_config::ContactGeometry::Shape::kCapsule:
+        case wbi::ContactShape::capsule:
           for (int sz : {1, -1}) {
             add(g.position + g.rotation * Vector3d(0.0, 0.0, 0.5 * sz * g.length), g.radius);
           }

@@ -14,7 +14,7 @@
 // Every reading is MuJoCo's state mapped to wbi's conventions
 // (components/mujoco_sim/README.md). The sensor and actuator models (encoder
 // quantisation and noise, sensor noise, the PWM motor) are the own plant's, from
-// the config's `wbi:` section (wbi/sim/sensor_actuator_models.hpp).
+// the config's `wbi:` section (wbi/sim_models/sensor_actuator_models.hpp).
 // step(), read() and write() never allocate.
 #pragma once
 

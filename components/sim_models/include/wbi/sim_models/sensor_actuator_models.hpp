@@ -1,7 +1,8 @@
 // The sensor and actuator models every simulation engine shares (the own plant,
 // MuJoCo): Gaussian sensor noise, encoder quantisation and the DC motor behind
-// a PWM command, so that a reading or a PWM duty means the same in both.
-// Header-only; nothing here allocates.
+// a PWM command, so that a reading or a PWM duty means the same in both. In a
+// library of their own, so that no engine links another. Header-only; nothing
+// here allocates.
 #pragma once
 
 #include <algorithm>
@@ -14,7 +15,7 @@
 #include "wbi/model/model.hpp"
 #include "wbi/robot_config/robot_config.hpp"
 
-namespace wbi::sim {
+namespace wbi::sim_models {
 
 // Gaussian numbers from mt19937_64 by Box–Muller: the same sequence on every
 // platform (std::normal_distribution is implementation-defined).
@@ -136,4 +137,4 @@ inline ActuatorOutput actuator_output(actuation::OutputMode mode, double value, 
   return out;
 }
 
-}  // namespace wbi::sim
+}  // namespace wbi::sim_models
