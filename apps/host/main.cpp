@@ -14,6 +14,7 @@
 
 #include <wbi/dds/participant.hpp>
 #include <wbi/deploy/placement.hpp>
+#include <wbi/deploy/process_host.hpp>
 #include <wbi/launch/launcher.hpp>
 #include <wbi/runtime/builtin.hpp>
 #include <wbi/runtime/console_line.hpp>
@@ -30,7 +31,7 @@ void usage(std::ostream& out, const wbi::runtime::Registry& registry) {
          "Runs the components listed in FILE.yaml (or those of process NAME of a deploy\n"
          "file) in one process until SIGINT/SIGTERM.\n"
          "Component types:\n";
-  for (const auto& type : registry.types()) {
+  for (const auto& type : registry.names()) {
     out << "  " << type << "  " << registry.description(type) << "\n";
   }
 }
@@ -66,9 +67,13 @@ int main(int argc, char** argv) {
   try {
     // The deploy reader turns the file's network and security blocks into join options.
     const wbi::runtime::PlacementReader placement = wbi::deploy::read_placement;
+    // One process of a deploy file: the deploy reader picks it out (the runtime
+    // reads host documents only).
     auto host_ptr =
-        from_deploy ? std::make_unique<wbi::runtime::Host>(argv[1], argv[3], registry, placement)
-                    : std::make_unique<wbi::runtime::Host>(argv[1], registry, placement);
+        from_deploy
+            ? std::make_unique<wbi::runtime::Host>(wbi::deploy::load_process_host(argv[1], argv[3]),
+                                                   argv[1], argv[3], registry, placement)
+            : std::make_unique<wbi::runtime::Host>(argv[1], registry, placement);
     auto& host = *host_ptr;
     host.start();
     // The components already run and print: this line goes out whole (console_line.hpp).

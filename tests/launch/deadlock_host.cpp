@@ -12,6 +12,7 @@
 
 #include <pthread.h>
 
+#include <wbi/deploy/process_host.hpp>
 #include <wbi/launch/launcher.hpp>
 #include <wbi/runtime/builtin.hpp>
 #include <wbi/runtime/console_line.hpp>
@@ -59,7 +60,8 @@ int main(int argc, char** argv) {
   sigaddset(&signals, SIGTERM);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
   try {
-    wbi::runtime::Host host(argv[1], argv[3], registry);
+    wbi::runtime::Host host(wbi::deploy::load_process_host(argv[1], argv[3]), argv[1], argv[3],
+                            registry);
     host.start();
     wbi::runtime::print_line(stdout, "wbi_host: running " + std::to_string(host.size()) +
                                          " component(s) from " + argv[1]);

@@ -13,7 +13,7 @@ namespace wbi::runtime {
 
 namespace {
 
-// The deploy file's keys that the placement reader handles.
+// The host document's keys that the placement reader handles.
 constexpr const char* kNetworkKey = "network";
 constexpr const char* kSecurityKey = "security";
 
@@ -58,44 +58,13 @@ T scalar(const std::string& file, const YAML::Node& map, const std::string& key,
 }  // namespace
 
 Host::Host(const std::string& file, const Registry& registry, PlacementReader placement) {
-  load(file, false, file, registry, "", placement);
+  load(file, false, file, registry, placement);
 }
 
-Host::Host(const std::string& deploy_file, const std::string& process, const Registry& registry,
-           PlacementReader placement) {
-  load(deploy_file, false, deploy_file, registry, process, placement);
+Host::Host(const YAML::Node& document, const std::string& file, const std::string& identity,
+           const Registry& registry, PlacementReader placement) {
+  build(document, file, identity, registry, placement, /*paths_from_file=*/true);
 }
-
-namespace {
-
-// The host-file view of one process of a deploy file: its components, and the
-// deploy's domain id. The nodes keep their marks, so errors name deploy lines.
-YAML::Node process_of_deploy(const std::string& file, const YAML::Node& deploy,
-                             const std::string& process) {
-  const YAML::Node processes = deploy["processes"];
-  if (processes && processes.IsSequence()) {
-    for (const auto& entry : processes) {
-      if (entry.IsMap() && entry["name"] && entry["name"].IsScalar() &&
-          entry["name"].Scalar() == process) {
-        if (!entry["components"]) {
-          throw ParameterError(file + ":" + std::to_string(entry.Mark().line + 1) + ": process '" +
-                               process + "' has no 'components' to host");
-        }
-        YAML::Node host;
-        host["components"] = entry["components"];
-        for (const char* key : {"domain_id", "qos_file", kNetworkKey, kSecurityKey}) {
-          if (deploy[key]) {
-            host[key] = deploy[key];
-          }
-        }
-        return host;
-      }
-    }
-  }
-  throw ParameterError(file + ": no process named '" + process + "' in the deploy file");
-}
-
-}  // namespace
 
 std::unique_ptr<Host> Host::from_string(const std::string& yaml, const Registry& registry,
                                         const std::string& file) {
@@ -105,8 +74,7 @@ std::unique_ptr<Host> Host::from_string(const std::string& yaml, const Registry&
 }
 
 void Host::load(const std::string& source, bool is_text, const std::string& file,
-                const Registry& registry, const std::string& process,
-                const PlacementReader& placement) {
+                const Registry& registry, const PlacementReader& placement) {
   YAML::Node root;
   try {
     root = is_text ? YAML::Load(source) : YAML::LoadFile(source);
@@ -115,11 +83,13 @@ void Host::load(const std::string& source, bool is_text, const std::string& file
   } catch (const YAML::Exception& error) {
     throw ParameterError(file + ":" + std::to_string(error.mark.line + 1) + ": " + error.msg);
   }
+  build(root, file, "", registry, placement, /*paths_from_file=*/!is_text);
+}
+
+void Host::build(const YAML::Node& root, const std::string& file, const std::string& identity,
+                 const Registry& registry, const PlacementReader& placement, bool paths_from_file) {
   if (!root.IsMap()) {
     throw ParameterError(file + ": a host file is a map with a 'components' list");
-  }
-  if (!process.empty()) {
-    root = process_of_deploy(file, root, process);
   }
   const std::string context = "host file";
   check_keys(file, root,
@@ -139,7 +109,7 @@ void Host::load(const std::string& source, bool is_text, const std::string& file
   if (const std::string qos_file =
           scalar<std::string>(file, root, "qos_file", "", context, "a path");
       !qos_file.empty()) {
-    const auto path = std::filesystem::path(is_text ? "" : file).parent_path() / qos_file;
+    const auto path = std::filesystem::path(paths_from_file ? file : "").parent_path() / qos_file;
     if (!std::filesystem::exists(path)) {
       throw ParameterError(at(file, root["qos_file"]) +
                            ": host file: 'qos_file': no such file: " + path.string());
@@ -206,7 +176,7 @@ void Host::load(const std::string& source, bool is_text, const std::string& file
   try {
     // Across hosts and DDS Security (deploy/README.md); the identity is the process's name.
     if (placement) {
-      placement(root, file, process, options);
+      placement(root, file, identity, options);
     } else {
       for (const char* key : {kNetworkKey, kSecurityKey}) {
         if (root[key]) {

@@ -52,11 +52,12 @@ class Host {
   // (UNCONFIGURED). Throws ParameterError (bad file) or std::invalid_argument.
   // Without a placement reader, a file with `network` or `security` is refused.
   Host(const std::string& file, const Registry& registry, PlacementReader placement = {});
-  // The components of one process of a deploy file (deploy/README.md): the
-  // entry of `processes` named `process`, its `components` list in the format
-  // above. Errors still name the deploy file and its lines.
-  Host(const std::string& deploy_file, const std::string& process, const Registry& registry,
-       PlacementReader placement = {});
+  // From a host document already parsed, e.g. one process of a deploy file
+  // (wbi::deploy::load_process_host: the runtime does not read the deploy
+  // format). `file` names it in errors and anchors its relative paths;
+  // `identity` is the process's name (the placement reader's default identity).
+  Host(const YAML::Node& document, const std::string& file, const std::string& identity,
+       const Registry& registry, PlacementReader placement = {});
   // Same, from YAML text; `file` names it in messages.
   static std::unique_ptr<Host> from_string(const std::string& yaml, const Registry& registry,
                                            const std::string& file = "<string>");
@@ -83,8 +84,9 @@ class Host {
   };
   Host() = default;
   void load(const std::string& yaml_or_file, bool is_text, const std::string& file,
-            const Registry& registry, const std::string& process = "",
-            const PlacementReader& placement = {});
+            const Registry& registry, const PlacementReader& placement = {});
+  void build(const YAML::Node& root, const std::string& file, const std::string& identity,
+             const Registry& registry, const PlacementReader& placement, bool paths_from_file);
 
   std::unique_ptr<dds::Participant> participant_;
   std::unique_ptr<Clock> clock_;
