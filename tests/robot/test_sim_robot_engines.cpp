@@ -49,7 +49,7 @@ TEST(SimRobotEngines, AnUnknownEngineIsOneLineListingTheRegisteredOnes) {
   }
   EXPECT_EQ(
       runner.last_error(),
-      "<string>:3: component 'sim': unknown engine 'bullet' (known: " + registered + ")");
+      "<string>:3: component 'sim': unknown engine 'bullet' (registered: " + registered + ")");
   EXPECT_TRUE(seen.robot.empty()) << "no engine was built";
 }
 

@@ -19,19 +19,11 @@ std::filesystem::path config_path(const runtime::Parameters& parameters) {
   return path;
 }
 
-std::string joined(const std::vector<std::string>& names) {
-  std::string out;
-  for (const auto& name : names) {
-    out += (out.empty() ? "" : ", ") + name;
-  }
-  return out;
-}
-
 }  // namespace
 
 void register_components(runtime::Registry& registry, EngineRegistry engines) {
   const auto shared = std::make_shared<const EngineRegistry>(std::move(engines));
-  const std::string names = joined(shared->names());
+  const std::string names = shared->names_text();
   robot::register_simulation(
       registry, "sim_robot",
       [shared, names](const runtime::Parameters& parameters) {
