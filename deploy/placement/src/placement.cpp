@@ -126,8 +126,7 @@ void read_placement(const YAML::Node& root, const std::string& file, const std::
   read_security(file, root, identity, options);
 }
 
-void read_join_options(const std::string& file, const std::string& identity,
-                       dds::ParticipantOptions& options) {
+YAML::Node load_deploy_file(const std::string& file) {
   YAML::Node root;
   try {
     root = YAML::LoadFile(file);
@@ -139,6 +138,12 @@ void read_join_options(const std::string& file, const std::string& identity,
   if (!root.IsMap()) {
     throw std::runtime_error(file + ": a deploy file is a map");
   }
+  return root;
+}
+
+void read_join_options(const std::string& file, const std::string& identity,
+                       dds::ParticipantOptions& options) {
+  const YAML::Node root = load_deploy_file(file);
   if (const YAML::Node domain = root["domain_id"]) {
     try {
       options.domain_id =

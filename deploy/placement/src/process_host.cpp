@@ -42,19 +42,7 @@ YAML::Node process_host_document(const YAML::Node& deploy, const std::string& fi
 }
 
 YAML::Node load_process_host(const std::string& deploy_file, const std::string& process) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(deploy_file);
-  } catch (const YAML::BadFile&) {
-    throw std::runtime_error(deploy_file + ": cannot read the deploy file");
-  } catch (const YAML::Exception& error) {
-    throw std::runtime_error(deploy_file + ":" + std::to_string(error.mark.line + 1) + ": " +
-                             error.msg);
-  }
-  if (!root.IsMap()) {
-    throw std::runtime_error(deploy_file + ": a deploy file is a map with a 'processes' list");
-  }
-  return process_host_document(root, deploy_file, process);
+  return process_host_document(load_deploy_file(deploy_file), deploy_file, process);
 }
 
 }  // namespace wbi::deploy

@@ -31,6 +31,10 @@ namespace wbi::deploy {
 void read_placement(const YAML::Node& root, const std::string& file, const std::string& identity,
                     dds::ParticipantOptions& options);
 
+// Reads a deploy file: its root map. Throws std::runtime_error "FILE[:LINE]:
+// what" when it cannot be read, does not parse, or is not a map.
+YAML::Node load_deploy_file(const std::string& file);
+
 // Joins the deployment `file` describes: its domain_id, qos_file (relative to
 // it), network and security blocks, on top of `options`. For tools pointed at
 // a deploy file (`wbi ... --deploy FILE`). Throws std::runtime_error "FILE:LINE: ...".
