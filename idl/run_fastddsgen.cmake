@@ -2,9 +2,27 @@
 # templates...", "Generating ... files...") are dropped, only its errors and
 # warnings are printed; a failure stops the build with them.
 # Usage: cmake -DFASTDDSGEN=<exe> -DIDL=<file.idl> -DINCLUDE_DIR=<dir> -DOUT_DIR=<dir>
-#              -P run_fastddsgen.cmake
+#              [-DWORK_DIR=<dir>] -P run_fastddsgen.cmake
+#
+# fastddsgen 2.3 shares files between runs unless told otherwise, so each run
+# works in a folder of its own (WORK_DIR, default OUT_DIR/.fastddsgen/<name>)
+# and only <name>'s files are copied to OUT_DIR:
+# - it preprocesses every file into <temp>/<file>.idl.cc, <temp> being /tmp/
+#   on Linux for every process on the machine: all runs that include
+#   common.idl rewrite /tmp/common.idl.cc while others parse it ("common.idl:1:0:
+#   error: mismatched input '<EOF>'"). -t gives the run its own <temp>;
+# - it also generates the code of every included file (common.idl) into -d:
+#   written to OUT_DIR, that would overwrite common.* under the common.idl
+#   rule's feet, undoing strip_type_registration.cmake.
+get_filename_component(name ${IDL} NAME_WE)
+if(NOT WORK_DIR)
+  set(WORK_DIR ${OUT_DIR}/.fastddsgen/${name})
+endif()
+file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR}/tmp)
 execute_process(
-  COMMAND ${FASTDDSGEN} -typeobject -cs -replace -I ${INCLUDE_DIR} -d ${OUT_DIR} ${IDL}
+  COMMAND ${FASTDDSGEN} -typeobject -cs -replace -I ${INCLUDE_DIR} -d ${WORK_DIR}
+          -t ${WORK_DIR}/tmp ${IDL}
   RESULT_VARIABLE result
   OUTPUT_VARIABLE output
   ERROR_VARIABLE errors)
@@ -32,3 +50,10 @@ endif()
 if(NOT diagnostics STREQUAL "")
   message("fastddsgen ${IDL}:\n${diagnostics}")
 endif()
+
+# <name>'s own files; the code of the files it includes stays in WORK_DIR.
+foreach(suffix "" PubSubTypes TypeObject)
+  foreach(ext cxx h)
+    file(COPY_FILE ${WORK_DIR}/${name}${suffix}.${ext} ${OUT_DIR}/${name}${suffix}.${ext})
+  endforeach()
+endforeach()

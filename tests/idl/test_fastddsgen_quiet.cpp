@@ -1,6 +1,7 @@
 // idl/run_fastddsgen.cmake, as the build runs it for every .idl file: silent
 // when fastddsgen succeeds (no banner, no per-file progress), its error lines
-// (without colour codes) and a failure when it does not.
+// (without colour codes) and a failure when it does not; only the file's own
+// generated code lands in OUT_DIR.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -32,7 +33,7 @@ class FastddsgenQuiet : public ::testing::Test {
     wbi::test::ChildProcess cmake(
         WBI_CMAKE_COMMAND,
         {"-DFASTDDSGEN=" + std::string(WBI_FASTDDSGEN), "-DIDL=" + idl.string(),
-         "-DINCLUDE_DIR=" + (source / "idl").string(), "-DOUT_DIR=" + dir_.string(), "-P",
+         "-DINCLUDE_DIR=" + idl.parent_path().string(), "-DOUT_DIR=" + dir_.string(), "-P",
          (source / "idl" / "run_fastddsgen.cmake").string()});
     const auto code = cmake.wait(120s);
     return {code.value_or(-1), cmake.output()};
@@ -48,6 +49,9 @@ TEST_F(FastddsgenQuiet, PrintsNothingWhenItSucceeds) {
   EXPECT_EQ(run.output, "");
   EXPECT_TRUE(std::filesystem::exists(dir_ / "sensorsPubSubTypes.cxx"));
   EXPECT_TRUE(std::filesystem::exists(dir_ / "sensorsTypeObject.cxx"));
+  // fastddsgen also generates the included common.idl: not into OUT_DIR, where
+  // it would overwrite the common.idl rule's files.
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "common.h"));
 }
 
 TEST_F(FastddsgenQuiet, PrintsOnlyTheErrorAndFailsOnABadFile) {
