@@ -1,6 +1,6 @@
 # Runs fastddsgen quietly: its banner and per-file progress ("Loading
 # templates...", "Generating ... files...") are dropped, only its errors and
-# warnings are printed; a failure stops the build with them.
+# warnings are printed; a failure or an error line stops the build with them.
 # Usage: cmake -DFASTDDSGEN=<exe> -DIDL=<file.idl> -DINCLUDE_DIR=<dir> -DOUT_DIR=<dir>
 #              [-DWORK_DIR=<dir>] -P run_fastddsgen.cmake
 #
@@ -28,23 +28,33 @@ execute_process(
   ERROR_VARIABLE errors)
 
 # fastddsgen writes its diagnostics to stdout, coloured; Java traces to stderr.
+# Its lines: "file:line:col: error: ...", "ERROR: ...", "ERROR<where>: ...",
+# the same with warning. A line saying "error" that is not a warning is an
+# error: fastddsgen exits 0 when an included file fails to parse on its own.
 string(ASCII 27 escape)
 string(REGEX REPLACE "${escape}\\[[0-9;]*m" "" output "${output}")
 string(REPLACE "\n" ";" lines "${output}")
 set(diagnostics "")
+set(has_error FALSE)
 foreach(line IN LISTS lines)
   string(TOLOWER "${line}" lower)
   if(lower MATCHES "error|warning")
     string(APPEND diagnostics "${line}\n")
+    if(lower MATCHES "error" AND NOT lower MATCHES "(^|: )warning[:<]")
+      set(has_error TRUE)
+    endif()
   endif()
 endforeach()
 
-if(NOT result EQUAL 0)
+if(NOT result EQUAL 0 OR has_error)
   if(diagnostics STREQUAL "")
     set(diagnostics "${output}${errors}")  # nothing recognisable: all of it
   endif()
   # Plain message(): FATAL_ERROR would re-wrap the compiler-style lines.
   message("${diagnostics}")
+  if(result EQUAL 0)
+    message(FATAL_ERROR "fastddsgen reported an error on ${IDL} (though it exited 0)")
+  endif()
   message(FATAL_ERROR "fastddsgen failed on ${IDL} (exit ${result})")
 endif()
 if(NOT diagnostics STREQUAL "")
