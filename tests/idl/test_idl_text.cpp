@@ -45,9 +45,12 @@ TEST(IdlText, FastddsgenAcceptsTheTextAlone) {
     std::ofstream out(dir / "sample.idl");
     out << wbi::msg::idl_text_for("wbi::msg::SensorSample");
   }
+  // -t: fastddsgen's default temporary folder is /tmp/, shared by every run on
+  // the machine (idl/run_fastddsgen.cmake).
   const std::string command = std::string(WBI_FASTDDSGEN) + " -cs -replace -d " +
-                              (dir / "out").string() + " " + (dir / "sample.idl").string() + " > " +
-                              (dir / "log.txt").string() + " 2>&1";
+                              (dir / "out").string() + " -t " + dir.string() + " " +
+                              (dir / "sample.idl").string() + " > " + (dir / "log.txt").string() +
+                              " 2>&1";
   const int code = std::system(command.c_str());
   std::ifstream log(dir / "log.txt");
   const std::string output((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
