@@ -64,11 +64,16 @@ inline void joint_forward(const Model& model, int i, double q, const Matrix3d& R
       R_WB.col(k) = R_WJ.col(k);
       R_WB.col(k1) = c * R_WJ.col(k1) + s * R_WJ.col(k2);
       R_WB.col(k2) = c * R_WJ.col(k2) - s * R_WJ.col(k1);
-      S << p_WB.cross(a_W), a_W;
+      // Halves by fixed-size blocks, not `S << a, b`: the comma initializer copies
+      // each 3-vector through a runtime-sized block, whose never-taken 4-wide AVX
+      // path g++ 12 flags with -Warray-bounds (GCC PR 106247, Eigen #2506).
+      S.head<3>() = p_WB.cross(a_W);
+      S.tail<3>() = a_W;
     } else {
       R_WB = R_WJ;
       p_WB += q * a_W;
-      S << a_W, Vector3d::Zero();
+      S.head<3>() = a_W;
+      S.tail<3>().setZero();
     }
     return;
   }

@@ -148,7 +148,10 @@ Eigen::MatrixXd Reference::point_jacobian(int l, const Eigen::Vector3d& p) const
     }
     // the joint frame of link k is its own frame: axis R_k a, origin o_k
     const Eigen::Vector3d a = rot_of(k) * lk.axis;
-    J.col(lk.v_index) = lk.joint_kind == 1 ? Eigen::Vector3d(a.cross(p - origin_of(k))) : a;
+    // fixed-size 3×1 blocks here and below, not J.col(): g++ 12 -Warray-bounds with AVX
+    // (model_service/src/joint.hpp)
+    J.block<3, 1>(0, lk.v_index) =
+        lk.joint_kind == 1 ? Eigen::Vector3d(a.cross(p - origin_of(k))) : a;
   }
   return J;
 }
@@ -162,7 +165,7 @@ Eigen::MatrixXd Reference::rotation_jacobian(int l) const {
        k = links_[static_cast<std::size_t>(k)].parent) {
     const Link& lk = links_[static_cast<std::size_t>(k)];
     if (lk.joint_kind == 1) {
-      J.col(lk.v_index) = rot_of(k) * lk.axis;
+      J.block<3, 1>(0, lk.v_index) = rot_of(k) * lk.axis;
     }
   }
   return J;
@@ -223,7 +226,8 @@ Eigen::MatrixXd Reference::link_jacobian(const std::string& name) const {
 Eigen::Matrix<double, 6, 1> Reference::link_dJnu(const std::string& name) const {
   const int l = index(name);
   Eigen::Matrix<double, 6, 1> r;
-  r << point_dJnu(l, origin_of(l)), rotation_dJnu(l);
+  r.head<3>() = point_dJnu(l, origin_of(l));
+  r.tail<3>() = rotation_dJnu(l);
   return r;
 }
 

@@ -37,7 +37,9 @@ const Eigen::MatrixXd& com_jacobian(const Model& model, Data& data, const ConstV
   // joint column: (m_C S_lin − h_C × S_ang) / m  (linear momentum of the subtree per unit q̇)
   for (int j = 1; j < model.n_bodies; ++j) {
     const Vector6d& S = data.S[j];
-    data.J_com.col(model.body_v_index[j]) =
+    // a fixed-size 3×1 block: J_com's runtime-sized column draws g++ 12's -Warray-bounds
+    // false positive with AVX (see joint.hpp)
+    data.J_com.block<3, 1>(0, model.body_v_index[j]) =
         (data.I_C[j].m * S.head<3>() - data.I_C[j].h.cross(S.tail<3>())) / m;
   }
   // base: ċ = ṗ_B + ω_B × (c − p_B)

@@ -36,7 +36,9 @@ void forward_velocity_kinematics(const Model& model, Data& data, const ConstVect
   if (model.floating_base) {
     const Vector6d nu_B = nu.head<6>();
     data.v[0] = detail::base_motion(data.p_WB[0], nu_B);
-    data.a[0] << nu_B.head<3>().cross(nu_B.tail<3>()), Vector3d::Zero();
+    // fixed-size halves, not `<<` (g++ 12 -Warray-bounds with AVX: see joint.hpp)
+    data.a[0].head<3>() = nu_B.head<3>().cross(nu_B.tail<3>());
+    data.a[0].tail<3>().setZero();
   } else {
     data.v[0].setZero();
     data.a[0].setZero();
