@@ -8,7 +8,8 @@
 # kernel may have no netem), started as `EMULATOR --tap-a .. --tap-b .. ARGS...`.
 # Host A is 10.77.0.1, host B 10.77.0.2 (/24). The addresses live only inside
 # the pair, so concurrent runs do not collide; the names are unique per run.
-# Everything is removed on exit, even on failure (trap).
+# Everything is removed on exit, even on failure (trap), and the exit fails if
+# anything this run started outlived it (netns_check_leftovers).
 
 HOST_A_ADDRESS=10.77.0.1
 HOST_B_ADDRESS=10.77.0.2
@@ -20,6 +21,9 @@ NETNS_EMULATOR_PID=""
 NETNS_EMULATOR_LOG=""  # its output: "ready", then its counters when stopped
 NETNS_PIDS=()    # processes started with on_host_*: stopped by netns_pair_cleanup
 NETNS_TEMP_DIR="" # removed by netns_pair_cleanup too (the tests' logs)
+# Exported by netns_pair_create: every process this run starts inherits it, so
+# that one outside the namespaces (or that left them) is still found as ours.
+NETNS_RUN_MARK="WBI_NETNS_RUN=wbi$$"
 
 # Stops the processes started with on_host_*: SIGTERM, SIGKILL after 5 s.
 netns_stop_processes() {
@@ -32,13 +36,64 @@ netns_stop_processes() {
   NETNS_PIDS=()
 }
 
+# netns_has_mark PID: whether PID's environment holds this run's mark. Builtins
+# only: a forked helper would carry the mark itself.
+netns_has_mark() {
+  local entry entries
+  mapfile -t -d '' entries 2>/dev/null <"/proc/$1/environ" || return 1
+  for entry in "${entries[@]}"; do [[ $entry == "$NETNS_RUN_MARK" ]] && return 0; done
+  return 1
+}
+
+# netns_leftovers: the pids of every process still in the pair's namespaces or,
+# anywhere on the host, carrying this run's mark (this shell excluded).
+netns_leftovers() {
+  local ns pid
+  local -A found=()
+  for ns in "$NETNS_A" "$NETNS_B"; do
+    for pid in $(ip netns pids "$ns" 2>/dev/null); do found[$pid]=1; done
+  done
+  for pid in /proc/[0-9]*; do
+    pid=${pid#/proc/}
+    [[ $pid != "$$" && $pid != "$BASHPID" ]] && netns_has_mark "$pid" && found[$pid]=1
+  done
+  echo "${!found[@]}"
+}
+
+# netns_check_leftovers: after everything was stopped, nothing this run
+# started may remain (issue 44: orphaned discovery servers piled up, one per
+# run). Names each leftover, then kills it; 1 if there was any.
+netns_check_leftovers() {
+  local pids pid command
+  pids=$(netns_leftovers)
+  [[ -n "$pids" ]] || return 0
+  echo "FAIL: processes left behind by this test (stopped now):"
+  for pid in $pids; do
+    mapfile -t -d '' command 2>/dev/null <"/proc/$pid/cmdline" || command=("?")
+    echo "  pid $pid (parent $(awk '{print $4}' "/proc/$pid/stat" 2>/dev/null), netns $(ip netns identify "$pid" 2>/dev/null || true)): ${command[*]}"
+  done
+  kill -TERM $pids 2>/dev/null || true
+  for _ in $(seq 50); do
+    pids=$(netns_leftovers)
+    [[ -n "$pids" ]] || return 1
+    sleep 0.1
+  done
+  kill -KILL $pids 2>/dev/null || true
+  return 1
+}
+
+# The EXIT trap: stops and removes everything; a clean exit becomes a failure
+# when something outlived the test.
 netns_pair_cleanup() {
+  local status=$?
   netns_stop_processes
   netns_stop_emulator
+  if ! netns_check_leftovers && ((status == 0 || status == 77)); then status=1; fi
   [[ -z "$NETNS_EMULATOR_LOG" ]] || rm -f "$NETNS_EMULATOR_LOG"
   ip netns del "$NETNS_A" 2>/dev/null || true  # also removes the veth pair
   ip netns del "$NETNS_B" 2>/dev/null || true
   [[ -z "$NETNS_TEMP_DIR" ]] || rm -rf "$NETNS_TEMP_DIR"
+  exit "$status"
 }
 
 # Stops the link emulator (the TAP devices go with it); its counters stay in its log.
@@ -72,6 +127,7 @@ netns_pair_create() {
   fi
   trap netns_pair_cleanup EXIT
   trap 'exit 130' INT TERM
+  export "$NETNS_RUN_MARK"
   ip netns add "$NETNS_B"
   if (($# > 0)); then
     netns_start_emulator "$@" || return $?
