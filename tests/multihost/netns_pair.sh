@@ -19,19 +19,21 @@ VETH_A="wbv$$a"  # the link's ends (veth, or TAP with the emulator); at most 15 
 VETH_B="wbv$$b"
 NETNS_EMULATOR_PID=""
 NETNS_EMULATOR_LOG=""  # its output: "ready", then its counters when stopped
-NETNS_PIDS=()    # processes started with on_host_*: stopped by netns_pair_cleanup
+NETNS_PIDS=()    # started with on_host_*, each the leader of its process group: stopped by netns_pair_cleanup
 NETNS_TEMP_DIR="" # removed by netns_pair_cleanup too (the tests' logs)
 # Exported by netns_pair_create: every process this run starts inherits it, so
 # that one outside the namespaces (or that left them) is still found as ours.
 NETNS_RUN_MARK="WBI_NETNS_RUN=wbi$$"
 
-# Stops the processes started with on_host_*: SIGTERM, SIGKILL after 5 s.
+# Stops the processes started with on_host_*, each with whatever it forked (its
+# process group: `fastdds discovery` is a Python wrapper whose child, the
+# server, outlived a SIGTERM to the wrapper alone): SIGTERM, SIGKILL after 5 s.
 netns_stop_processes() {
   local pid
-  for pid in "${NETNS_PIDS[@]}"; do kill -TERM "$pid" 2>/dev/null || true; done
+  for pid in "${NETNS_PIDS[@]}"; do kill -TERM -- "-$pid" 2>/dev/null || true; done
   for pid in "${NETNS_PIDS[@]}"; do
-    for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
-    kill -KILL "$pid" 2>/dev/null || true
+    for _ in $(seq 50); do kill -0 -- "-$pid" 2>/dev/null || break; sleep 0.1; done
+    kill -KILL -- "-$pid" 2>/dev/null || true
   done
   NETNS_PIDS=()
 }
@@ -64,13 +66,14 @@ netns_leftovers() {
 # started may remain (issue 44: orphaned discovery servers piled up, one per
 # run). Names each leftover, then kills it; 1 if there was any.
 netns_check_leftovers() {
-  local pids pid command
+  local pids pid command where
   pids=$(netns_leftovers)
   [[ -n "$pids" ]] || return 0
   echo "FAIL: processes left behind by this test (stopped now):"
   for pid in $pids; do
     mapfile -t -d '' command 2>/dev/null <"/proc/$pid/cmdline" || command=("?")
-    echo "  pid $pid (parent $(awk '{print $4}' "/proc/$pid/stat" 2>/dev/null), netns $(ip netns identify "$pid" 2>/dev/null || true)): ${command[*]}"
+    where=$(ip netns identify "$pid" 2>/dev/null || true)
+    echo "  pid $pid (parent $(awk '{print $4}' "/proc/$pid/stat" 2>/dev/null), ${where:+in }${where:-on the host}): ${command[*]}"
   done
   kill -TERM $pids 2>/dev/null || true
   for _ in $(seq 50); do
@@ -147,9 +150,13 @@ netns_pair_create() {
   done
 }
 
-# on_host_a LOG CMD...: starts CMD in host A's namespace, output to LOG; $! is its pid.
-on_host_a() { local log=$1; shift; ip netns exec "$NETNS_A" "$@" >"$log" 2>&1 & NETNS_PIDS+=($!); }
-on_host_b() { local log=$1; shift; ip netns exec "$NETNS_B" "$@" >"$log" 2>&1 & NETNS_PIDS+=($!); }
+# on_host_a LOG CMD...: starts CMD in host A's namespace, output to LOG; $! is
+# its pid and the id of its own process group (setsid), which holds whatever it
+# forks, so that netns_stop_processes stops them all. (`ip netns exec` and
+# setsid exec, they do not fork: a background job of a script without job
+# control is no group leader, the one case where setsid would fork.)
+on_host_a() { local log=$1; shift; ip netns exec "$NETNS_A" setsid "$@" >"$log" 2>&1 & NETNS_PIDS+=($!); }
+on_host_b() { local log=$1; shift; ip netns exec "$NETNS_B" setsid "$@" >"$log" 2>&1 & NETNS_PIDS+=($!); }
 
 # The link between the hosts: netns_link down|up (both ends).
 netns_link() { ip -n "$NETNS_A" link set "$VETH_A" "$1"; ip -n "$NETNS_B" link set "$VETH_B" "$1"; }
