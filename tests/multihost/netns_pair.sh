@@ -123,7 +123,22 @@ netns_start_emulator() {
   fi
 }
 
+# Namespaces of earlier runs killed before their EXIT trap could run (SIGKILL):
+# wbi<PID>a/b whose PID is gone. Their processes are killed and the names
+# removed, so that such a run leaves nothing behind for longer than the next run.
+netns_remove_stale() {
+  local ns pids
+  for ns in $(ip netns list 2>/dev/null | awk '{print $1}'); do
+    [[ $ns =~ ^wbi([0-9]+)[ab]$ && ! -e /proc/${BASH_REMATCH[1]} ]] || continue
+    pids=$(ip netns pids "$ns" 2>/dev/null)
+    echo "removing namespace $ns of a run that ended without cleaning up (processes: ${pids:-none})"
+    [[ -z "$pids" ]] || kill -KILL $pids 2>/dev/null || true
+    ip netns del "$ns" 2>/dev/null || true
+  done
+}
+
 netns_pair_create() {
+  [[ $(id -u) -ne 0 ]] || netns_remove_stale
   if [[ $(id -u) -ne 0 ]] || ! ip netns add "$NETNS_A" 2>/dev/null; then
     echo "skipped: cannot create network namespaces (needs root)"
     return 77
