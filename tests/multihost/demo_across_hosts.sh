@@ -38,6 +38,8 @@ if [[ $mode == peers ]]; then
   ip -n "$NETNS_B" link set "$VETH_B" multicast off
 fi
 if [[ $mode == server ]]; then
+  # A Python wrapper running fast-discovery-server as its child: both are in
+  # on_host_a's process group, stopped together (netns_pair.sh).
   on_host_a "$logs/server.log" stdbuf -oL fastdds discovery -i 0 -l "$HOST_A_ADDRESS" -p 11811
   wait_for_text "$logs/server.log" "Server is running" 10 || { cat "$logs/server.log"; echo "FAIL: the discovery server did not start"; exit 1; }
 fi

@@ -8,7 +8,8 @@
 # kernel may have no netem), started as `EMULATOR --tap-a .. --tap-b .. ARGS...`.
 # Host A is 10.77.0.1, host B 10.77.0.2 (/24). The addresses live only inside
 # the pair, so concurrent runs do not collide; the names are unique per run.
-# Everything is removed on exit, even on failure (trap).
+# Everything is removed on exit, even on failure (trap), and the exit fails if
+# anything this run started outlived it (netns_check_leftovers).
 
 HOST_A_ADDRESS=10.77.0.1
 HOST_B_ADDRESS=10.77.0.2
@@ -18,27 +19,84 @@ VETH_A="wbv$$a"  # the link's ends (veth, or TAP with the emulator); at most 15 
 VETH_B="wbv$$b"
 NETNS_EMULATOR_PID=""
 NETNS_EMULATOR_LOG=""  # its output: "ready", then its counters when stopped
-NETNS_PIDS=()    # processes started with on_host_*: stopped by netns_pair_cleanup
+NETNS_PIDS=()    # started with on_host_*, each the leader of its process group: stopped by netns_pair_cleanup
 NETNS_TEMP_DIR="" # removed by netns_pair_cleanup too (the tests' logs)
+# Exported by netns_pair_create: every process this run starts inherits it, so
+# that one outside the namespaces (or that left them) is still found as ours.
+NETNS_RUN_MARK="WBI_NETNS_RUN=wbi$$"
 
-# Stops the processes started with on_host_*: SIGTERM, SIGKILL after 5 s.
+# Stops the processes started with on_host_*, each with whatever it forked (its
+# process group: `fastdds discovery` is a Python wrapper whose child, the
+# server, outlived a SIGTERM to the wrapper alone): SIGTERM, SIGKILL after 5 s.
 netns_stop_processes() {
   local pid
-  for pid in "${NETNS_PIDS[@]}"; do kill -TERM "$pid" 2>/dev/null || true; done
+  for pid in "${NETNS_PIDS[@]}"; do kill -TERM -- "-$pid" 2>/dev/null || true; done
   for pid in "${NETNS_PIDS[@]}"; do
-    for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
-    kill -KILL "$pid" 2>/dev/null || true
+    for _ in $(seq 50); do kill -0 -- "-$pid" 2>/dev/null || break; sleep 0.1; done
+    kill -KILL -- "-$pid" 2>/dev/null || true
   done
   NETNS_PIDS=()
 }
 
+# netns_has_mark PID: whether PID's environment holds this run's mark. Builtins
+# only: a forked helper would carry the mark itself.
+netns_has_mark() {
+  local entry entries
+  mapfile -t -d '' entries 2>/dev/null <"/proc/$1/environ" || return 1
+  for entry in "${entries[@]}"; do [[ $entry == "$NETNS_RUN_MARK" ]] && return 0; done
+  return 1
+}
+
+# netns_leftovers: the pids of every process still in the pair's namespaces or,
+# anywhere on the host, carrying this run's mark (this shell excluded).
+netns_leftovers() {
+  local ns pid
+  local -A found=()
+  for ns in "$NETNS_A" "$NETNS_B"; do
+    for pid in $(ip netns pids "$ns" 2>/dev/null); do found[$pid]=1; done
+  done
+  for pid in /proc/[0-9]*; do
+    pid=${pid#/proc/}
+    [[ $pid != "$$" && $pid != "$BASHPID" ]] && netns_has_mark "$pid" && found[$pid]=1
+  done
+  echo "${!found[@]}"
+}
+
+# netns_check_leftovers: after everything was stopped, nothing this run
+# started may remain (issue 44: orphaned discovery servers piled up, one per
+# run). Names each leftover, then kills it; 1 if there was any.
+netns_check_leftovers() {
+  local pids pid command where
+  pids=$(netns_leftovers)
+  [[ -n "$pids" ]] || return 0
+  echo "FAIL: processes left behind by this test (stopped now):"
+  for pid in $pids; do
+    mapfile -t -d '' command 2>/dev/null <"/proc/$pid/cmdline" || command=("?")
+    where=$(ip netns identify "$pid" 2>/dev/null || true)
+    echo "  pid $pid (parent $(awk '{print $4}' "/proc/$pid/stat" 2>/dev/null), ${where:+in }${where:-on the host}): ${command[*]}"
+  done
+  kill -TERM $pids 2>/dev/null || true
+  for _ in $(seq 50); do
+    pids=$(netns_leftovers)
+    [[ -n "$pids" ]] || return 1
+    sleep 0.1
+  done
+  kill -KILL $pids 2>/dev/null || true
+  return 1
+}
+
+# The EXIT trap: stops and removes everything; a clean exit becomes a failure
+# when something outlived the test.
 netns_pair_cleanup() {
+  local status=$?
   netns_stop_processes
   netns_stop_emulator
+  if ! netns_check_leftovers && ((status == 0 || status == 77)); then status=1; fi
   [[ -z "$NETNS_EMULATOR_LOG" ]] || rm -f "$NETNS_EMULATOR_LOG"
   ip netns del "$NETNS_A" 2>/dev/null || true  # also removes the veth pair
   ip netns del "$NETNS_B" 2>/dev/null || true
   [[ -z "$NETNS_TEMP_DIR" ]] || rm -rf "$NETNS_TEMP_DIR"
+  exit "$status"
 }
 
 # Stops the link emulator (the TAP devices go with it); its counters stay in its log.
@@ -65,13 +123,29 @@ netns_start_emulator() {
   fi
 }
 
+# Namespaces of earlier runs killed before their EXIT trap could run (SIGKILL):
+# wbi<PID>a/b whose PID is gone. Their processes are killed and the names
+# removed, so that such a run leaves nothing behind for longer than the next run.
+netns_remove_stale() {
+  local ns pids
+  for ns in $(ip netns list 2>/dev/null | awk '{print $1}'); do
+    [[ $ns =~ ^wbi([0-9]+)[ab]$ && ! -e /proc/${BASH_REMATCH[1]} ]] || continue
+    pids=$(ip netns pids "$ns" 2>/dev/null)
+    echo "removing namespace $ns of a run that ended without cleaning up (processes: ${pids:-none})"
+    [[ -z "$pids" ]] || kill -KILL $pids 2>/dev/null || true
+    ip netns del "$ns" 2>/dev/null || true
+  done
+}
+
 netns_pair_create() {
+  [[ $(id -u) -ne 0 ]] || netns_remove_stale
   if [[ $(id -u) -ne 0 ]] || ! ip netns add "$NETNS_A" 2>/dev/null; then
     echo "skipped: cannot create network namespaces (needs root)"
     return 77
   fi
   trap netns_pair_cleanup EXIT
   trap 'exit 130' INT TERM
+  export "$NETNS_RUN_MARK"
   ip netns add "$NETNS_B"
   if (($# > 0)); then
     netns_start_emulator "$@" || return $?
@@ -91,9 +165,13 @@ netns_pair_create() {
   done
 }
 
-# on_host_a LOG CMD...: starts CMD in host A's namespace, output to LOG; $! is its pid.
-on_host_a() { local log=$1; shift; ip netns exec "$NETNS_A" "$@" >"$log" 2>&1 & NETNS_PIDS+=($!); }
-on_host_b() { local log=$1; shift; ip netns exec "$NETNS_B" "$@" >"$log" 2>&1 & NETNS_PIDS+=($!); }
+# on_host_a LOG CMD...: starts CMD in host A's namespace, output to LOG; $! is
+# its pid and the id of its own process group (setsid), which holds whatever it
+# forks, so that netns_stop_processes stops them all. (`ip netns exec` and
+# setsid exec, they do not fork: a background job of a script without job
+# control is no group leader, the one case where setsid would fork.)
+on_host_a() { local log=$1; shift; ip netns exec "$NETNS_A" setsid "$@" >"$log" 2>&1 & NETNS_PIDS+=($!); }
+on_host_b() { local log=$1; shift; ip netns exec "$NETNS_B" setsid "$@" >"$log" 2>&1 & NETNS_PIDS+=($!); }
 
 # The link between the hosts: netns_link down|up (both ends).
 netns_link() { ip -n "$NETNS_A" link set "$VETH_A" "$1"; ip -n "$NETNS_B" link set "$VETH_B" "$1"; }

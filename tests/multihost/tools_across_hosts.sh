@@ -37,6 +37,8 @@ case "$mode" in
     command -v fastdds >/dev/null || { echo "skipped: no fastdds tool (apt-get install fastdds-tools)"; exit 77; }
     overrides=(WBI_DDS_DISCOVERY=server "WBI_DDS_DISCOVERY_SERVER=$HOST_A_ADDRESS:11811")
     tool_flags=(--discovery-server "$HOST_A_ADDRESS:11811")
+    # A Python wrapper running fast-discovery-server as its child: both are in
+    # on_host_a's process group, stopped together (netns_pair.sh).
     on_host_a "$logs/server.log" stdbuf -oL fastdds discovery -i 0 -l "$HOST_A_ADDRESS" -p 11811
     wait_for_text "$logs/server.log" "Server is running" 10 || { cat "$logs/server.log"; echo "FAIL: the discovery server did not start"; exit 1; } ;;
   secure)
