@@ -45,8 +45,7 @@ void BM_HumanoidStanding(benchmark::State& state) {
   actuation::JointController ctl(d, cc);
   const Eigen::VectorXd q0 = sim.ground_truth().q.tail(d.n_joints());
   actuation::JointCommandBatch batch;
-  batch.modes.assign(static_cast<std::size_t>(d.n_joints()),
-                     wbi::ControlMode::position_direct);
+  batch.modes.assign(static_cast<std::size_t>(d.n_joints()), wbi::ControlMode::position_direct);
   batch.values.assign(q0.data(), q0.data() + q0.size());
   const actuation::Duration period(1000000);
 

@@ -26,9 +26,9 @@
 namespace {
 
 using namespace std::chrono_literals;
+using wbi::LifecycleState;
 using wbi::runtime::ComponentContext;
 using wbi::runtime::ComponentRunner;
-using wbi::LifecycleState;
 using wbi::runtime::ParameterError;
 using wbi::runtime::Parameters;
 using wbi::runtime::TransitionError;

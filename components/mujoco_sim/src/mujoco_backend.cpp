@@ -520,8 +520,8 @@ void MujocoBackend::on_read(Time /*time*/, Duration /*period*/, actuation::Senso
   const Time now = stamp();
   for (int j = 0; j < s.n; ++j) {
     const auto js = static_cast<std::size_t>(j);
-    out.position[j] =
-        sim_models::quantise(d->qpos[s.index.qpos[js]] + s.noise(enc.position_noise), s.encoder_step);
+    out.position[j] = sim_models::quantise(d->qpos[s.index.qpos[js]] + s.noise(enc.position_noise),
+                                           s.encoder_step);
     out.velocity[j] = d->qvel[s.index.dof[js]] + s.noise(enc.velocity_noise);
     out.torque[j] = s.tau_act[j] + s.noise(enc.torque_noise);
     out.pwm[j] = s.pwm[j];

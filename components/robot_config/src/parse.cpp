@@ -386,10 +386,10 @@ class Parser {
       r_.fail(n["substeps"], "mujoco.substeps", "must be >= 1");
     }
     r_.get_enum<Integrator>(n, p, "integrator",
-                                           {{to_string(Integrator::euler), Integrator::euler},
-                                            {to_string(Integrator::implicit), Integrator::implicit},
-                                            {to_string(Integrator::rk4), Integrator::rk4}},
-                                           m.integrator);
+                            {{to_string(Integrator::euler), Integrator::euler},
+                             {to_string(Integrator::implicit), Integrator::implicit},
+                             {to_string(Integrator::rk4), Integrator::rk4}},
+                            m.integrator);
     Eigen::Vector2d solref(m.solref[0], m.solref[1]);
     if (r_.get_vec<2>(n, p, "solref", solref)) {
       // (timeconst, dampratio) both > 0, or the direct form (−stiffness, −damping).

@@ -250,7 +250,7 @@ class Writer {
       }
       const bool ok = g.shape == ContactShape::box      ? (g.size.array() > 0.0).all()
                       : g.shape == ContactShape::sphere ? g.radius > 0.0
-                                                         : g.radius > 0.0 && g.length > 0.0;
+                                                        : g.radius > 0.0 && g.length > 0.0;
       if (!ok || !g.size.allFinite() || !std::isfinite(g.radius) || !std::isfinite(g.length)) {
         fail(what +
              ": a box needs size > 0 in x, y, z; a sphere radius > 0; a capsule radius "

@@ -69,8 +69,6 @@ class Registry {
     return entry(name).description;
   }
 
-  const std::string& what() const { return what_; }
-
  private:
   struct Entry {
     Factory factory;

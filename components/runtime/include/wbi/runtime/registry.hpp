@@ -21,7 +21,8 @@ class Registry : public wbi::Registry<Component> {
   // add<MyComponent>("my_type", "what it does"): a default-constructed C.
   template <class C>
   void add(const std::string& type, std::string description = "") {
-    add(type, [] { return std::make_unique<C>(); }, std::move(description));
+    add(
+        type, [] { return std::make_unique<C>(); }, std::move(description));
   }
 };
 

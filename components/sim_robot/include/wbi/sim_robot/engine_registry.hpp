@@ -32,8 +32,7 @@ struct EngineContext {
 using EngineFactory =
     std::function<std::unique_ptr<actuation::SimulationBackend>(const EngineContext&)>;
 
-class EngineRegistry
-    : public Registry<actuation::SimulationBackend, const EngineContext&> {
+class EngineRegistry : public Registry<actuation::SimulationBackend, const EngineContext&> {
  public:
   EngineRegistry() : Registry("engine") {}
 };

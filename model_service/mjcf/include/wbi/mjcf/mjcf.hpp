@@ -60,7 +60,6 @@ struct Ground {
   double friction = 1.0;
 };
 
-
 // How a body's rotational inertia is written (kept for measurement; see README).
 enum class InertiaForm {
   kDiagonal,  // principal moments + axes from Eigen's eigensolver ("diaginertia", "quat")
