@@ -12,7 +12,10 @@
 #include <vector>
 
 #include <Eigen/Geometry>
+#include <wbi/sim_models/command_hold.hpp>
 #include <wbi/sim_models/sensor_actuator_models.hpp>
+#include <wbi/sim_models/sensor_noise.hpp>
+#include <wbi/sim_models/sim_plan.hpp>
 
 #include "wbi/mjcf/mjcf.hpp"
 #include "wbi/mjcf/mujoco_conventions.hpp"
@@ -22,7 +25,6 @@
 namespace wbi::mujoco_sim {
 
 using actuation::Duration;
-using actuation::OutputMode;
 using actuation::Time;
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
@@ -59,6 +61,7 @@ double lowest_z(const mjModel* m, const mjData* d, int g) {
 
 struct MujocoBackend::Impl {
   model::Model model;
+  sim_models::SimPlan plan;  // what the config asks, engine-neutral (sim_plan.hpp)
   std::string xml;
   mjModel* m = nullptr;
   mjData* d = nullptr;
@@ -68,10 +71,7 @@ struct MujocoBackend::Impl {
   bool fresh_position = false;  // mj_step1 (or mj_forward) done at the current state
 
   // per joint
-  Eigen::VectorXd effort;
-  std::vector<sim_models::DcMotor> motor;
-  std::vector<OutputMode> cmd_mode;
-  Eigen::VectorXd cmd_value, tau_act, pwm;
+  sim_models::CommandHold commands;
   // Joint dissipation applied by us as a torque, the own plant's model: Coulomb
   // friction F_c (mujoco.joint_friction: torque) and, with the Euler integrator,
   // viscous damping (explicit: MuJoCo 2.2's Euler would integrate it implicitly
@@ -87,12 +87,10 @@ struct MujocoBackend::Impl {
 
   struct Imu {
     int quat = 0, gyro = 0, accel = 0;  // sensordata addresses
-    double gyro_noise = 0.0, accel_noise = 0.0;
   };
   std::vector<Imu> imus;
   struct Ft {
     int force = 0, torque = 0;  // sensordata addresses
-    double force_noise = 0.0, torque_noise = 0.0;
   };
   std::vector<Ft> fts;
   struct Push {
@@ -104,8 +102,16 @@ struct MujocoBackend::Impl {
   std::int64_t mj_steps = 0;
   int bad_qacc = 0;  // MuJoCo's count of mjWARN_BADQACC (it resets the state on each)
 
-  sim_models::Gaussian noise{0};
-  double encoder_step = 0.0;
+  sim_models::SensorNoise noise;
+
+  explicit Impl(const robot_config::RobotConfig& config) : noise(config) {}
+
+  // The steps of configure(), in order.
+  void load(const robot_config::RobotConfig& c, const std::string& where);
+  void find_names(double timestep);
+  void place_initial_state(const robot_config::RobotConfig& c);
+  void measure_joint_inertias();
+  void make_damping_explicit();
 
   ~Impl() {
     if (d != nullptr) {
@@ -116,6 +122,116 @@ struct MujocoBackend::Impl {
     }
   }
 };
+
+// The MJCF of the config, loaded, with the options the writer leaves at
+// MuJoCo's defaults.
+void MujocoBackend::Impl::load(const robot_config::RobotConfig& c, const std::string& where) {
+  const robot_config::MujocoOptions& o = c.mujoco;
+  xml = mjcf::write_mjcf(model, robot_mjcf(c, model, plan).options);
+  m = load_mjcf_from_memory(xml, {}, where + " " + c.urdf);
+  m->opt.cone =
+      o.cone == robot_config::MujocoOptions::Cone::kElliptic ? mjCONE_ELLIPTIC : mjCONE_PYRAMIDAL;
+  m->opt.impratio = o.impratio;
+  for (int g = 0; g < m->ngeom; ++g) {
+    std::copy(o.solref.begin(), o.solref.end(), m->geom_solref + mjNREF * g);
+    std::copy(o.solimp.begin(), o.solimp.end(), m->geom_solimp + mjNIMP * g);
+  }
+  d = mj_makeData(m);
+}
+
+// MuJoCo's ids and addresses of what the MJCF names (robot_mjcf.hpp).
+// timestep: mujoco.timestep, the step of the push schedule.
+void MujocoBackend::Impl::find_names(double timestep) {
+  for (int j = 0; j < n; ++j) {
+    const int id = id_of(m, mjOBJ_JOINT, model.joint_name[static_cast<std::size_t>(j)]);
+    index.qpos.push_back(m->jnt_qposadr[id]);
+    index.dof.push_back(m->jnt_dofadr[id]);
+  }
+  dof_joint.assign(static_cast<std::size_t>(m->nv), -1);
+  for (int j = 0; j < n; ++j) {
+    dof_joint[static_cast<std::size_t>(index.dof[static_cast<std::size_t>(j)])] = j;
+  }
+  geom_link.assign(static_cast<std::size_t>(m->ngeom), -1);
+  for (std::size_t k = 0; k < plan.contact_link_of.size(); ++k) {
+    geom_link[static_cast<std::size_t>(id_of(m, mjOBJ_GEOM, "wbi_contact_" + std::to_string(k)))] =
+        plan.contact_link_of[k];
+  }
+  for (std::size_t l = 0; l < plan.contact_links.size(); ++l) {
+    link_site.push_back(id_of(m, mjOBJ_SITE, "wbi_link_" + std::to_string(l)));
+  }
+  auto sensor = [&](const std::string& name) {
+    return m->sensor_adr[id_of(m, mjOBJ_SENSOR, name)];
+  };
+  for (std::size_t i = 0; i < plan.imus.size(); ++i) {
+    const std::string site = "wbi_imu_" + std::to_string(i);
+    imus.push_back(
+        {sensor(site + "_quat"), sensor(site + "_gyro"), sensor(site + "_accelerometer")});
+  }
+  for (std::size_t i = 0; i < plan.force_torque.size(); ++i) {
+    const std::string site = "wbi_ft_" + std::to_string(i);
+    fts.push_back({sensor(site + "_force"), sensor(site + "_torque")});
+  }
+  for (std::size_t i = 0; i < plan.pushes.size(); ++i) {
+    const auto& p = plan.pushes[i];
+    Push push;
+    push.site = id_of(m, mjOBJ_SITE, "wbi_push_" + std::to_string(i));
+    push.body = m->site_bodyid[push.site];
+    push.start = sim_models::step_index(p.start, timestep);
+    push.end = sim_models::step_index(p.end, timestep);
+    push.force = p.force;
+    pushes.push_back(push);
+  }
+}
+
+// The plan's initial state, lowered onto the ground by its lowest contact geom
+// when the config asks (place_on_ground).
+void MujocoBackend::Impl::place_initial_state(const robot_config::RobotConfig& c) {
+  mj_resetData(m, d);
+  mjcf::wbi_q_to_mujoco_qpos(model, index, plan.q0, MapVector(d->qpos, m->nq));
+  if (c.place_on_ground && model.floating_base && !plan.contact_link_of.empty()) {
+    mj_kinematics(m, d);
+    double z_min = std::numeric_limits<double>::infinity();
+    for (int g = 0; g < m->ngeom; ++g) {
+      if (geom_link[static_cast<std::size_t>(g)] >= 0) {
+        z_min = std::min(z_min, lowest_z(m, d, g));
+      }
+    }
+    d->qpos[2] -= z_min - c.ground.height;
+  }
+}
+
+// Effective joint inertias 1/(M⁻¹)_jj at the current state (armature included).
+void MujocoBackend::Impl::measure_joint_inertias() {
+  std::vector<mjtNum> e(static_cast<std::size_t>(m->nv), 0.0), x(e.size(), 0.0);
+  for (int j = 0; j < n; ++j) {
+    const auto dof = static_cast<std::size_t>(index.dof[static_cast<std::size_t>(j)]);
+    e[dof] = 1.0;
+    mj_solveM(m, d, x.data(), e.data(), 1);
+    e[dof] = 0.0;
+    m_eff[j] = 1.0 / x[dof];
+  }
+}
+
+// With Euler, viscous damping leaves MuJoCo's model (the written MJCF keeps
+// it) for the explicit torque of apply_controls() when x = h·d/m_eff ≤ 0.1 on
+// every joint: the explicit decay 1 − x per step is then as close to the exact
+// e^−x as MuJoCo's implicit 1/(1 + x) (≈ x²/2 ≤ 0.5 %), and 5× below the bound
+// of apply_controls() (x = ½), for m_eff changes with the posture. One joint
+// above keeps MuJoCo's damping for all: it factorises M + h·D for one as for all.
+void MujocoBackend::Impl::make_damping_explicit() {
+  constexpr double kExplicitDamping = 0.1;
+  for (int j = 0; j < n; ++j) {
+    const int dof = index.dof[static_cast<std::size_t>(j)];
+    if (m->opt.timestep * m->dof_damping[dof] > kExplicitDamping * m_eff[j]) {
+      return;
+    }
+  }
+  for (int j = 0; j < n; ++j) {
+    mjtNum& dof_damping = m->dof_damping[index.dof[static_cast<std::size_t>(j)]];
+    damping[j] = dof_damping;
+    dof_damping = 0.0;
+  }
+}
 
 MujocoBackend::MujocoBackend(robot_config::RobotConfig config) : config_(std::move(config)) {}
 MujocoBackend::~MujocoBackend() = default;
@@ -152,191 +268,46 @@ actuation::BackendDescription MujocoBackend::on_configure() {
   }
   robot_config::complete_from_urdf(config_);
   const robot_config::RobotConfig& c = config_;
-  auto impl = std::make_unique<Impl>();
+  auto impl = std::make_unique<Impl>(c);
   Impl& s = *impl;
 
   // ---- the model library's model, as `wbi model mjcf --robot-config` loads it ----
   s.model = robot_model(c);
   const model::Model& model = s.model;
+  s.plan = sim_models::make_sim_plan(c, model, where);
+  const sim_models::SimPlan& plan = s.plan;
   s.n = model.n_joints;
   const int n = s.n;
 
-  // ---- MJCF ----
-  const RobotMjcf written = robot_mjcf(c, model, where);
-  truth_ = actuation::GroundTruth{};
-  truth_.contact_links = written.contact_links;
-  truth_.contact_wrenches.assign(truth_.contact_links.size(), Vector6d::Zero());
-  truth_.contact_positions.assign(truth_.contact_links.size(), Vector3d::Zero());
-
-  actuation::BackendDescription desc = sim_models::joint_description(model, c);
-  for (const auto& imu : c.imus) {
-    desc.imu_names.push_back(imu.name);
-    desc.imu_frames.push_back(imu.frame);
-  }
-  for (const auto& ft : c.force_torque) {
-    desc.ft_names.push_back(ft.name);
-  }
-  desc.ft_frames = written.ft_frames;
-  s.xml = mjcf::write_mjcf(model, written.options);
-  s.m = load_mjcf_from_memory(s.xml, {}, where + " " + c.urdf);
-  mjModel* m = s.m;
-
-  // Options the writer leaves at MuJoCo's defaults.
-  m->opt.cone =
-      o.cone == robot_config::MujocoOptions::Cone::kElliptic ? mjCONE_ELLIPTIC : mjCONE_PYRAMIDAL;
-  m->opt.impratio = o.impratio;
-  for (int g = 0; g < m->ngeom; ++g) {
-    std::copy(o.solref.begin(), o.solref.end(), m->geom_solref + mjNREF * g);
-    std::copy(o.solimp.begin(), o.solimp.end(), m->geom_solimp + mjNIMP * g);
-  }
-  s.d = mj_makeData(m);
-  mjData* d = s.d;
-
-  // ---- indices ----
-  for (int j = 0; j < n; ++j) {
-    const int id = id_of(m, mjOBJ_JOINT, model.joint_name[static_cast<std::size_t>(j)]);
-    s.index.qpos.push_back(m->jnt_qposadr[id]);
-    s.index.dof.push_back(m->jnt_dofadr[id]);
-  }
-  s.dof_joint.assign(static_cast<std::size_t>(m->nv), -1);
-  for (int j = 0; j < n; ++j) {
-    s.dof_joint[static_cast<std::size_t>(s.index.dof[static_cast<std::size_t>(j)])] = j;
-  }
-  s.geom_link.assign(static_cast<std::size_t>(m->ngeom), -1);
-  for (std::size_t k = 0; k < written.contact_link_of.size(); ++k) {
-    s.geom_link[static_cast<std::size_t>(
-        id_of(m, mjOBJ_GEOM, "wbi_contact_" + std::to_string(k)))] = written.contact_link_of[k];
-  }
-  for (std::size_t l = 0; l < truth_.contact_links.size(); ++l) {
-    s.link_site.push_back(id_of(m, mjOBJ_SITE, "wbi_link_" + std::to_string(l)));
-  }
-  auto sensor = [&](const std::string& name) {
-    return m->sensor_adr[id_of(m, mjOBJ_SENSOR, name)];
-  };
-  for (std::size_t i = 0; i < c.imus.size(); ++i) {
-    const std::string site = "wbi_imu_" + std::to_string(i);
-    s.imus.push_back({sensor(site + "_quat"), sensor(site + "_gyro"),
-                      sensor(site + "_accelerometer"), c.imus[i].gyro_noise,
-                      c.imus[i].accel_noise});
-  }
-  for (std::size_t i = 0; i < c.force_torque.size(); ++i) {
-    const std::string site = "wbi_ft_" + std::to_string(i);
-    s.fts.push_back({sensor(site + "_force"), sensor(site + "_torque"),
-                     c.force_torque[i].force_noise, c.force_torque[i].torque_noise});
-  }
-  for (std::size_t i = 0; i < c.pushes.size(); ++i) {
-    const auto& p = c.pushes[i];
-    Impl::Push push;
-    push.site = id_of(m, mjOBJ_SITE, "wbi_push_" + std::to_string(i));
-    push.body = m->site_bodyid[push.site];
-    push.start = std::llround(p.start / o.timestep);
-    push.end = std::llround((p.start + p.duration) / o.timestep);
-    push.force = p.force;
-    s.pushes.push_back(push);
-  }
-
-  // ---- joints: effort limits and motors (the own plant's models) ----
-  s.effort.resize(n);
-  s.motor.resize(static_cast<std::size_t>(n));
-  for (int j = 0; j < n; ++j) {
-    s.effort[j] = model.joint_effort_limit[static_cast<std::size_t>(j)];
-    s.motor[static_cast<std::size_t>(j)] = sim_models::DcMotor::from(c.wbi.motor, s.effort[j]);
-  }
-  s.cmd_mode.assign(static_cast<std::size_t>(n), OutputMode::kIdle);
-  s.cmd_value = Eigen::VectorXd::Zero(n);
-  s.tau_act = Eigen::VectorXd::Zero(n);
-  s.pwm = Eigen::VectorXd::Zero(n);
+  s.load(c, where);
+  s.find_names(o.timestep);
+  // ---- joints: the held commands and the own plant's dissipation model ----
+  s.commands = sim_models::CommandHold(plan);
+  // Coulomb friction as a torque (mujoco.joint_friction: torque), else MuJoCo's rows.
   s.friction_torque = o.joint_friction == robot_config::MujocoOptions::JointFriction::kTorque;
-  s.friction = Eigen::VectorXd::Zero(n);
-  for (int j = 0; j < n; ++j) {
-    s.friction[j] = c.joints.at(model.joint_name[static_cast<std::size_t>(j)]).friction;
-  }
+  s.friction = s.friction_torque ? plan.friction : Eigen::VectorXd::Zero(n);
   s.damping = Eigen::VectorXd::Zero(n);
   s.m_eff = Eigen::VectorXd::Zero(n);
   s.tau_dissipation = Eigen::VectorXd::Zero(n);
-  s.noise = sim_models::Gaussian(c.wbi.seed);
-  s.encoder_step = sim_models::encoder_step(c.wbi.encoders);
-
-  // ---- initial state ----
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(model.nq);
-  if (model.floating_base) {
-    if (!(c.initial_base_orientation.norm() > 0.0)) {
-      throw std::invalid_argument(where + ": 'initial_base_orientation' must be non-zero");
-    }
-    q.head<3>() = c.initial_base_position;
-    q.segment<4>(3) = c.initial_base_orientation.normalized();
+  s.place_initial_state(c);
+  // Every stage at the initial state: sensors and accelerations are defined
+  // before the first step().
+  mj_forward(s.m, s.d);
+  s.fresh_position = true;
+  s.measure_joint_inertias();
+  if (s.m->opt.integrator == mjINT_EULER) {
+    s.make_damping_explicit();
   }
-  for (const auto& [name, value] : c.initial_joint_positions) {
-    if (!model.has_joint(name)) {
-      throw std::invalid_argument(where + ": initial_joint_positions: unknown joint '" + name +
-                                  "' in " + c.urdf);
-    }
-    q[model.base_nq + model.joint_id(name)] = value;
-  }
-  mj_resetData(m, d);
-  mjcf::wbi_q_to_mujoco_qpos(model, s.index, q, MapVector(d->qpos, m->nq));
-  if (c.place_on_ground && model.floating_base && !written.contact_link_of.empty()) {
-    mj_kinematics(m, d);
-    double z_min = std::numeric_limits<double>::infinity();
-    for (int g = 0; g < m->ngeom; ++g) {
-      if (s.geom_link[static_cast<std::size_t>(g)] >= 0) {
-        z_min = std::min(z_min, lowest_z(m, d, g));
-      }
-    }
-    d->qpos[2] -= z_min - c.ground.height;
-  }
-  truth_.q = q;
-  truth_.nu = Eigen::VectorXd::Zero(model.nv);
-  truth_.dnu = Eigen::VectorXd::Zero(model.nv);
-  truth_.tau = Eigen::VectorXd::Zero(n);
-  truth_.tau_actuator = Eigen::VectorXd::Zero(n);
+  truth_ = plan.initial_ground_truth();
   impl_ = std::move(impl);
   time_ = 0.0;
   step_count_ = 0;
-  // Every stage at the initial state: sensors and accelerations are defined
-  // before the first step().
-  mj_forward(m, d);
-  impl_->fresh_position = true;
-  // Effective joint inertias 1/(M⁻¹)_jj at the initial state (armature included).
-  {
-    std::vector<mjtNum> e(static_cast<std::size_t>(m->nv), 0.0), x(e.size(), 0.0);
-    for (int j = 0; j < n; ++j) {
-      const auto dof = static_cast<std::size_t>(impl_->index.dof[static_cast<std::size_t>(j)]);
-      e[dof] = 1.0;
-      mj_solveM(m, d, x.data(), e.data(), 1);
-      e[dof] = 0.0;
-      impl_->m_eff[j] = 1.0 / x[dof];
-    }
-  }
-  // With Euler, viscous damping leaves MuJoCo's model (the written MJCF keeps
-  // it) for the explicit torque of apply_controls() when x = h·d/m_eff ≤ 0.1 on
-  // every joint: the explicit decay 1 − x per step is then as close to the exact
-  // e^−x as MuJoCo's implicit 1/(1 + x) (≈ x²/2 ≤ 0.5 %), and 5× below the bound
-  // of apply_controls() (x = ½), for m_eff changes with the posture. One joint
-  // above keeps MuJoCo's damping for all: it factorises M + h·D for one as for all.
-  if (m->opt.integrator == mjINT_EULER) {
-    constexpr double kExplicitDamping = 0.1;
-    bool explicit_ok = true;
-    for (int j = 0; j < n; ++j) {
-      const int dof = impl_->index.dof[static_cast<std::size_t>(j)];
-      explicit_ok = explicit_ok &&
-                    m->opt.timestep * m->dof_damping[dof] <= kExplicitDamping * impl_->m_eff[j];
-    }
-    for (int j = 0; explicit_ok && j < n; ++j) {
-      mjtNum& damping = m->dof_damping[impl_->index.dof[static_cast<std::size_t>(j)]];
-      impl_->damping[j] = damping;
-      damping = 0.0;
-    }
-  }
   collect_dynamics();
   collect_state();
-  return desc;
+  return plan.description;
 }
 
-void MujocoBackend::on_deactivate() {
-  impl_->cmd_mode.assign(impl_->cmd_mode.size(), OutputMode::kIdle);
-  impl_->cmd_value.setZero();
-}
+void MujocoBackend::on_deactivate() { impl_->commands.release(); }
 
 void MujocoBackend::on_cleanup() {
   impl_.reset();
@@ -347,11 +318,7 @@ void MujocoBackend::on_cleanup() {
 
 void MujocoBackend::on_write(Time /*time*/, Duration /*period*/,
                              const actuation::JointCommands& in) {
-  Impl& s = *impl_;
-  for (int j = 0; j < s.n; ++j) {
-    s.cmd_mode[static_cast<std::size_t>(j)] = in.mode[static_cast<std::size_t>(j)];
-    s.cmd_value[j] = in.value[j];
-  }
+  impl_->commands.hold(in);
 }
 
 // Actuator torques (held commands, the PWM motor at the current velocity) into
@@ -363,19 +330,13 @@ void MujocoBackend::apply_controls() {
     const auto js = static_cast<std::size_t>(j);
     const int dof = s.index.dof[js];
     const double dq = d->qvel[dof];
-    const sim_models::ActuatorOutput out =
-        sim_models::actuator_output(s.cmd_mode[js], s.cmd_value[j], dq, s.motor[js], s.effort[j]);
-    s.tau_act[j] = out.torque;
-    s.pwm[j] = out.pwm;
+    const double torque = s.commands.actuate(j, dq);
     // The own plant's viscous + smoothed Coulomb friction, bounded so that it
     // never reverses q̇ within one step (components/sim): explicit, no constraint row.
-    double diss = -s.damping[j] * dq;
-    if (s.friction_torque) {
-      diss -= s.friction[j] * std::tanh(dq / config_.wbi.friction_velocity);
-    }
-    const double bound = 0.5 * s.m_eff[j] * std::abs(dq) / s.m->opt.timestep;
-    s.tau_dissipation[j] = std::clamp(diss, -bound, bound);
-    d->qfrc_applied[dof] = out.torque + s.tau_dissipation[j];
+    s.tau_dissipation[j] = sim_models::dissipation_torque(dq, s.damping[j], s.friction[j],
+                                                          config_.wbi.friction_velocity, s.m_eff[j],
+                                                          s.m->opt.timestep);
+    d->qfrc_applied[dof] = torque + s.tau_dissipation[j];
   }
   // Pushes: force f at the point p → wrench (f, (p − c) × f) at the body's CoM c.
   for (const auto& push : s.pushes) {
@@ -447,7 +408,7 @@ void MujocoBackend::collect_dynamics() {
   // RK4 / implicit) + the joint's friction-loss and limit constraint forces
   // (scalar rows of J = ±1 on the joint's dof).
   for (int j = 0; j < s.n; ++j) {
-    truth_.tau[j] = s.tau_act[j] + s.tau_dissipation[j] +
+    truth_.tau[j] = s.commands.torque()[j] + s.tau_dissipation[j] +
                     d->qfrc_passive[s.index.dof[static_cast<std::size_t>(j)]];
   }
   const bool sparse = mj_isSparse(m) != 0;
@@ -463,7 +424,7 @@ void MujocoBackend::collect_dynamics() {
       truth_.tau[j] += J * d->efc_force[i];
     }
   }
-  truth_.tau_actuator = s.tau_act;
+  truth_.tau_actuator = s.commands.torque();
   // Ground contact wrenches per contact link: (force, moment about the link
   // frame origin), world axes. mj_contactForce is in the contact frame (normal
   // first, from geom1 to geom2): the force on geom2; geom1 gets its opposite.
@@ -516,39 +477,30 @@ void MujocoBackend::collect_state() {
 void MujocoBackend::on_read(Time /*time*/, Duration /*period*/, actuation::SensorReadings& out) {
   Impl& s = *impl_;
   const mjData* d = s.d;
-  const robot_config::EncoderConfig& enc = config_.wbi.encoders;
-  const Time now = stamp();
   for (int j = 0; j < s.n; ++j) {
     const auto js = static_cast<std::size_t>(j);
-    out.position[j] = sim_models::quantise(d->qpos[s.index.qpos[js]] + s.noise(enc.position_noise),
-                                           s.encoder_step);
-    out.velocity[j] = d->qvel[s.index.dof[js]] + s.noise(enc.velocity_noise);
-    out.torque[j] = s.tau_act[j] + s.noise(enc.torque_noise);
-    out.pwm[j] = s.pwm[j];
+    out.position[j] = d->qpos[s.index.qpos[js]];
+    out.velocity[j] = d->qvel[s.index.dof[js]];
+    out.torque[j] = s.commands.torque()[j];
+    out.pwm[j] = s.commands.pwm()[j];
   }
-  out.joint_stamp = now;
   const mjtNum* data = d->sensordata;
   for (std::size_t i = 0; i < s.imus.size(); ++i) {
     const auto& imu = s.imus[i];
     auto& r = out.imus[i];
     r.orientation << data[imu.quat], data[imu.quat + 1], data[imu.quat + 2], data[imu.quat + 3];
-    for (int a = 0; a < 3; ++a) {
-      r.gyro[a] = data[imu.gyro + a] + s.noise(imu.gyro_noise);
-      r.accel[a] = data[imu.accel + a] + s.noise(imu.accel_noise);
-    }
-    r.stamp = now;
+    r.gyro = Eigen::Map<const Vector3d>(data + imu.gyro);
+    r.accel = Eigen::Map<const Vector3d>(data + imu.accel);
   }
   // MuJoCo's force/torque: the parent on the child body; wbi's: the child side
   // on the parent side. Both about the sensor origin, in sensor axes.
   for (std::size_t i = 0; i < s.fts.size(); ++i) {
     const auto& ft = s.fts[i];
     auto& r = out.force_torque[i];
-    for (int a = 0; a < 3; ++a) {
-      r.wrench[a] = -data[ft.force + a] + s.noise(ft.force_noise);
-      r.wrench[a + 3] = -data[ft.torque + a] + s.noise(ft.torque_noise);
-    }
-    r.stamp = now;
+    r.wrench.head<3>() = -Eigen::Map<const Vector3d>(data + ft.force);
+    r.wrench.tail<3>() = -Eigen::Map<const Vector3d>(data + ft.torque);
   }
+  s.noise.apply(out, stamp());
 }
 
 }  // namespace wbi::mujoco_sim

@@ -39,6 +39,11 @@ model::Model robot_model(const robot_config::RobotConfig& config) {
 
 RobotMjcf robot_mjcf(const robot_config::RobotConfig& config, const model::Model& model,
                      const std::string& where) {
+  return robot_mjcf(config, model, sim_models::make_sim_plan(config, model, where));
+}
+
+RobotMjcf robot_mjcf(const robot_config::RobotConfig& config, const model::Model& model,
+                     const sim_models::SimPlan& plan) {
   RobotMjcf out;
   mjcf::MjcfOptions& mo = out.options;
   const robot_config::RobotConfig& c = config;
@@ -57,45 +62,25 @@ RobotMjcf robot_mjcf(const robot_config::RobotConfig& config, const model::Model
     mo.damping.push_back(dyn.damping);
     mo.frictionloss.push_back(friction_rows ? dyn.friction : 0.0);
   }
-  // The ground and the contact geometry when the own plant would have contacts
-  // (the same `wbi.contact.enable` rule: auto = floating base only).
-  using Enable = robot_config::ContactModel::Enable;
-  const bool contacts_on = c.wbi.contact.enable == Enable::kOn ||
-                           (c.wbi.contact.enable == Enable::kAuto && model.floating_base);
-  if (contacts_on) {
+  // The ground and the contact geometry when the plan has contacts.
+  if (plan.contacts_on) {
     // MuJoCo takes the larger friction of the two geoms: the ground's 0 lets
     // each contact's own μ (the ground's when it gives none) act, as in the own plant.
     mo.ground = {true, c.ground.height, 0.0};
+    for (std::size_t l = 0; l < plan.contact_links.size(); ++l) {
+      mo.sites.push_back({"wbi_link_" + std::to_string(l), plan.contact_links[l], Vector3d::Zero(),
+                          Matrix3d::Identity(), mjcf::SiteSensor::kNone});
+    }
     for (std::size_t k = 0; k < c.contacts.size(); ++k) {
-      const auto& g = c.contacts[k];
-      auto it = std::find(out.contact_links.begin(), out.contact_links.end(), g.link);
-      if (it == out.contact_links.end()) {
-        out.contact_links.push_back(g.link);
-        mo.sites.push_back({"wbi_link_" + std::to_string(out.contact_links.size() - 1), g.link,
-                            Vector3d::Zero(), Matrix3d::Identity(), mjcf::SiteSensor::kNone});
-        it = out.contact_links.end() - 1;
-      }
-      out.contact_link_of.push_back(static_cast<int>(it - out.contact_links.begin()));
-      mo.contacts.push_back(to_mjcf(g, "wbi_contact_" + std::to_string(k)));
+      mo.contacts.push_back(to_mjcf(c.contacts[k], "wbi_contact_" + std::to_string(k)));
     }
   }
   for (std::size_t i = 0; i < c.imus.size(); ++i) {
-    if (!model.has_frame(c.imus[i].frame)) {
-      throw std::invalid_argument(where + ": imus '" + c.imus[i].name + "': unknown frame '" +
-                                  c.imus[i].frame + "' in " + c.urdf);
-    }
     mo.sites.push_back({"wbi_imu_" + std::to_string(i), c.imus[i].frame, Vector3d::Zero(),
                         Matrix3d::Identity(), mjcf::SiteSensor::kImu});
   }
-  for (std::size_t i = 0; i < c.force_torque.size(); ++i) {
-    const auto& ft = c.force_torque[i];
-    const auto child = std::find(model.frame_joint.begin(), model.frame_joint.end(), ft.joint);
-    if (child == model.frame_joint.end() || model.has_joint(ft.joint)) {
-      throw std::invalid_argument(where + ": force_torque '" + ft.name + "': '" + ft.joint +
-                                  "' is not a fixed joint of " + c.urdf);
-    }
-    const std::string& child_link =
-        model.frame_name[static_cast<std::size_t>(child - model.frame_joint.begin())];
+  for (std::size_t i = 0; i < plan.force_torque.size(); ++i) {
+    const std::string& child_link = plan.force_torque[i].child_link;
     // The child side as a body of its own, so that MuJoCo's force/torque
     // sensors measure across the joint.
     if (std::find(mo.welded_links.begin(), mo.welded_links.end(), child_link) ==
@@ -104,18 +89,10 @@ RobotMjcf robot_mjcf(const robot_config::RobotConfig& config, const model::Model
     }
     mo.sites.push_back({"wbi_ft_" + std::to_string(i), child_link, Vector3d::Zero(),
                         Matrix3d::Identity(), mjcf::SiteSensor::kForceTorque});
-    out.ft_frames.push_back(child_link);
   }
   for (std::size_t i = 0; i < c.pushes.size(); ++i) {
-    const auto& p = c.pushes[i];
-    if (!model.has_frame(p.link)) {
-      throw std::invalid_argument(where + ": pushes: unknown link '" + p.link + "' in " + c.urdf);
-    }
-    if (!(p.duration >= 0.0)) {
-      throw std::invalid_argument(where + ": pushes: 'duration' must be >= 0");
-    }
-    mo.sites.push_back({"wbi_push_" + std::to_string(i), p.link, p.point, Matrix3d::Identity(),
-                        mjcf::SiteSensor::kNone});
+    mo.sites.push_back({"wbi_push_" + std::to_string(i), c.pushes[i].link, c.pushes[i].point,
+                        Matrix3d::Identity(), mjcf::SiteSensor::kNone});
   }
   return out;
 }

@@ -123,7 +123,8 @@ RobotScene::RobotScene(const robot_config::RobotConfig& config,
     : skeleton_(mesh_dir.empty()), ground_height_(config.ground.height) {
   const std::string where = "robot config (" + config.urdf + ")";
   const model::Model model = mujoco_sim::robot_model(config);
-  mujoco_sim::RobotMjcf written = mujoco_sim::robot_mjcf(config, model, where);
+  const sim_models::SimPlan plan = sim_models::make_sim_plan(config, model, where);
+  mujoco_sim::RobotMjcf written = mujoco_sim::robot_mjcf(config, model, plan);
   written.options.ground.enabled = false;  // the floor below replaces it
   std::string xml = mjcf::write_mjcf(model, written.options);
   const auto world = xml.find("  <worldbody>\n");
@@ -170,7 +171,7 @@ RobotScene::RobotScene(const robot_config::RobotConfig& config,
   for (int b = 1; b < m_->nbody; ++b) {
     leaf_[static_cast<std::size_t>(m_->body_parentid[b])] = false;
   }
-  for (std::size_t l = 0; l < written.contact_links.size(); ++l) {
+  for (std::size_t l = 0; l < plan.contact_links.size(); ++l) {
     const int site = mj_name2id(m_, mjOBJ_SITE, ("wbi_link_" + std::to_string(l)).c_str());
     contact_body_.push_back(site >= 0 ? m_->site_bodyid[site] : -1);
   }

@@ -12,7 +12,10 @@
 #include <urdf_parser/urdf_parser.h>
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
+#include <wbi/sim_models/command_hold.hpp>
 #include <wbi/sim_models/sensor_actuator_models.hpp>
+#include <wbi/sim_models/sensor_noise.hpp>
+#include <wbi/sim_models/sim_plan.hpp>
 
 #include "wbi/model/aba.hpp"
 #include "wbi/model/com.hpp"
@@ -25,15 +28,7 @@ namespace wbi::sim {
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
-using actuation::OutputMode;
-// The models every engine shares.
-using sim_models::actuator_output;
-using sim_models::ActuatorOutput;
-using sim_models::DcMotor;
-using sim_models::encoder_step;
-using sim_models::Gaussian;
-using sim_models::joint_description;
-using sim_models::quantise;
+using sim_models::SimPlan;
 
 namespace {
 
@@ -74,55 +69,40 @@ Vector6d wrench_at_origin(const Vector3d& f, const Vector3d& p) {
 
 struct SimBackend::Impl {
   model::Model model;
+  SimPlan plan;                      // what the config asks, engine-neutral (sim_plan.hpp)
   std::optional<model::Data> data;   // dynamics (substeps)
   std::optional<model::Data> sense;  // kinematics for read() and helpers
   int n = 0;                         // joints
 
   // ---- per joint (size n) ----
-  Eigen::VectorXd damping, friction, lower, upper, effort, m_diag, k_limit, d_limit;
-  std::vector<DcMotor> motor;  // PWM commands
-  std::vector<OutputMode> cmd_mode;
-  Eigen::VectorXd cmd_value;
-  Eigen::VectorXd tau;      // [nv] joint-space generalized force of the substep
-  Eigen::VectorXd tau_act;  // [n] actuator torque of the substep
-  Eigen::VectorXd pwm;      // [n] motor duty of the substep (PWM mode: the command; else the
-                            //     duty the motor model needs for the actuator torque)
+  Eigen::VectorXd lower, upper, m_diag, k_limit, d_limit;
+  sim_models::CommandHold commands;
+  Eigen::VectorXd tau;  // [nv] joint-space generalized force of the substep
 
   // ---- contacts ----
-  std::vector<int> contact_link_frame;          // [n_links]
   std::vector<model::ExternalWrench> wrenches;  // [n_links + n_pushes], used prefix n_wrenches
   std::size_t n_wrenches = 0;
-  bool contacts_on = false;
 
-  // ---- sensors ----
-  struct Imu {
-    int frame = 0;
-    double gyro_noise = 0.0, accel_noise = 0.0;
-  };
-  std::vector<Imu> imus;
+  // ---- F/T sensors: the Newton–Euler of the part beyond each joint ----
   struct Ft {
-    int frame = 0;                   // sensor frame
-    std::vector<int> bodies;         // bodies with mass beyond the joint
-    std::vector<MassPiece> pieces;   // their mass beyond the joint, in body axes
-    std::vector<int> contact_links;  // contact links beyond the joint
-    std::vector<int> pushes;         // pushes on links beyond the joint
-    double force_noise = 0.0, torque_noise = 0.0;
+    std::vector<int> bodies;             // bodies with mass beyond the joint
+    std::vector<MassPiece> pieces;       // their mass beyond the joint, in body axes
+    std::vector<int> contact_links;      // contact links beyond the joint
+    std::vector<int> pushes;             // pushes on links beyond the joint
     Vector6d wrench = Vector6d::Zero();  // latest, sensor frame
   };
   std::vector<Ft> fts;
 
   struct Push {
-    int frame = 0;
     std::int64_t start = 0, end = 0;  // substep indices: active for start ≤ k < end
-    Vector3d force = Vector3d::Zero();
-    Vector3d point = Vector3d::Zero();
     bool active = false;
   };
-  std::vector<Push> pushes;
+  std::vector<Push> pushes;  // [plan.pushes]
 
-  Gaussian noise{0};
+  sim_models::SensorNoise noise;
   std::int64_t substep_count = 0;  // substeps done since configure()
-  double encoder_step = 0.0;
+
+  explicit Impl(const RobotConfig& config) : noise(config) {}
 };
 
 SimBackend::SimBackend(RobotConfig config) : config_(std::move(config)) {}
@@ -143,6 +123,125 @@ Time SimBackend::stamp() const {
   return Time(static_cast<std::int64_t>(std::llround(time_ * 1e9)));
 }
 
+namespace {
+
+// The own plant's contact points of the config's contact geometry. Box: the 4
+// corners of its −z face; sphere: its centre with its radius; capsule: its two
+// end spheres.
+std::vector<ContactPoint> contact_points(const RobotConfig& c, const SimPlan& plan) {
+  std::vector<ContactPoint> points;
+  for (std::size_t k = 0; k < plan.contact_link_of.size(); ++k) {
+    const robot_config::ContactGeometry& g = c.contacts[k];
+    const int link = plan.contact_link_of[k];
+    auto add = [&](const Vector3d& p_F, double radius) {
+      ContactPoint cp;
+      cp.link = link;
+      cp.frame = plan.contact_link_frames[static_cast<std::size_t>(link)];
+      cp.p_F = p_F;
+      cp.radius = radius;
+      cp.friction = g.friction;
+      points.push_back(cp);
+    };
+    switch (g.shape) {
+      case wbi::ContactShape::box:
+        for (int sx : {1, -1}) {
+          for (int sy : {1, -1}) {
+            add(g.position + g.rotation * Vector3d(0.5 * sx * g.size.x(), 0.5 * sy * g.size.y(),
+                                                   -0.5 * g.size.z()),
+                0.0);
+          }
+        }
+        break;
+      case wbi::ContactShape::sphere:
+        add(g.position, g.radius);
+        break;
+      case wbi::ContactShape::capsule:
+        for (int sz : {1, -1}) {
+          add(g.position + g.rotation * Vector3d(0.0, 0.0, 0.5 * sz * g.length), g.radius);
+        }
+        break;
+    }
+  }
+  return points;
+}
+
+// How far the robot at q must go down for its lowest contact point to touch the
+// ground (negative: up).
+double height_above_ground(const model::Model& m, model::Data& kinematics, const Eigen::VectorXd& q,
+                           const std::vector<ContactPoint>& points, double ground) {
+  model::forward_kinematics(m, kinematics, q);
+  double z_min = std::numeric_limits<double>::infinity();
+  for (const auto& cp : points) {
+    const auto fi = static_cast<std::size_t>(cp.frame);
+    const auto b = static_cast<std::size_t>(m.frame_body[fi]);
+    const Vector3d p =
+        kinematics.p_WB[b] + kinematics.R_WB[b] * (m.frame_R_BF[fi] * cp.p_F + m.frame_p_BF[fi]);
+    z_min = std::min(z_min, p.z() - cp.radius);
+  }
+  return z_min - ground;
+}
+
+// The links beyond a fixed joint: its child link and all the child's descendants.
+std::set<std::string> links_beyond(const urdf::ModelInterface& urdf_model,
+                                   const std::string& child_link) {
+  std::set<std::string> beyond;
+  std::vector<urdf::LinkConstSharedPtr> stack{urdf_model.getLink(child_link)};
+  while (!stack.empty()) {
+    const auto link = stack.back();
+    stack.pop_back();
+    beyond.insert(link->name);
+    for (const auto& child : link->child_links) {
+      stack.push_back(child);
+    }
+  }
+  return beyond;
+}
+
+// What the own plant needs to measure F/T sensor `sensor` of the plan: the mass
+// beyond its joint per body, the contact links and pushes beyond it.
+template <class Ft>
+Ft force_torque_sensor(const RobotConfig& c, const SimPlan& plan, const model::Model& m,
+                       const urdf::ModelInterface& urdf_model, std::size_t sensor) {
+  Ft x;
+  const std::set<std::string> beyond =
+      links_beyond(urdf_model, plan.force_torque[sensor].child_link);
+  for (const auto& name : beyond) {
+    const auto link = urdf_model.getLink(name);
+    if (!link->inertial || link->inertial->mass <= 0.0) {
+      continue;
+    }
+    const auto fi = static_cast<std::size_t>(m.frame_id(name));
+    const int body = m.frame_body[fi];
+    const auto& in = *link->inertial;
+    const Matrix3d R_LI = rotation_of(in.origin.rotation);
+    Matrix3d I_I;
+    I_I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+    const Matrix3d R_BI = m.frame_R_BF[fi] * R_LI;
+    const Vector3d c_B = m.frame_p_BF[fi] + m.frame_R_BF[fi] * vector_of(in.origin.position);
+    auto it = std::find(x.bodies.begin(), x.bodies.end(), body);
+    if (it == x.bodies.end()) {
+      x.bodies.push_back(body);
+      x.pieces.emplace_back();
+      it = x.bodies.end() - 1;
+    }
+    x.pieces[static_cast<std::size_t>(it - x.bodies.begin())].add(in.mass, c_B,
+                                                                  R_BI * I_I * R_BI.transpose());
+  }
+  for (std::size_t i = 0; i < plan.contact_links.size(); ++i) {
+    if (beyond.count(plan.contact_links[i]) != 0) {
+      x.contact_links.push_back(static_cast<int>(i));
+    }
+  }
+  for (std::size_t i = 0; i < c.pushes.size(); ++i) {
+    if (beyond.count(c.pushes[i].link) != 0) {
+      x.pushes.push_back(static_cast<int>(i));
+    }
+  }
+  return x;
+}
+
+}  // namespace
+
 actuation::BackendDescription SimBackend::on_configure() {
   const RobotConfig& c = config_;
   const WbiOptions& o = c.wbi;
@@ -153,140 +252,39 @@ actuation::BackendDescription SimBackend::on_configure() {
   if (!(o.step > 0.0) || o.substeps < 1) {
     throw std::invalid_argument(where + ": 'wbi.step' must be > 0 and 'wbi.substeps' >= 1");
   }
-  auto impl = std::make_unique<Impl>();
+  robot_config::complete_from_urdf(config_);  // every joint's dynamics, URDF boxes if no contacts
+  auto impl = std::make_unique<Impl>(c);
   Impl& s = *impl;
   model::LoadOptions options;
   options.fixed_base = c.fixed_base;
-  robot_config::complete_from_urdf(config_);  // every joint's dynamics, URDF boxes if no contacts
   options.armature = robot_config::armature_by_joint(c);
   try {
     s.model = model::load_urdf_file(c.urdf, options);
   } catch (const std::invalid_argument& error) {  // a joints: entry; name the key
     throw std::invalid_argument(where + ": joints: " + error.what());
   }
+  const model::Model& m = s.model;
+  s.plan = sim_models::make_sim_plan(c, m, where);
+  const SimPlan& plan = s.plan;
   const urdf::ModelInterfaceSharedPtr urdf_model = urdf::parseURDFFile(c.urdf);
   if (!urdf_model) {
     throw std::runtime_error(c.urdf + ": urdfdom could not parse the file");
   }
-  const model::Model& m = s.model;
   s.data.emplace(m);
   s.sense.emplace(m);
   s.n = m.n_joints;
   const int n = s.n;
-  auto frame_of = [&](const std::string& link, const std::string& what) {
-    if (!m.has_frame(link)) {
-      throw std::invalid_argument(where + ": " + what + ": unknown link or frame '" + link +
-                                  "' in " + c.urdf);
-    }
-    return m.frame_id(link);
-  };
-
-  // ---- joints: limits, passive dynamics (robot config), motors ----
-  s.damping = Eigen::VectorXd::Zero(n);
-  s.friction = Eigen::VectorXd::Zero(n);
-  s.lower.resize(n);
-  s.upper.resize(n);
-  s.effort.resize(n);
-  s.motor.resize(static_cast<std::size_t>(n));
-  for (int j = 0; j < n; ++j) {
-    const auto& name = m.joint_name[static_cast<std::size_t>(j)];
-    s.lower[j] = m.joint_lower[static_cast<std::size_t>(j)];
-    s.upper[j] = m.joint_upper[static_cast<std::size_t>(j)];
-    s.effort[j] = m.joint_effort_limit[static_cast<std::size_t>(j)];
-    const robot_config::JointDynamics& dynamics = c.joints.at(name);
-    s.damping[j] = dynamics.damping;
-    s.friction[j] = dynamics.friction;
-    s.motor[static_cast<std::size_t>(j)] = DcMotor::from(o.motor, s.effort[j]);
-  }
-  s.cmd_mode.assign(static_cast<std::size_t>(n), OutputMode::kIdle);
-  s.cmd_value = Eigen::VectorXd::Zero(n);
+  s.lower = Eigen::Map<const Eigen::VectorXd>(m.joint_lower.data(), n);
+  s.upper = Eigen::Map<const Eigen::VectorXd>(m.joint_upper.data(), n);
+  s.commands = sim_models::CommandHold(plan);
   s.tau = Eigen::VectorXd::Zero(m.nv);
-  s.tau_act = Eigen::VectorXd::Zero(n);
-  s.pwm = Eigen::VectorXd::Zero(n);
 
-  // ---- initial state ----
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(m.nq);
-  if (m.floating_base) {
-    q.head<3>() = c.initial_base_position;
-    Eigen::Vector4d quat = c.initial_base_orientation;
-    if (!(quat.norm() > 0.0)) {
-      throw std::invalid_argument(where + ": 'initial_base_orientation' must be non-zero");
-    }
-    q.segment<4>(3) = quat.normalized();
-  }
-  for (const auto& [name, value] : c.initial_joint_positions) {
-    if (!m.has_joint(name)) {
-      throw std::invalid_argument(where + ": initial_joint_positions: unknown joint '" + name +
-                                  "' in " + c.urdf);
-    }
-    q[m.base_nq + m.joint_id(name)] = value;
-  }
-
-  // ---- contact points ----
-  using robot_config::ContactModel;
-  s.contacts_on = o.contact.enable == ContactModel::Enable::kOn ||
-                  (o.contact.enable == ContactModel::Enable::kAuto && m.floating_base);
   truth_ = GroundTruth{};
-  if (s.contacts_on) {
-    auto link_index = [&](const std::string& link) {
-      for (std::size_t i = 0; i < truth_.contact_links.size(); ++i) {
-        if (truth_.contact_links[i] == link) {
-          return static_cast<int>(i);
-        }
-      }
-      truth_.contact_links.push_back(link);
-      s.contact_link_frame.push_back(frame_of(link, "contact"));
-      return static_cast<int>(truth_.contact_links.size() - 1);
-    };
-    // Box: the 4 corners of its −z face; sphere: its centre with its radius;
-    // capsule: its two end spheres.
-    for (const auto& g : c.contacts) {
-      const int li = link_index(g.link);
-      auto add = [&](const Vector3d& p_F, double radius) {
-        ContactPoint cp;
-        cp.link = li;
-        cp.frame = s.contact_link_frame[static_cast<std::size_t>(li)];
-        cp.p_F = p_F;
-        cp.radius = radius;
-        cp.friction = g.friction;
-        truth_.contact_points.push_back(cp);
-      };
-      switch (g.shape) {
-        case wbi::ContactShape::box:
-          for (int sx : {1, -1}) {
-            for (int sy : {1, -1}) {
-              add(g.position + g.rotation * Vector3d(0.5 * sx * g.size.x(), 0.5 * sy * g.size.y(),
-                                                     -0.5 * g.size.z()),
-                  0.0);
-            }
-          }
-          break;
-        case wbi::ContactShape::sphere:
-          add(g.position, g.radius);
-          break;
-        case wbi::ContactShape::capsule:
-          for (int sz : {1, -1}) {
-            add(g.position + g.rotation * Vector3d(0.0, 0.0, 0.5 * sz * g.length), g.radius);
-          }
-          break;
-      }
-    }
-  }
-  truth_.contact_wrenches.assign(truth_.contact_links.size(), Vector6d::Zero());
-  truth_.contact_positions.assign(truth_.contact_links.size(), Vector3d::Zero());
-
-  // place on the ground: lowest contact point on the ground
+  static_cast<actuation::GroundTruth&>(truth_) = plan.initial_ground_truth();
+  truth_.contact_points = contact_points(c, plan);
   if (c.place_on_ground && m.floating_base && !truth_.contact_points.empty()) {
-    model::forward_kinematics(m, *s.sense, q);
-    double z_min = std::numeric_limits<double>::infinity();
-    for (const auto& cp : truth_.contact_points) {
-      const auto fi = static_cast<std::size_t>(cp.frame);
-      const auto b = static_cast<std::size_t>(m.frame_body[fi]);
-      const Vector3d p =
-          s.sense->p_WB[b] + s.sense->R_WB[b] * (m.frame_R_BF[fi] * cp.p_F + m.frame_p_BF[fi]);
-      z_min = std::min(z_min, p.z() - cp.radius);
-    }
-    q[2] -= z_min - c.ground.height;
+    truth_.q[2] -=
+        height_above_ground(m, *s.sense, truth_.q, truth_.contact_points, c.ground.height);
   }
 
   // ---- joint-limit springs: automatic stiffness from the mass-matrix diagonal ----
@@ -294,7 +292,7 @@ actuation::BackendDescription SimBackend::on_configure() {
   // m_eff,j = 1/(M⁻¹)_jj: the inertia a torque on joint j alone meets, all
   // other joints and the base free (the smallest it can be).
   const Eigen::MatrixXd M_inv =
-      model::mass_matrix(m, *s.sense, q).llt().solve(Eigen::MatrixXd::Identity(m.nv, m.nv));
+      model::mass_matrix(m, *s.sense, truth_.q).llt().solve(Eigen::MatrixXd::Identity(m.nv, m.nv));
   s.m_diag.resize(n);
   s.k_limit.resize(n);
   s.d_limit.resize(n);
@@ -306,103 +304,15 @@ actuation::BackendDescription SimBackend::on_configure() {
     s.d_limit[j] = o.joint_limits.damping > 0.0 ? o.joint_limits.damping : mjj / h;
   }
 
-  // ---- pushes ----
-  for (const auto& p : c.pushes) {
-    Impl::Push push;
-    push.frame = frame_of(p.link, "pushes");
-    push.start = std::llround(p.start / h);
-    push.end = std::llround((p.start + p.duration) / h);
-    push.force = p.force;
-    push.point = p.point;
-    if (!(p.duration >= 0.0)) {
-      throw std::invalid_argument(where + ": pushes: 'duration' must be >= 0");
-    }
-    s.pushes.push_back(push);
+  for (const auto& push : plan.pushes) {
+    s.pushes.push_back(
+        {sim_models::step_index(push.start, h), sim_models::step_index(push.end, h)});
   }
-  s.wrenches.assign(truth_.contact_links.size() + s.pushes.size(), model::ExternalWrench{});
-
-  // ---- sensors ----
-  actuation::BackendDescription d = joint_description(m, c);
-  for (const auto& imu : c.imus) {
-    Impl::Imu x;
-    x.frame = frame_of(imu.frame, "imus '" + imu.name + "'");
-    x.gyro_noise = imu.gyro_noise;
-    x.accel_noise = imu.accel_noise;
-    s.imus.push_back(x);
-    d.imu_names.push_back(imu.name);
-    d.imu_frames.push_back(imu.frame);
-  }
-  for (const auto& ft : c.force_torque) {
-    const auto uj = urdf_model->getJoint(ft.joint);
-    if (!uj) {
-      throw std::invalid_argument(where + ": force_torque '" + ft.name + "': unknown joint '" +
-                                  ft.joint + "' in " + c.urdf);
-    }
-    if (uj->type != urdf::Joint::FIXED) {
-      throw std::invalid_argument(where + ": force_torque '" + ft.name + "': joint '" + ft.joint +
-                                  "' is not a fixed joint");
-    }
-    Impl::Ft x;
-    x.frame = frame_of(uj->child_link_name, "force_torque '" + ft.name + "'");
-    x.force_noise = ft.force_noise;
-    x.torque_noise = ft.torque_noise;
-    // Links beyond the joint: the child link and all its descendants.
-    std::set<std::string> beyond;
-    std::vector<urdf::LinkConstSharedPtr> stack{urdf_model->getLink(uj->child_link_name)};
-    while (!stack.empty()) {
-      const auto link = stack.back();
-      stack.pop_back();
-      beyond.insert(link->name);
-      for (const auto& child : link->child_links) {
-        stack.push_back(child);
-      }
-    }
-    for (const auto& name : beyond) {
-      const auto link = urdf_model->getLink(name);
-      if (!link->inertial || link->inertial->mass <= 0.0) {
-        continue;
-      }
-      const auto fi = static_cast<std::size_t>(m.frame_id(name));
-      const int body = m.frame_body[fi];
-      const auto& in = *link->inertial;
-      const Matrix3d R_LI = rotation_of(in.origin.rotation);
-      Matrix3d I_I;
-      I_I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
-      const Matrix3d R_BI = m.frame_R_BF[fi] * R_LI;
-      const Vector3d c_B = m.frame_p_BF[fi] + m.frame_R_BF[fi] * vector_of(in.origin.position);
-      auto it = std::find(x.bodies.begin(), x.bodies.end(), body);
-      if (it == x.bodies.end()) {
-        x.bodies.push_back(body);
-        x.pieces.emplace_back();
-        it = x.bodies.end() - 1;
-      }
-      x.pieces[static_cast<std::size_t>(it - x.bodies.begin())].add(in.mass, c_B,
-                                                                    R_BI * I_I * R_BI.transpose());
-    }
-    for (std::size_t i = 0; i < truth_.contact_links.size(); ++i) {
-      if (beyond.count(truth_.contact_links[i]) != 0) {
-        x.contact_links.push_back(static_cast<int>(i));
-      }
-    }
-    for (std::size_t i = 0; i < c.pushes.size(); ++i) {
-      if (beyond.count(c.pushes[i].link) != 0) {
-        x.pushes.push_back(static_cast<int>(i));
-      }
-    }
-    s.fts.push_back(std::move(x));
-    d.ft_names.push_back(ft.name);
-    d.ft_frames.push_back(uj->child_link_name);
+  s.wrenches.assign(plan.contact_links.size() + plan.pushes.size(), model::ExternalWrench{});
+  for (std::size_t i = 0; i < plan.force_torque.size(); ++i) {
+    s.fts.push_back(force_torque_sensor<Impl::Ft>(c, plan, m, *urdf_model, i));
   }
 
-  s.noise = Gaussian(o.seed);
-  s.encoder_step = encoder_step(o.encoders);
-
-  // ---- ground truth buffers ----
-  truth_.q = q;
-  truth_.nu = Eigen::VectorXd::Zero(m.nv);
-  truth_.dnu = Eigen::VectorXd::Zero(m.nv);
-  truth_.tau = Eigen::VectorXd::Zero(n);
-  truth_.tau_actuator = Eigen::VectorXd::Zero(n);
   impl_ = std::move(impl);
   time_ = 0.0;
   step_count_ = 0;
@@ -414,15 +324,12 @@ actuation::BackendDescription SimBackend::on_configure() {
       std::span<const model::ExternalWrench>(impl_->wrenches.data(), impl_->n_wrenches));
   truth_.dnu = dnu;
   compute_sensors_after_step();
-  return d;
+  return plan.description;
 }
 
 void SimBackend::on_activate() {}
 
-void SimBackend::on_deactivate() {
-  impl_->cmd_mode.assign(impl_->cmd_mode.size(), OutputMode::kIdle);
-  impl_->cmd_value.setZero();
-}
+void SimBackend::on_deactivate() { impl_->commands.release(); }
 
 void SimBackend::on_cleanup() {
   impl_.reset();
@@ -432,11 +339,7 @@ void SimBackend::on_cleanup() {
 }
 
 void SimBackend::on_write(Time /*time*/, Duration /*period*/, const actuation::JointCommands& in) {
-  Impl& s = *impl_;
-  for (int j = 0; j < s.n; ++j) {
-    s.cmd_mode[static_cast<std::size_t>(j)] = in.mode[static_cast<std::size_t>(j)];
-    s.cmd_value[j] = in.value[j];
-  }
+  impl_->commands.hold(in);
 }
 
 // Kinematics at (q, ν) into impl_->data, then the ground contact forces, summed
@@ -501,15 +404,17 @@ void SimBackend::compute_contacts() {
   }
   std::size_t k = 0;
   for (std::size_t i = 0; i < truth_.contact_links.size(); ++i) {
-    s.wrenches[k].frame = s.contact_link_frame[i];
+    s.wrenches[k].frame = s.plan.contact_link_frames[i];
     s.wrenches[k].wrench = truth_.contact_wrenches[i];
     ++k;
   }
-  for (auto& push : s.pushes) {
-    push.active = s.substep_count >= push.start && s.substep_count < push.end;
-    if (!push.active) {
+  for (std::size_t i = 0; i < s.pushes.size(); ++i) {
+    Impl::Push& state = s.pushes[i];
+    state.active = s.substep_count >= state.start && s.substep_count < state.end;
+    if (!state.active) {
       continue;
     }
+    const SimPlan::Push& push = s.plan.pushes[i];
     const auto fi = static_cast<std::size_t>(push.frame);
     const auto b = static_cast<std::size_t>(m.frame_body[fi]);
     const Vector3d r = d.R_WB[b] * (m.frame_R_BF[fi] * push.point);
@@ -532,12 +437,7 @@ void SimBackend::substep(double h) {
     const int iv = m.base_nv + j;
     const double qj = truth_.q[m.base_nq + j];
     const double dq = truth_.nu[iv];
-    const ActuatorOutput out =
-        actuator_output(s.cmd_mode[static_cast<std::size_t>(j)], s.cmd_value[j], dq,
-                        s.motor[static_cast<std::size_t>(j)], s.effort[j]);
-    const double act = out.torque;
-    s.tau_act[j] = act;
-    s.pwm[j] = out.pwm;
+    const double act = s.commands.actuate(j, dq);
     // limits: spring-damper beyond the limit, never pulling towards it
     double lim = 0.0;
     if (qj > s.upper[j]) {
@@ -546,9 +446,8 @@ void SimBackend::substep(double h) {
       lim = std::max(0.0, -s.k_limit[j] * (qj - s.lower[j]) - s.d_limit[j] * dq);
     }
     // dissipation: viscous + smoothed Coulomb; never reverses q̇ within one substep
-    double diss = -s.damping[j] * dq - s.friction[j] * std::tanh(dq / c.friction_velocity);
-    const double max_diss = 0.5 * s.m_diag[j] * std::abs(dq) / h;
-    diss = std::clamp(diss, -max_diss, max_diss);
+    const double diss = sim_models::dissipation_torque(dq, s.plan.damping[j], s.plan.friction[j],
+                                                       c.friction_velocity, s.m_diag[j], h);
     s.tau[iv] = act + lim + diss;
   }
   const Eigen::VectorXd& dnu = model::forward_dynamics(
@@ -578,7 +477,7 @@ void SimBackend::substep(double h) {
   for (int j = 0; j < s.n; ++j) {
     truth_.tau[j] = s.tau[m.base_nv + j];
   }
-  truth_.tau_actuator = s.tau_act;
+  truth_.tau_actuator = s.commands.torque();
 }
 
 void SimBackend::on_step() {
@@ -607,14 +506,15 @@ void SimBackend::compute_sensors_after_step() {
     truth_.base_acceleration = truth_.dnu.head<6>();
   }
   for (std::size_t i = 0; i < truth_.contact_links.size(); ++i) {
-    const auto fi = static_cast<std::size_t>(s.contact_link_frame[i]);
+    const auto fi = static_cast<std::size_t>(s.plan.contact_link_frames[i]);
     const auto b = static_cast<std::size_t>(m.frame_body[fi]);
     truth_.contact_positions[i] = d.p_WB[b] + d.R_WB[b] * m.frame_p_BF[fi];
   }
   // F/T: wrench transmitted through the fixed joint = Newton–Euler of the part
   // beyond it:  f_J = Σ_b (I_b a_b + v_b ×* I_b v_b) − Σ w_ext   (world origin,
   // a_b includes −g), measured wrench (child on parent) = −f_J.
-  for (auto& ft : s.fts) {
+  for (std::size_t i = 0; i < s.fts.size(); ++i) {
+    Impl::Ft& ft = s.fts[i];
     Vector6d f = Vector6d::Zero();
     for (std::size_t k = 0; k < ft.bodies.size(); ++k) {
       const auto b = static_cast<std::size_t>(ft.bodies[k]);
@@ -624,7 +524,8 @@ void SimBackend::compute_sensors_after_step() {
       f += I * d.a[b] + model::cross_force(d.v[b], I * d.v[b]);
     }
     for (int li : ft.contact_links) {
-      const auto fi = static_cast<std::size_t>(s.contact_link_frame[static_cast<std::size_t>(li)]);
+      const auto fi =
+          static_cast<std::size_t>(s.plan.contact_link_frames[static_cast<std::size_t>(li)]);
       const auto b = static_cast<std::size_t>(m.frame_body[fi]);
       const Vector3d p_F = d.p_WB[b] + d.R_WB[b] * m.frame_p_BF[fi];
       const Vector6d& w = truth_.contact_wrenches[static_cast<std::size_t>(li)];
@@ -633,17 +534,17 @@ void SimBackend::compute_sensors_after_step() {
       f -= wo;
     }
     for (int pi : ft.pushes) {
-      const auto& push = s.pushes[static_cast<std::size_t>(pi)];
-      if (!push.active) {
+      if (!s.pushes[static_cast<std::size_t>(pi)].active) {
         continue;
       }
+      const SimPlan::Push& push = s.plan.pushes[static_cast<std::size_t>(pi)];
       const auto fi = static_cast<std::size_t>(push.frame);
       const auto b = static_cast<std::size_t>(m.frame_body[fi]);
       const Vector3d p = d.p_WB[b] + d.R_WB[b] * (m.frame_R_BF[fi] * push.point + m.frame_p_BF[fi]);
       f -= wrench_at_origin(push.force, p);
     }
     // child on parent, about the sensor origin, sensor axes
-    const auto fi = static_cast<std::size_t>(ft.frame);
+    const auto fi = static_cast<std::size_t>(s.plan.force_torque[i].frame);
     const auto b = static_cast<std::size_t>(m.frame_body[fi]);
     const Matrix3d R_WS = d.R_WB[b] * m.frame_R_BF[fi];
     const Vector3d p_S = d.p_WB[b] + d.R_WB[b] * m.frame_p_BF[fi];
@@ -657,25 +558,18 @@ void SimBackend::compute_sensors_after_step() {
 void SimBackend::on_read(Time /*time*/, Duration /*period*/, actuation::SensorReadings& out) {
   Impl& s = *impl_;
   const model::Model& m = s.model;
-  const robot_config::EncoderConfig& enc = config_.wbi.encoders;
-  const Time stamp_now = stamp();
   for (int j = 0; j < s.n; ++j) {
-    const double qj = truth_.q[m.base_nq + j];
-    const double dq = truth_.nu[m.base_nv + j];
-    out.position[j] = quantise(qj + s.noise(enc.position_noise), s.encoder_step);
-    out.velocity[j] = dq + s.noise(enc.velocity_noise);
-    const double tau = truth_.tau_actuator[j];
-    out.torque[j] = tau + s.noise(enc.torque_noise);
-    out.pwm[j] = s.pwm[j];
+    out.position[j] = truth_.q[m.base_nq + j];
+    out.velocity[j] = truth_.nu[m.base_nv + j];
+    out.torque[j] = truth_.tau_actuator[j];
+    out.pwm[j] = s.commands.pwm()[j];
   }
-  out.joint_stamp = stamp_now;
-  if (!s.imus.empty()) {
+  if (!s.plan.imus.empty()) {
     model::Data& k = *s.sense;
     model::forward_velocity_kinematics(m, k, truth_.q, truth_.nu);
     const model::Data& dyn = *s.data;  // accelerations of the last substep
-    for (std::size_t i = 0; i < s.imus.size(); ++i) {
-      const auto& imu = s.imus[i];
-      const auto fi = static_cast<std::size_t>(imu.frame);
+    for (std::size_t i = 0; i < s.plan.imus.size(); ++i) {
+      const auto fi = static_cast<std::size_t>(s.plan.imus[i].frame);
       const auto b = static_cast<std::size_t>(m.frame_body[fi]);
       const Matrix3d R_WF = k.R_WB[b] * m.frame_R_BF[fi];
       const Vector3d p = k.p_WB[b] + k.R_WB[b] * m.frame_p_BF[fi];
@@ -686,24 +580,14 @@ void SimBackend::on_read(Time /*time*/, Duration /*period*/, actuation::SensorRe
       const Eigen::Quaterniond quat(R_WF);
       auto& r = out.imus[i];
       r.orientation << quat.w(), quat.x(), quat.y(), quat.z();
-      const Vector3d gyro = R_WF.transpose() * w;
-      const Vector3d accel = R_WF.transpose() * acc;
-      for (int a = 0; a < 3; ++a) {
-        r.gyro[a] = gyro[a] + s.noise(imu.gyro_noise);
-        r.accel[a] = accel[a] + s.noise(imu.accel_noise);
-      }
-      r.stamp = stamp_now;
+      r.gyro = R_WF.transpose() * w;
+      r.accel = R_WF.transpose() * acc;
     }
   }
   for (std::size_t i = 0; i < s.fts.size(); ++i) {
-    const auto& ft = s.fts[i];
-    auto& r = out.force_torque[i];
-    for (int a = 0; a < 3; ++a) {
-      r.wrench[a] = ft.wrench[a] + s.noise(ft.force_noise);
-      r.wrench[a + 3] = ft.wrench[a + 3] + s.noise(ft.torque_noise);
-    }
-    r.stamp = stamp_now;
+    out.force_torque[i].wrench = s.fts[i].wrench;
   }
+  s.noise.apply(out, stamp());
 }
 
 void SimBackend::set_state(const Eigen::VectorXd& q, const Eigen::VectorXd& nu) {

@@ -12,9 +12,10 @@
 // the joints' Coulomb friction as the own plant's smoothed torque
 // (mujoco.joint_friction: torque) or as MuJoCo's frictionloss rows (constraint).
 // Every reading is MuJoCo's state mapped to wbi's conventions
-// (components/mujoco_sim/README.md). The sensor and actuator models (encoder
-// quantisation and noise, sensor noise, the PWM motor) are the own plant's, from
-// the config's `wbi:` section (wbi/sim_models/sensor_actuator_models.hpp).
+// (components/mujoco_sim/README.md). The plan of the config, the held commands
+// and the sensor and actuator models (encoder quantisation and noise, sensor
+// noise, the PWM motor) are those of every engine (wbi::sim_models), from the
+// config's `wbi:` section.
 // step(), read() and write() never allocate.
 #pragma once
 

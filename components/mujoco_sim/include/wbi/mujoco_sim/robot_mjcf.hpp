@@ -22,24 +22,27 @@
 #include <wbi/mjcf/mjcf.hpp>
 #include <wbi/model/model.hpp>
 #include <wbi/robot_config/robot_config.hpp>
+#include <wbi/sim_models/sim_plan.hpp>
 
 namespace wbi::mujoco_sim {
 
 struct RobotMjcf {
   mjcf::MjcfOptions options;
-  std::vector<std::string> contact_links;  // links with contact geometry, first-seen order
-  std::vector<int> contact_link_of;        // per contact geometry k: index into contact_links
-  std::vector<std::string> ft_frames;      // per F/T sensor: its child link (the sensor frame)
 };
 
 // The model library's model of `config` (complete_from_urdf() done): its
 // armature, repair_inertia on. Throws what the loader throws.
 model::Model robot_model(const robot_config::RobotConfig& config);
 
-// The MJCF options of `config` for `model` (robot_model(config)). Contacts and
-// the ground are written when the own plant would have contacts (wbi.contact.enable:
-// auto = floating base only). Throws std::invalid_argument "where: item: what"
-// for an unknown frame or link, a F/T joint that is not fixed, a bad push.
+// The MJCF options of `config` for `model` (robot_model(config)) and its plan
+// (sim_models::make_sim_plan: contact links, F/T child links). Contacts and the
+// ground are written when the plan has contacts (wbi.contact.enable: auto =
+// floating base only).
+RobotMjcf robot_mjcf(const robot_config::RobotConfig& config, const model::Model& model,
+                     const sim_models::SimPlan& plan);
+// The same, planning `config` first: throws what make_sim_plan() throws,
+// std::invalid_argument "where: item: what" (an unknown frame or link, a F/T
+// joint that is not fixed, a bad push).
 RobotMjcf robot_mjcf(const robot_config::RobotConfig& config, const model::Model& model,
                      const std::string& where);
 

@@ -1,18 +1,15 @@
-// The sensor and actuator models every simulation engine shares (the own plant,
-// MuJoCo): Gaussian sensor noise, encoder quantisation and the DC motor behind
-// a PWM command, so that a reading or a PWM duty means the same in both. In a
-// library of their own, so that no engine links another. Header-only; nothing
-// here allocates.
+// The sensor, actuator and joint models every simulation engine shares (the own
+// plant, MuJoCo): Gaussian noise, encoder quantisation, the DC motor behind a
+// PWM command, joint dissipation, so that a reading, a PWM duty or a friction
+// torque means the same in both. Nothing here allocates.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
-#include <string>
 
 #include "wbi/actuation/robot_backend.hpp"
-#include "wbi/model/model.hpp"
 #include "wbi/robot_config/robot_config.hpp"
 
 namespace wbi::sim_models {
@@ -87,29 +84,6 @@ struct DcMotor {
   }
 };
 
-// The joints every engine offers: the model's names, order and limits, and the
-// config's position gains (the sensors are filled by the engine).
-inline actuation::BackendDescription joint_description(const model::Model& m,
-                                                       const robot_config::RobotConfig& config) {
-  const std::string& urdf = config.urdf;
-  actuation::BackendDescription d;
-  d.robot = m.name;
-  d.urdf = urdf;
-  d.floating_base = m.floating_base;
-  d.joint_names = m.joint_name;
-  d.position_lower = m.joint_lower;
-  d.position_upper = m.joint_upper;
-  d.velocity_limit = m.joint_velocity_limit;
-  d.effort_limit = m.joint_effort_limit;
-  for (const auto& name : m.joint_name) {
-    const auto joint = config.joints.find(name);
-    const bool given = joint != config.joints.end();
-    d.position_kp.push_back(given ? joint->second.kp : 0.0);
-    d.position_kd.push_back(given ? joint->second.kd : 0.0);
-  }
-  return d;
-}
-
 // What one joint's actuator applies for a held command at joint velocity dq:
 // the torque, saturated at the effort limit (IDLE: none; PWM: the motor's), and
 // the PWM duty that goes with it (the command's when it is a duty, else the
@@ -135,6 +109,16 @@ inline ActuatorOutput actuator_output(actuation::OutputMode mode, double value, 
   out.pwm = mode == actuation::OutputMode::kPwm ? std::clamp(value, -1.0, 1.0)
                                                 : motor.duty(out.torque, dq);
   return out;
+}
+
+// A joint's own dissipation: viscous damping and Coulomb friction smoothed by
+// tanh(q̇ / v_f), bounded so that, applied explicitly over a step h, it never
+// reverses q̇ of a joint of effective inertia m_eff = 1/(M⁻¹)_jj.
+inline double dissipation_torque(double dq, double damping, double friction,
+                                 double friction_velocity, double m_eff, double h) {
+  const double torque = -damping * dq - friction * std::tanh(dq / friction_velocity);
+  const double bound = 0.5 * m_eff * std::abs(dq) / h;
+  return std::clamp(torque, -bound, bound);
 }
 
 }  // namespace wbi::sim_models
