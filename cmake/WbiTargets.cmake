@@ -43,6 +43,23 @@ function(wbi_add_header_library)
   install(DIRECTORY ${ARG_INCLUDE_DIR}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endfunction()
 
+# wbi_add_subfolders(): every sub-folder of the current folder that has a
+# CMakeLists.txt, in name order, unless WBI_SKIP_AREAS names it (as `name` or
+# `<folder>/name`). The layer folders (robot_side/, components/, tools/,
+# testing/) are lists of such sub-folders.
+function(wbi_add_subfolders)
+  file(RELATIVE_PATH area ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR})
+  file(GLOB dirs LIST_DIRECTORIES true CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*)
+  foreach(dir ${dirs})
+    if(IS_DIRECTORY ${dir} AND EXISTS ${dir}/CMakeLists.txt)
+      get_filename_component(name ${dir} NAME)
+      if(NOT name IN_LIST WBI_SKIP_AREAS AND NOT "${area}/${name}" IN_LIST WBI_SKIP_AREAS)
+        add_subdirectory(${name})
+      endif()
+    endif()
+  endforeach()
+endfunction()
+
 # wbi_add_executable(NAME <exe> SOURCES ... [DEPS ...] [NO_INSTALL])
 function(wbi_add_executable)
   cmake_parse_arguments(ARG "NO_INSTALL" "NAME" "SOURCES;DEPS" ${ARGN})

@@ -86,7 +86,7 @@ LoopResult run_loop(const Configuration& configuration, const std::string& robot
   Eigen::VectorXd q_desired(n);
   q_desired << 0.3, 0.6, -0.2, 1.2, 0.1, 0.9, 0.0;  // the demo's target
   // Critically damped joints at bandwidth_hz from the diagonal of their inertia:
-  // the demo's gains until 2026-11-24 (the figures in components/estimation/README.md;
+  // the demo's gains until 2026-11-24 (the figures in estimation/README.md;
   // the demo now takes the whole inertia, PdGravityGains::from_inertia).
   Eigen::MatrixXd M(6 + n, 6 + n);
   arm->mass_matrix(q_desired, wbi::Transform::Identity(), M);

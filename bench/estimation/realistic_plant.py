@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The joint velocity and acceleration estimators on a recorded simulation run,
-against the simulator's ground truth (components/estimation/README.md,
+against the simulator's ground truth (estimation/README.md,
 "On a realistic plant").
 
     bench/estimation/realistic_plant.py [--robot icub3] [--wbi build/bin/wbi] RUN.mcap...

@@ -30,7 +30,7 @@ struct ArmRun {
 ArmRun run_arm(const std::string& robot, int ticks) {
   const auto config = (wbi::test::source_dir() / "deploy" / "robots" / "arm.yaml").string();
   // Backward difference with a 100 Hz low-pass: the kalman method's extrapolation
-  // drives this stiff loop unstable (see components/estimation/README.md).
+  // drives this stiff loop unstable (see estimation/README.md).
   wbi::sim_rig::InProcessRobot rig(
       "closed_loop",
       "robot: " + robot + "\nconfig: " + config + "\nlockstep: true\nlockstep_controllers: [pd]\n",

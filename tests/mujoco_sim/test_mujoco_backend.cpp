@@ -1,4 +1,4 @@
-// MujocoBackend (components/mujoco_sim), driven in-process with a
+// MujocoBackend (robot_side/mujoco_sim), driven in-process with a
 // JointController or a PD + gravity law, no DDS:
 //   - iCub 3 standing for 5 s, joints held in POSITION mode: the base drifts
 //     < 1 mm, the foot F/T sensors carry the robot's weight (1 %), the IMU

@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
-"""Fails when a target (library or program) of dds/ or components/ depends,
-directly or through others, on the deploy-file reader (wbi_placement, or
-wbi_launch which links it) or on a controller (any target of controllers/):
-components never depend on controllers; the programs that assemble both live
-in apps/. Also when a bottom layer reaches a project target above it (the
-vocabulary links none, the IDL only the vocabulary, dds/ only those two), and
-when a simulation engine reaches another (they share wbi_sim_models).
+"""Fails when a project target (library or program) reaches, directly or through
+others, a target of a layer it may not use (LAYERS below, the table of the
+top-level README), or when a simulation engine reaches another engine.
+
+The layer of a target is the top folder it is declared in. Among what this
+enforces: components never depend on controllers or on the deploy-file reader
+(deploy/); the runtime reads no deploy format; the robot side (and so a real
+robot's driver interface) uses no DDS; dds/ uses only the IDL and the vocabulary.
 
 Input: lines "TARGET|FOLDER|DEP;DEP;..." written by tests/placement/CMakeLists.txt
 at generate time; aliases wbi::x name wbi_x.
@@ -13,17 +14,29 @@ at generate time; aliases wbi::x name wbi_x.
 import re
 import sys
 
-DEPLOY_READER = {"wbi_placement", "wbi_launch"}
+# The layers each layer may reach (its own aside), bottom to top.
+BOTTOM = {"vocabulary", "idl", "dds"}
+LIBRARIES = {"vocabulary", "model_service", "estimation"}  # no DDS
+LAYERS = {
+    "vocabulary": set(),
+    "idl": {"vocabulary"},
+    "dds": {"vocabulary", "idl"},
+    "model_service": {"vocabulary"},
+    "estimation": {"vocabulary"},
+    "robot_side": LIBRARIES,
+    "runtime": BOTTOM,
+    "components": BOTTOM | LIBRARIES | {"robot_side", "runtime"},
+    "tools": BOTTOM | LIBRARIES | {"robot_side"},
+    "wbi_proxy": BOTTOM | {"model_service"},
+    "controllers": BOTTOM | LIBRARIES | {"runtime", "wbi_proxy"},
+    "deploy": BOTTOM | {"runtime"},
+    "testing": BOTTOM | LIBRARIES | {"robot_side", "runtime", "components", "tools", "wbi_proxy"},
+}
+# The programs on top may use every layer.
+TOP = {"apps", "cli", "python"}
 
 # Simulation engines: none reaches another (what they share is wbi_sim_models).
-ENGINES = {"components/sim": "wbi_sim", "components/mujoco_sim": "wbi_mujoco_sim"}
-
-# The project targets each bottom layer may reach (its own folder's aside).
-BELOW = {
-    "vocabulary": set(),
-    "idl": {"wbi_vocabulary"},
-    "dds": {"wbi_vocabulary", "wbi_idl"},
-}
+ENGINES = {"robot_side/sim": "wbi_sim", "robot_side/mujoco_sim": "wbi_mujoco_sim"}
 
 
 def name_of(dependency):
@@ -43,19 +56,27 @@ def reachable(edges, target):
     return paths
 
 
+def layer_of(folder):
+    return folder.split("/")[0]
+
+
 def layer_failures(edges, folder_of):
-    """A bottom layer's targets that reach a project target above the layer."""
+    """Targets that reach a project target of a layer theirs may not use."""
     failures, checked = [], 0
     for target, folder in sorted(folder_of.items()):
-        layer = folder.split("/")[0]
-        if layer not in BELOW:
+        layer = layer_of(folder)
+        if layer in TOP:
+            continue
+        if layer not in LAYERS:
+            failures.append(f"{target} ({folder}): the folder '{layer}' is in no layer of "
+                            "check_link_graph.py: add it to LAYERS (and to the README's table)")
             continue
         checked += 1
         for dependency, path_to in sorted(reachable(edges, target).items()):
-            above = dependency.startswith("wbi_") and dependency not in BELOW[layer]
-            if above and folder_of.get(dependency, "").split("/")[0] != layer:
-                failures.append(f"{target} ({folder}) reaches {dependency}, above its layer: " +
-                                " -> ".join(path_to))
+            other = layer_of(folder_of.get(dependency, layer))
+            if other != layer and other not in LAYERS[layer]:
+                failures.append(f"{target} ({folder}) reaches {dependency} ({other}/), a layer "
+                                f"{layer}/ may not use: " + " -> ".join(path_to))
     return failures, checked
 
 
@@ -82,41 +103,16 @@ def main(path):
             target, folder, dependencies = line.rstrip("\n").split("|", 2)
             folder_of[target] = folder
             edges[target] = {name_of(d) for d in dependencies.split(";") if d.strip()}
-    forbidden = DEPLOY_READER | {t for t, f in folder_of.items() if f.startswith("controllers")}
-    checked, failures = 0, []
-    for target, folder in sorted(folder_of.items()):
-        if not (folder == "dds" or folder.startswith("dds/") or folder.startswith("components")):
-            continue
-        checked += 1
-        # Depth-first, remembering the path for the message.
-        stack, seen = [(target, [target])], {target}
-        while stack:
-            node, path_to = stack.pop()
-            for dependency in edges.get(node, ()):
-                if dependency in forbidden:
-                    failures.append(f"{target} ({folder}) reaches {dependency}: " +
-                                    " -> ".join(path_to + [dependency]))
-                elif dependency not in seen:
-                    seen.add(dependency)
-                    stack.append((dependency, path_to + [dependency]))
-    layer_failed, layer_checked = layer_failures(edges, folder_of)
-    failures += layer_failed
+    layer_failed, checked = layer_failures(edges, folder_of)
     engine_failed = engine_failures(edges, folder_of)
-    failures += engine_failed
-    for failure in failures:
+    missing = [f"no target in {layer}/" for layer in ("vocabulary", "dds", "components",
+                                                       "robot_side", "runtime")
+               if not any(layer_of(f) == layer for f in folder_of.values())]
+    for failure in layer_failed + engine_failed + missing:
         print("FAIL:", failure)
-    if checked == 0:
-        print(f"FAIL: no target of dds/ or components/ in {path}")
-        return 1
-    if layer_checked == 0:
-        print(f"FAIL: no target of vocabulary/, idl/ or dds/ in {path}")
-        return 1
-    print(f"{checked} targets of dds/ and components/ checked; "
-          f"{len(failures) - len(layer_failed) - len(engine_failed)} reach the deploy-file reader "
-          f"or a controller; {layer_checked} targets of vocabulary/, idl/ and dds/: "
-          f"{len(layer_failed)} reach above their layer; {len(engine_failed)} engine targets "
-          f"reach another engine")
-    return 1 if failures else 0
+    print(f"{checked} targets in {len(LAYERS)} layers checked: {len(layer_failed)} reach a layer "
+          f"theirs may not use; {len(engine_failed)} engine targets reach another engine")
+    return 1 if layer_failed or engine_failed or missing else 0
 
 
 if __name__ == "__main__":

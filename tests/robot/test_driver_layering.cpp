@@ -5,7 +5,7 @@
 //     while that of wbi_sim_robot, the control, holds wbi_sim;
 //   - the headers that the compiler recorded for each object of wbi_robot
 //     (ninja's deps log, or the .o.d files of the Makefile generators) include
-//     none of components/sim, components/sim_robot or MuJoCo.
+//     none of robot_side/sim, components/sim_robot or MuJoCo.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -129,7 +129,7 @@ TEST(DriverLayering, TheDriverLibraryLinksNoSimulator) {
 }
 
 // The headers of the named target's objects that lie in a simulator: under
-// components/sim or components/sim_robot, or MuJoCo's.
+// robot_side/sim or components/sim_robot, or MuJoCo's.
 std::vector<std::string> simulator_headers(const std::string& target) {
   const auto objects = lines_of(fs::path(WBI_LAYERING_DIR) / (target + ".objects"));
   EXPECT_FALSE(objects.empty()) << target << ": no objects listed";
@@ -153,7 +153,7 @@ std::vector<std::string> simulator_headers(const std::string& target) {
       const fs::path named = under(path, build_dir) ? path.lexically_relative(build_dir)
                              : under(path, source)  ? path.lexically_relative(source)
                                                     : path;
-      if (under(path, source / "components" / "sim") ||
+      if (under(path, source / "robot_side" / "sim") ||
           under(path, source / "components" / "sim_robot") || mentions_mujoco(named.string())) {
         found.push_back(object + " includes " + path.string());
       }

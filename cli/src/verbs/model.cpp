@@ -659,7 +659,7 @@ int run_mjcf(Args args) {
       "loads for that robot config: its joints' armature, damping and friction, contact\n"
       "geometry and ground, IMU and F/T sites and sensors (F/T child links welded as\n"
       "bodies of their own), and its mujoco: timestep and integrator. See\n"
-      "model_service/mjcf/README.md and components/mujoco_sim/README.md.");
+      "model_service/mjcf/README.md and robot_side/mujoco_sim/README.md.");
   opts.positional("URDF", "the robot description (.urdf)")
       .option("output", "FILE", "where to write the MJCF (also -o FILE); '-' for standard output")
       .option("robot-config", "FILE",

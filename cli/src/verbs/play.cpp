@@ -1,5 +1,5 @@
 // `wbi play`: replays an MCAP recording onto DDS. The work is in
-// wbi::recording::Player (components/recording); this file parses the command
+// wbi::recording::Player (tools/recording); this file parses the command
 // line, shows progress and takes pause/resume/step from the keyboard and from
 // the control topic.
 #include <algorithm>

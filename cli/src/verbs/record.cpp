@@ -1,5 +1,5 @@
 // `wbi record`: records DDS topics to an MCAP file. The work is in
-// wbi::recording::Recorder (components/recording); this file parses the
+// wbi::recording::Recorder (tools/recording); this file parses the
 // command line, shows progress and stops on Ctrl-C, SIGTERM or --duration.
 #include <atomic>
 #include <chrono>

@@ -1,5 +1,5 @@
 // `wbi render RECORDING -o run.mp4 | --png T -o frame.png`: a recorded run drawn
-// offscreen by MuJoCo. The work is in wbi::render (components/render), built
+// offscreen by MuJoCo. The work is in wbi::render (tools/render), built
 // only with MuJoCo, EGL and libpng; without them this verb names what is missing.
 #include <chrono>
 #include <cstdio>
@@ -44,7 +44,7 @@ int run_render(Args args) {
       "(kinematics only) as a skeleton with its feet, CoM and contact forces, rendered\n"
       "offscreen by MuJoCo (EGL, no display) into an H.264 MP4 (through the ffmpeg\n"
       "program), or one frame at time T into a PNG. Times are seconds of recorded\n"
-      "time from the first pose. components/render/README.md.");
+      "time from the first pose. tools/render/README.md.");
   options.positional("RECORDING", "the .mcap file (`wbi record`)");
   options.option("output", "FILE", "the .mp4 (or .png with --png) to write (also -o FILE)");
   options.option("png", "T", "write one frame at time T as PNG instead of a video");

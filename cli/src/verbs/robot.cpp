@@ -1,5 +1,5 @@
 // `wbi robot check FILE`: load and validate a robot config file
-// (components/robot_config/README.md) and summarise what it describes. An error
+// (robot_side/robot_config/README.md) and summarise what it describes. An error
 // is the parser's one line "file:line: key: what", exit 1.
 #include <iostream>
 #include <string>
@@ -56,7 +56,7 @@ int run_robot(Args args) {
   const std::string& sub = args[0];
   if (sub == "--help" || sub == "-h") {
     std::cout << "usage: wbi robot check FILE\n\n"
-                 "Robot config files (components/robot_config/README.md).\n\n"
+                 "Robot config files (robot_side/robot_config/README.md).\n\n"
                  "sub-verbs:\n"
                  "  check  validate a robot config file against its URDF and summarise it\n";
     return kExitOk;

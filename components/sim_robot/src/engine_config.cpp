@@ -25,7 +25,7 @@ Eigen::Vector3d vector3(const runtime::Parameters& parameters, const std::string
 }
 
 // push_link, push_force, push_start_s, push_duration_s, push_point: one more
-// entry of the config's `pushes:` (components/robot_config/README.md).
+// entry of the config's `pushes:` (robot_side/robot_config/README.md).
 void add_push(const runtime::Parameters& parameters, robot_config::RobotConfig& config) {
   const bool any = parameters.has("push_link") || parameters.has("push_force") ||
                    parameters.has("push_start_s") || parameters.has("push_duration_s") ||

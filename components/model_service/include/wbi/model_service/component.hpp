@@ -8,7 +8,7 @@
 //   urdf           string: URDF file; a relative path is looked up beside the
 //                  host file first, then from the working directory
 //   robot_config   string, instead of urdf: a robot config file
-//                  (components/robot_config): its URDF, fixed_base and every
+//                  (robot_side/robot_config): its URDF, fixed_base and every
 //                  joint's armature, as the simulation of that file has them
 //   robot          string, default the URDF's robot name: the name in topics
 //                  and requests

@@ -7,11 +7,11 @@
 //
 // Parameters (the driver's, robot_driver.hpp "Simulations only", and):
 //   robot                 required; the robot's name (topics wbi/<robot>/…)
-//   engine                wbi (default): the project's own plant (components/sim);
+//   engine                wbi (default): the project's own plant (robot_side/sim);
 //                         any engine of the EngineRegistry (engine_registry.hpp);
 //                         an unknown name is an error listing the registered ones
 //   config                required; the engine's configuration file (for wbi: the
-//                         simulation's YAML, components/sim/README.md), relative to
+//                         simulation's YAML, robot_side/sim/README.md), relative to
 //                         the host file
 //   lockstep, lockstep_controllers, lockstep_timeout_s, lockstep_start_timeout_s,
 //   real_time, duration_s, watchdog_timeout_s, reference_speed, hold_at_start: robot_driver.hpp
