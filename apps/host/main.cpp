@@ -65,8 +65,11 @@ int main(int argc, char** argv) {
   // components as SIGTERM does, then exit with its code.
   wbi::runtime::set_process_exit_handler([](int) { ::kill(::getpid(), SIGTERM); });
   try {
-    // The deploy reader turns the file's network and security blocks into join options.
-    const wbi::runtime::PlacementReader placement = wbi::deploy::read_placement;
+    // The deploy reader turns the file's network and security blocks into join
+    // options; the host file's key check accepts the keys it reads.
+    const wbi::runtime::PlacementReader placement{
+        {wbi::deploy::kPlacementKeys.begin(), wbi::deploy::kPlacementKeys.end()},
+        wbi::deploy::read_placement};
     // One process of a deploy file: the deploy reader picks it out (the runtime
     // reads host documents only).
     auto host_ptr =

@@ -13,10 +13,6 @@ namespace wbi::runtime {
 
 namespace {
 
-// The host document's keys that the placement reader handles.
-constexpr const char* kNetworkKey = "network";
-constexpr const char* kSecurityKey = "security";
-
 std::string at(const std::string& file, const YAML::Node& node) {
   return file + ":" + std::to_string(node.Mark().line + 1);
 }
@@ -67,9 +63,9 @@ Host::Host(const YAML::Node& document, const std::string& file, const std::strin
 }
 
 std::unique_ptr<Host> Host::from_string(const std::string& yaml, const Registry& registry,
-                                        const std::string& file) {
+                                        const std::string& file, PlacementReader placement) {
   std::unique_ptr<Host> host(new Host());
-  host->load(yaml, true, file, registry);
+  host->load(yaml, true, file, registry, placement);
   return host;
 }
 
@@ -92,10 +88,12 @@ void Host::build(const YAML::Node& root, const std::string& file, const std::str
     throw ParameterError(file + ": a host file is a map with a 'components' list");
   }
   const std::string context = "host file";
-  check_keys(file, root,
-             {"domain_id", "qos_file", "clock", "status_period_s", "components", kNetworkKey,
-              kSecurityKey},
-             context);
+  // The runtime's own keys, and those the placement reader reads.
+  std::set<std::string> known{"domain_id", "qos_file", "clock", "status_period_s", "components"};
+  if (placement) {
+    known.insert(placement.keys.begin(), placement.keys.end());
+  }
+  check_keys(file, root, known, context);
 
   dds::ParticipantOptions options;
   options.domain_id =
@@ -176,14 +174,7 @@ void Host::build(const YAML::Node& root, const std::string& file, const std::str
   try {
     // Across hosts and DDS Security (deploy/README.md); the identity is the process's name.
     if (placement) {
-      placement(root, file, identity, options);
-    } else {
-      for (const char* key : {kNetworkKey, kSecurityKey}) {
-        if (root[key]) {
-          throw ParameterError(at(file, root[key]) + ": host file: '" + key +
-                               "' needs a placement reader (wbi_host has one)");
-        }
-      }
+      placement.read(root, file, identity, options);
     }
     dds::apply_environment(options);
   } catch (const ParameterError&) {

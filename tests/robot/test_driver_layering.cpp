@@ -141,7 +141,7 @@ std::vector<std::string> simulator_headers(const std::string& target) {
   std::vector<std::string> found;
   for (const auto& [object, headers] : deps) {
     // The compiler records the source file first: the record was read.
-    const auto source_file = fs::path(object).stem().string();  // e.g. step_clock.cpp
+    const auto source_file = fs::path(object).stem().string();  // e.g. tick_pacer.cpp
     EXPECT_TRUE(
         std::any_of(headers.begin(), headers.end(),
                     [&](const std::string& h) { return fs::path(h).filename() == source_file; }))

@@ -1,7 +1,7 @@
-// The real-time clock's schedule on given times: jitter is caught up, a stall
+// The real-time pacer's schedule on given times: jitter is caught up, a stall
 // is not (the simulation pauses with its process instead of stepping the
 // missed time in a burst); a stall's line on stderr at most once a period; the
-// clock's end-of-run line counts the ticks behind their deadline.
+// pacer's end-of-run line counts the ticks behind their deadline.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -10,7 +10,7 @@
 
 #include <wbi/runtime/status_report.hpp>
 
-#include "step_clock.hpp"
+#include "tick_pacer.hpp"
 
 namespace {
 
@@ -98,19 +98,19 @@ TEST(StallLines, AStoppedProcessIsAlwaysPrinted) {
 
 // Tick 4 is waited for (due 5 ms after the start); tick 1, due 2 ms after the
 // start, comes when those 5 ms have passed: behind its deadline, caught up.
-TEST(RealTimeClock, CountsTheTicksBehindTheirDeadline) {
+TEST(RealTimePacer, CountsTheTicksBehindTheirDeadline) {
   wbi::runtime::StatusCounter stalls;
-  wbi::robot::RealTimeClock clock(kPeriod, kMaxLag, "sim_robot 'arm'", stalls);
-  clock.start();
-  clock.wait(4);
-  clock.wait(1);
-  const std::string line = clock.summary();
+  wbi::robot::RealTimePacer pacer(kPeriod, kMaxLag, "sim_robot 'arm'", stalls);
+  pacer.start();
+  pacer.wait(4);
+  pacer.wait(1);
+  const std::string line = pacer.summary();
   EXPECT_NE(line.find("real time: "), std::string::npos) << line;
   EXPECT_NE(line.find(" of 2 ticks behind their deadline ("), std::string::npos) << line;
   EXPECT_EQ(line.find("real time: 0 of"), std::string::npos) << "tick 1 came late: " << line;
   EXPECT_NE(line.find("0 stall(s) not caught up"), std::string::npos) << line;
-  clock.start();  // a new activation counts anew
-  EXPECT_NE(clock.summary().find("real time: 0 of 0 ticks"), std::string::npos);
+  pacer.start();  // a new activation counts anew
+  EXPECT_NE(pacer.summary().find("real time: 0 of 0 ticks"), std::string::npos);
 }
 
 }  // namespace

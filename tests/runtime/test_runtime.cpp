@@ -14,6 +14,8 @@
 #include <thread>
 #include <vector>
 
+#include <yaml-cpp/yaml.h>
+
 #include <wbi/dds/participant.hpp>
 #include <wbi/dds/publisher.hpp>
 #include <wbi/dds/subscriber.hpp>
@@ -447,11 +449,20 @@ TEST(Registry, CreatesByTypeAndNamesUnknownTypes) {
   }
 }
 
+// A placement reader that reads nothing, with the deploy reader's keys (what
+// wbi_host passes: wbi::deploy::kPlacementKeys, not linked here).
+wbi::runtime::PlacementReader stub_placement(std::vector<std::string> keys = {"network",
+                                                                              "security"}) {
+  return {std::move(keys), [](const YAML::Node&, const std::string&, const std::string&,
+                              wbi::dds::ParticipantOptions&) {}};
+}
+
+// The error of a host file read as wbi_host reads it (with a placement reader).
 std::string host_error(const std::string& yaml) {
   wbi::runtime::Registry registry;
   wbi::runtime::register_builtin_components(registry);
   try {
-    auto host = wbi::runtime::Host::from_string(yaml, registry, "robot.yaml");
+    auto host = wbi::runtime::Host::from_string(yaml, registry, "robot.yaml", stub_placement());
     host->start();
   } catch (const std::exception& error) {
     return error.what();
@@ -497,6 +508,41 @@ TEST(HostFile, BadFilesGetErrorsNamingFileLineAndKey) {
             "robot.yaml:1: host file: 'clock' must be system or simulation, got 'sundial'");
   EXPECT_EQ(host_error("components: {a: 1}\n"),
             "robot.yaml:1: host file: 'components' must be a list of components");
+}
+
+// The runtime knows no placement keys: without a placement reader `network` is
+// an unknown key; with one, the keys it names are accepted, and it reads them.
+TEST(HostFile, PlacementKeysAreThePlacementReadersOwn) {
+  wbi::runtime::Registry registry;
+  wbi::runtime::register_builtin_components(registry);
+  const std::string yaml = "components: []\nnetwork: {discovery: multicast}\n";
+  try {
+    (void)wbi::runtime::Host::from_string(yaml, registry, "robot.yaml");
+    ADD_FAILURE() << "'network' accepted without a placement reader";
+  } catch (const wbi::runtime::ParameterError& error) {
+    EXPECT_STREQ(error.what(),
+                 "robot.yaml:2: host file: unknown key 'network' (known: clock, components, "
+                 "domain_id, qos_file, status_period_s)");
+  }
+  std::string read;
+  wbi::runtime::PlacementReader reader = stub_placement();
+  reader.read = [&](const YAML::Node& root, const std::string& file, const std::string&,
+                    wbi::dds::ParticipantOptions&) {
+    read = file + ": " + root["network"]["discovery"].as<std::string>();
+  };
+  const auto host = wbi::runtime::Host::from_string(yaml, registry, "robot.yaml", reader);
+  EXPECT_EQ(read, "robot.yaml: multicast");
+  EXPECT_EQ(host->size(), 0U);
+  // Any reader's keys, listed sorted with the runtime's.
+  try {
+    (void)wbi::runtime::Host::from_string(yaml, registry, "robot.yaml",
+                                          stub_placement({"placement"}));
+    ADD_FAILURE() << "'network' accepted by a reader that does not read it";
+  } catch (const wbi::runtime::ParameterError& error) {
+    EXPECT_STREQ(error.what(),
+                 "robot.yaml:2: host file: unknown key 'network' (known: clock, components, "
+                 "domain_id, placement, qos_file, status_period_s)");
+  }
 }
 
 TEST(SimClock, FollowsTheClockTopic) {

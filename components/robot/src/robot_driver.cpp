@@ -13,7 +13,7 @@
 #include "robot_name.hpp"
 #include "sensor_side.hpp"
 #include "simulation_side.hpp"
-#include "step_clock.hpp"
+#include "tick_pacer.hpp"
 #include "wbi/runtime/console_line.hpp"
 #include "wbi/runtime/process_exit.hpp"
 
@@ -47,12 +47,12 @@ Sides read_sides(const runtime::Parameters& parameters) {
   return {has("sensors"), has("actuators")};
 }
 
-// A simulation's clock and run length (robot_driver.hpp, "Simulations only").
+// A simulation's pacing and run length (robot_driver.hpp, "Simulations only").
 struct SimulationOptions {
   bool lockstep = false;
   LockstepOptions lockstep_options;
   bool real_time = true;              // paced at real time (default: unless lockstep)
-  double real_time_max_lag_s = 0.02;  // a longer delay is not caught up (step_clock.hpp)
+  double real_time_max_lag_s = 0.02;  // a longer delay is not caught up (tick_pacer.hpp)
   double duration_s = 0.0;            // 0: no end
 };
 
@@ -80,7 +80,7 @@ SimulationOptions read_simulation_options(const runtime::Parameters& parameters)
 // The one robot loop (wbi/robot/robot_driver.hpp). A tick is sense → control →
 // actuate; a real robot's ticks are the runner's cycles (read, update, write),
 // a simulation's are run by step_until_stopped() on the driver's own thread,
-// with its step clocks between sense and control and step() after actuate.
+// with its tick pacers between sense and control and step() after actuate.
 class RobotDriver final : public runtime::Component {
  public:
   explicit RobotDriver(BackendFactory factory) : backend_factory_(std::move(factory)) {}
@@ -131,8 +131,8 @@ class RobotDriver final : public runtime::Component {
     if (simulation_) {
       make_simulation_parts(participant, simulation);
       observer = [this](const wbi::msg::ActuatorCommand& command) {
-        for (const auto& clock : step_clocks_) {
-          clock->observe(command);  // lockstep bookkeeping
+        for (const auto& pacer : pacers_) {
+          pacer->observe(command);  // lockstep bookkeeping
         }
       };
     }
@@ -153,8 +153,8 @@ class RobotDriver final : public runtime::Component {
       }
     }  // else sensors only: read, never power
     if (simulation_) {
-      for (const auto& clock : step_clocks_) {
-        clock->start();
+      for (const auto& pacer : pacers_) {
+        pacer->start();
       }
       running_ = true;
       loop_ = std::thread([this] { run_simulation(); });
@@ -171,7 +171,7 @@ class RobotDriver final : public runtime::Component {
   void on_cleanup() override {
     stop_simulation();
     actuators_.reset();  // first: no command callback after this
-    step_clocks_.clear();
+    pacers_.clear();
     simulation_side_.reset();
     sensors_.reset();
     simulation_ = nullptr;
@@ -215,18 +215,17 @@ class RobotDriver final : public runtime::Component {
     }
   }
 
-  // A simulation's own topics, and its clocks, waited in this order.
+  // A simulation's own topics, and its tick pacers, waited in this order.
   void make_simulation_parts(dds::Participant& participant, const SimulationOptions& options) {
     simulation_side_ = std::make_unique<SimulationSide>(
         participant, robot_, simulation_->step_period(), options.lockstep);
     auto& timeouts = report().counter("lockstep_timeouts");  // 0 unless lockstep
     if (options.lockstep) {
-      step_clocks_.push_back(
-          std::make_unique<LockstepClock>(options.lockstep_options, who_, timeouts));
+      pacers_.push_back(std::make_unique<LockstepPacer>(options.lockstep_options, who_, timeouts));
     }
     auto& stalls = report().counter("real_time_stalls");  // 0 unless real time
     if (options.real_time) {
-      step_clocks_.push_back(std::make_unique<RealTimeClock>(
+      pacers_.push_back(std::make_unique<RealTimePacer>(
           simulation_->step_period(),
           std::chrono::duration_cast<std::chrono::nanoseconds>(
               std::chrono::duration<double>(options.real_time_max_lag_s)),
@@ -279,8 +278,8 @@ class RobotDriver final : public runtime::Component {
       step_until_stopped(summary);
       std::ostringstream report;
       summary.print(report, who_);
-      for (const auto& clock : step_clocks_) {
-        if (const std::string line = clock->summary(); !line.empty()) {
+      for (const auto& pacer : pacers_) {
+        if (const std::string line = pacer->summary(); !line.empty()) {
           report << who_ << ": " << line << "\n";
         }
       }
@@ -309,8 +308,8 @@ class RobotDriver final : public runtime::Component {
       }
       const Time now = simulation_->stamp();
       sense(now, period);
-      for (const auto& clock : step_clocks_) {
-        clock->wait(seq_);  // none: free running
+      for (const auto& pacer : pacers_) {
+        pacer->wait(seq_);  // none: free running
       }
       control(now, period);
       actuate(now, period);
@@ -321,8 +320,8 @@ class RobotDriver final : public runtime::Component {
 
   void stop_simulation() {
     running_ = false;
-    for (const auto& clock : step_clocks_) {
-      clock->stop();
+    for (const auto& pacer : pacers_) {
+      pacer->stop();
     }
     if (loop_.joinable()) {
       loop_.join();
@@ -336,13 +335,13 @@ class RobotDriver final : public runtime::Component {
   runtime::Clock* clock_ = nullptr;
   bool hold_at_start_ = true;
   double duration_s_ = 0.0;
-  std::uint64_t seq_ = 0;  // the tick: sensor sample, ground truth and clock sequence
+  std::uint64_t seq_ = 0;  // the tick: sensor sample, ground truth and wbi/clock sequence
 
   std::unique_ptr<actuation::RobotBackend> backend_;
   actuation::SimulationBackend* simulation_ = nullptr;  // backend_, when it is a simulation
   std::unique_ptr<SensorSide> sensors_;
   std::unique_ptr<SimulationSide> simulation_side_;
-  std::vector<std::unique_ptr<StepClock>> step_clocks_;  // waited in order; none: free running
+  std::vector<std::unique_ptr<TickPacer>> pacers_;  // waited in order; none: free running
   std::unique_ptr<ActuatorSide> actuators_;
   std::atomic<bool> running_{false};
   std::thread loop_;

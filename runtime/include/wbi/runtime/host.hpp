@@ -36,21 +36,28 @@ struct ParticipantOptions;
 
 namespace wbi::runtime {
 
-// Reads a host file's `network` and `security` blocks into the participant's
-// options (the deploy reader does: wbi::deploy::read_placement), for the
-// process named `identity`. Injected, so that the runtime does not depend on
-// the deploy-file reader: it produces join options; the runtime uses them.
-using PlacementReader =
-    std::function<void(const YAML::Node& root, const std::string& file, const std::string& identity,
-                       dds::ParticipantOptions& options)>;
+// Reads a host document's placement blocks into the participant's options,
+// for the process named `identity` (wbi_host passes the deploy reader,
+// wbi::deploy::read_placement). Injected, so that the runtime neither depends
+// on the deploy-file reader nor knows its keys: `keys` names the top-level
+// keys `read` handles, which the host file's unknown-key check accepts besides
+// the runtime's own. It produces join options; the runtime uses them.
+struct PlacementReader {
+  std::vector<std::string> keys;
+  std::function<void(const YAML::Node& root, const std::string& file, const std::string& identity,
+                     dds::ParticipantOptions& options)>
+      read;
+  // A reader without `read` is none: its keys are not accepted either.
+  explicit operator bool() const { return static_cast<bool>(read); }
+};
 
 // The participant joins as dds/README.md "Joining a deployment" says:
-// defaults < the file (domain_id, qos_file, network, security) < WBI_* environment.
+// defaults < the file (domain_id, qos_file, the placement reader's blocks) < WBI_* environment.
 class Host {
  public:
   // Reads the file and creates the participant, the clock and the components
   // (UNCONFIGURED). Throws ParameterError (bad file) or std::invalid_argument.
-  // Without a placement reader, a file with `network` or `security` is refused.
+  // Without a placement reader, the keys one would read are unknown keys.
   Host(const std::string& file, const Registry& registry, PlacementReader placement = {});
   // From a host document already parsed, e.g. one process of a deploy file
   // (wbi::deploy::load_process_host: the runtime does not read the deploy
@@ -60,7 +67,8 @@ class Host {
        const Registry& registry, PlacementReader placement = {});
   // Same, from YAML text; `file` names it in messages.
   static std::unique_ptr<Host> from_string(const std::string& yaml, const Registry& registry,
-                                           const std::string& file = "<string>");
+                                           const std::string& file = "<string>",
+                                           PlacementReader placement = {});
   ~Host();  // stop()
   Host(const Host&) = delete;
   Host& operator=(const Host&) = delete;

@@ -3,11 +3,11 @@
 // samples) and the actuator side (commands and control parameters into the
 // joint-level controller, watchdog, rejections on the status). One loop, every
 // tick:
-//   read → publish sensors (tick k) → [clock] → joint control → write → [step]
-// Its clock is one of
+//   read → publish sensors (tick k) → [pace] → joint control → write → [step]
+// Its pace is set by one of
 //   the runner's period  a real robot: one tick per runner cycle (rate_hz, wall
 //                        clock); register_driver;
-//   lockstep             a simulation (SimulationBackend) that waits, at [clock],
+//   lockstep             a simulation (SimulationBackend) that waits, at [pace],
 //                        for every named controller's command for tick k, then
 //                        steps: deterministic; register_simulation, lockstep: true;
 //   real time            a simulation paced at real time (real_time: true, the
@@ -88,12 +88,12 @@ using BackendFactory =
 using SimulationFactory =
     std::function<std::unique_ptr<actuation::SimulationBackend>(const runtime::Parameters&)>;
 
-// A component type for a real robot: the runner's period is the clock.
+// A component type for a real robot: the runner's period paces it.
 void register_driver(runtime::Registry& registry, const std::string& type, BackendFactory factory,
                      std::string description = "robot driver: sensor samples out, commands in");
 
-// A component type for a simulated robot: the simulation is the clock (lockstep
-// or real time), plus ground truth and wbi/clock.
+// A component type for a simulated robot: the simulation paces itself (lockstep
+// or real time: tick pacers), plus ground truth and wbi/clock.
 void register_simulation(runtime::Registry& registry, const std::string& type,
                          SimulationFactory factory, std::string description);
 

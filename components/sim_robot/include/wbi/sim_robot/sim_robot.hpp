@@ -1,6 +1,6 @@
 // Component type "sim_robot": a simulated robot as DDS sees it — the robot
 // driver's one loop (wbi/robot/robot_driver.hpp) with a simulation backend made
-// by the engine the deploy file names, on the simulation's own clock:
+// by the engine the deploy file names, on the simulation's own time and pace:
 //   read → publish sensors, ground truth, wbi/clock (tick k) → [lockstep: wait
 //   for every controller's command for tick k] → [real time: wait for the wall
 //   clock] → joint control → write → step.
@@ -24,7 +24,7 @@
 //
 // Status (wbi/status): rejected_commands, rejected_parameters, watchdog_trips,
 // limit_clamps, lockstep_timeouts; the last rejection or trip in words.
-// The loop runs on its own thread while ACTIVE (the simulation is the clock).
+// The loop runs on its own thread while ACTIVE (the simulation paces itself).
 #pragma once
 
 #include <wbi/runtime/registry.hpp>

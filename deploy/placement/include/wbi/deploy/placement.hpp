@@ -16,6 +16,7 @@
 // another network or with other keys.
 #pragma once
 
+#include <array>
 #include <string>
 
 #include <yaml-cpp/yaml.h>
@@ -44,5 +45,7 @@ void read_join_options(const std::string& file, const std::string& identity,
 // The keys read_placement handles, for the callers' unknown-key checks.
 inline constexpr const char* kNetworkKey = "network";
 inline constexpr const char* kSecurityKey = "security";
+// Every top-level key read_placement reads (a runtime::PlacementReader's keys).
+inline constexpr std::array<const char*, 2> kPlacementKeys{kNetworkKey, kSecurityKey};
 
 }  // namespace wbi::deploy

@@ -1,4 +1,4 @@
-#include "step_clock.hpp"
+#include "tick_pacer.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -21,14 +21,14 @@ RealTimeSchedule::TimePoint RealTimeSchedule::due(std::uint64_t tick, TimePoint 
   return now;
 }
 
-void RealTimeClock::start() {
+void RealTimePacer::start() {
   std::lock_guard lock(mutex_);
   stopped_ = false;
   ticks_ = behind_ = stalls_seen_ = 0;
   schedule_.start(std::chrono::steady_clock::now());
 }
 
-std::string RealTimeClock::summary() const {
+std::string RealTimePacer::summary() const {
   char line[160];
   std::snprintf(
       line, sizeof line,
@@ -51,7 +51,7 @@ bool StallLines::print(TimePoint now, std::chrono::nanoseconds length, std::uint
   return true;
 }
 
-void RealTimeClock::wait(std::uint64_t tick) {
+void RealTimePacer::wait(std::uint64_t tick) {
   std::chrono::nanoseconds dropped;
   const auto now = std::chrono::steady_clock::now();
   const auto due = schedule_.due(tick, now, dropped);
@@ -79,7 +79,7 @@ void RealTimeClock::wait(std::uint64_t tick) {
   stopped_changed_.wait_until(lock, due, [this] { return stopped_; });
 }
 
-void RealTimeClock::stop() {
+void RealTimePacer::stop() {
   {
     std::lock_guard lock(mutex_);
     stopped_ = true;
@@ -87,7 +87,7 @@ void RealTimeClock::stop() {
   stopped_changed_.notify_all();
 }
 
-LockstepClock::LockstepClock(LockstepOptions options, std::string who,
+LockstepPacer::LockstepPacer(LockstepOptions options, std::string who,
                              runtime::StatusCounter& timeouts)
     : options_(std::move(options)), who_(std::move(who)), timeouts_(timeouts) {
   for (const auto& name : options_.controllers) {
@@ -95,13 +95,13 @@ LockstepClock::LockstepClock(LockstepOptions options, std::string who,
   }
 }
 
-void LockstepClock::start() {
+void LockstepPacer::start() {
   std::lock_guard lock(mutex_);
   stopped_ = false;
 }
 
 // On a DDS thread, after the actuator side staged the command.
-void LockstepClock::observe(const wbi::msg::ActuatorCommand& command) {
+void LockstepPacer::observe(const wbi::msg::ActuatorCommand& command) {
   {
     std::lock_guard lock(mutex_);
     const auto sender = answered_.find(command.controller().to_string());
@@ -113,13 +113,13 @@ void LockstepClock::observe(const wbi::msg::ActuatorCommand& command) {
   changed_.notify_all();
 }
 
-bool LockstepClock::all_answered(std::uint64_t tick) const {
+bool LockstepPacer::all_answered(std::uint64_t tick) const {
   return std::all_of(answered_.begin(), answered_.end(), [&](const auto& controller) {
     return controller.second >= static_cast<std::int64_t>(tick);
   });
 }
 
-void LockstepClock::wait(std::uint64_t tick) {
+void LockstepPacer::wait(std::uint64_t tick) {
   std::unique_lock lock(mutex_);
   // The first tick waits for the controllers to start; later ticks for one control step.
   const double timeout_s = tick == 0 ? options_.start_timeout_s : options_.timeout_s;
@@ -133,7 +133,7 @@ void LockstepClock::wait(std::uint64_t tick) {
   }
 }
 
-void LockstepClock::stop() {
+void LockstepPacer::stop() {
   {
     std::lock_guard lock(mutex_);
     stopped_ = true;

@@ -1,16 +1,17 @@
-// The clocks of a simulated robot's loop: when may tick k, whose sensors are
+// Tick pacers: when may tick k of a simulated robot's loop, whose sensors are
 // out, apply its commands and step the simulation?
-//   LockstepClock  once every named controller has sent its command for tick k
+// Not a clock: runtime::Clock says what time it is; a pacer only holds tick k back.
+//   LockstepPacer  once every named controller has sent its command for tick k
 //                  (ActuatorCommand.tick), or after a timeout (counted, with a
 //                  warning): deterministic, as fast as the controllers allow;
-//   RealTimeClock  at start + (k + 1)·period on the wall clock (steady time):
+//   RealTimePacer  at start + (k + 1)·period on the wall clock (steady time):
 //                  the simulation paced at real time, whatever the controllers do.
 //                  A tick late by up to max_lag is caught up (scheduling jitter);
 //                  a longer delay (the process stalled: SIGSTOP, a debugger, swap)
 //                  is not: the schedule restarts from now, so the simulation pauses
 //                  with the process instead of running the missed time in a burst
 //                  under commands computed before the stall.
-// A real robot needs neither: the runner's periodic tick is its clock
+// A real robot needs neither: the runner's periodic cycle paces it
 // (robot_driver.cpp).
 //
 // Threads: wait() runs on the driver's loop; observe() on DDS threads; stop()
@@ -32,9 +33,9 @@
 
 namespace wbi::robot {
 
-class StepClock {
+class TickPacer {
  public:
-  virtual ~StepClock() = default;
+  virtual ~TickPacer() = default;
   // Before the first tick of an activation.
   virtual void start() = 0;
   // Returns when tick `tick` may go on (its commands applied, the simulation stepped).
@@ -44,12 +45,12 @@ class StepClock {
   // Every command that reached the actuator side, accepted or not (a DDS thread).
   virtual void observe(const wbi::msg::ActuatorCommand& /*command*/) {}
   virtual bool lockstep() const = 0;
-  // What the clock saw since start(), one line for the end of a run, or "" (the
+  // What the pacer saw since start(), one line for the end of a run, or "" (the
   // loop's thread).
   virtual std::string summary() const { return ""; }
 };
 
-// When a real-time tick is due: the arithmetic of RealTimeClock, on times given
+// When a real-time tick is due: the arithmetic of RealTimePacer, on times given
 // to it (tested without waiting).
 class RealTimeSchedule {
  public:
@@ -88,11 +89,11 @@ class StallLines {
   std::uint64_t unprinted_ = 0;
 };
 
-class RealTimeClock final : public StepClock {
+class RealTimePacer final : public TickPacer {
  public:
   // who: names the robot in the stall message; stalls: the status counter of
   // delays not caught up.
-  RealTimeClock(std::chrono::nanoseconds period, std::chrono::nanoseconds max_lag, std::string who,
+  RealTimePacer(std::chrono::nanoseconds period, std::chrono::nanoseconds max_lag, std::string who,
                 runtime::StatusCounter& stalls)
       : schedule_(period, max_lag), who_(std::move(who)), stalls_(stalls) {}
   void start() override;
@@ -121,11 +122,11 @@ struct LockstepOptions {
   double start_timeout_s = 60.0;         // longest wait for tick 0's (the controllers start)
 };
 
-class LockstepClock final : public StepClock {
+class LockstepPacer final : public TickPacer {
  public:
   // who: names the robot in the timeout warning, e.g. "sim_robot 'arm'";
   // timeouts: the status counter of ticks not answered in time.
-  LockstepClock(LockstepOptions options, std::string who, runtime::StatusCounter& timeouts);
+  LockstepPacer(LockstepOptions options, std::string who, runtime::StatusCounter& timeouts);
   void start() override;
   void wait(std::uint64_t tick) override;
   void stop() override;
