@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <set>
 #include <span>
 #include <stdexcept>
 
@@ -17,6 +16,8 @@
 #include <wbi/sim_models/sensor_noise.hpp>
 #include <wbi/sim_models/sim_plan.hpp>
 
+#include "contact_points.hpp"
+#include "force_torque_model.hpp"
 #include "wbi/model/aba.hpp"
 #include "wbi/model/com.hpp"
 #include "wbi/model/crba.hpp"
@@ -31,31 +32,6 @@ using Vector6d = Eigen::Matrix<double, 6, 1>;
 using sim_models::SimPlan;
 
 namespace {
-
-Matrix3d rotation_of(const urdf::Rotation& r) {
-  return Eigen::Quaterniond(r.w, r.x, r.y, r.z).normalized().toRotationMatrix();
-}
-Vector3d vector_of(const urdf::Vector3& v) { return {v.x, v.y, v.z}; }
-
-// Mass, CoM and rotational inertia about the CoM, in some body's axes.
-struct MassPiece {
-  double m = 0.0;
-  Vector3d c = Vector3d::Zero();
-  Matrix3d I_c = Matrix3d::Zero();
-  void add(double m2, const Vector3d& c2, const Matrix3d& I2) {
-    if (m2 <= 0.0) {
-      return;
-    }
-    const double mt = m + m2;
-    const Vector3d ct = (m * c + m2 * c2) / mt;
-    auto shift = [](double mass, const Vector3d& d) {
-      return Matrix3d(mass * (d.squaredNorm() * Matrix3d::Identity() - d * d.transpose()));
-    };
-    I_c = I_c + shift(m, c - ct) + I2 + shift(m2, c2 - ct);
-    m = mt;
-    c = ct;
-  }
-};
 
 // Force f at world point p as a world-origin wrench (f, p × f).
 Vector6d wrench_at_origin(const Vector3d& f, const Vector3d& p) {
@@ -84,14 +60,7 @@ struct SimBackend::Impl {
   std::size_t n_wrenches = 0;
 
   // ---- F/T sensors: the Newton–Euler of the part beyond each joint ----
-  struct Ft {
-    std::vector<int> bodies;             // bodies with mass beyond the joint
-    std::vector<MassPiece> pieces;       // their mass beyond the joint, in body axes
-    std::vector<int> contact_links;      // contact links beyond the joint
-    std::vector<int> pushes;             // pushes on links beyond the joint
-    Vector6d wrench = Vector6d::Zero();  // latest, sensor frame
-  };
-  std::vector<Ft> fts;
+  std::vector<ForceTorqueModel> fts;
 
   struct Push {
     std::int64_t start = 0, end = 0;  // substep indices: active for start ≤ k < end
@@ -122,125 +91,6 @@ Duration SimBackend::step_period() const {
 Time SimBackend::stamp() const {
   return Time(static_cast<std::int64_t>(std::llround(time_ * 1e9)));
 }
-
-namespace {
-
-// The own plant's contact points of the config's contact geometry. Box: the 4
-// corners of its −z face; sphere: its centre with its radius; capsule: its two
-// end spheres.
-std::vector<ContactPoint> contact_points(const RobotConfig& c, const SimPlan& plan) {
-  std::vector<ContactPoint> points;
-  for (std::size_t k = 0; k < plan.contact_link_of.size(); ++k) {
-    const robot_config::ContactGeometry& g = c.contacts[k];
-    const int link = plan.contact_link_of[k];
-    auto add = [&](const Vector3d& p_F, double radius) {
-      ContactPoint cp;
-      cp.link = link;
-      cp.frame = plan.contact_link_frames[static_cast<std::size_t>(link)];
-      cp.p_F = p_F;
-      cp.radius = radius;
-      cp.friction = g.friction;
-      points.push_back(cp);
-    };
-    switch (g.shape) {
-      case wbi::ContactShape::box:
-        for (int sx : {1, -1}) {
-          for (int sy : {1, -1}) {
-            add(g.position + g.rotation * Vector3d(0.5 * sx * g.size.x(), 0.5 * sy * g.size.y(),
-                                                   -0.5 * g.size.z()),
-                0.0);
-          }
-        }
-        break;
-      case wbi::ContactShape::sphere:
-        add(g.position, g.radius);
-        break;
-      case wbi::ContactShape::capsule:
-        for (int sz : {1, -1}) {
-          add(g.position + g.rotation * Vector3d(0.0, 0.0, 0.5 * sz * g.length), g.radius);
-        }
-        break;
-    }
-  }
-  return points;
-}
-
-// How far the robot at q must go down for its lowest contact point to touch the
-// ground (negative: up).
-double height_above_ground(const model::Model& m, model::Data& kinematics, const Eigen::VectorXd& q,
-                           const std::vector<ContactPoint>& points, double ground) {
-  model::forward_kinematics(m, kinematics, q);
-  double z_min = std::numeric_limits<double>::infinity();
-  for (const auto& cp : points) {
-    const auto fi = static_cast<std::size_t>(cp.frame);
-    const auto b = static_cast<std::size_t>(m.frame_body[fi]);
-    const Vector3d p =
-        kinematics.p_WB[b] + kinematics.R_WB[b] * (m.frame_R_BF[fi] * cp.p_F + m.frame_p_BF[fi]);
-    z_min = std::min(z_min, p.z() - cp.radius);
-  }
-  return z_min - ground;
-}
-
-// The links beyond a fixed joint: its child link and all the child's descendants.
-std::set<std::string> links_beyond(const urdf::ModelInterface& urdf_model,
-                                   const std::string& child_link) {
-  std::set<std::string> beyond;
-  std::vector<urdf::LinkConstSharedPtr> stack{urdf_model.getLink(child_link)};
-  while (!stack.empty()) {
-    const auto link = stack.back();
-    stack.pop_back();
-    beyond.insert(link->name);
-    for (const auto& child : link->child_links) {
-      stack.push_back(child);
-    }
-  }
-  return beyond;
-}
-
-// What the own plant needs to measure F/T sensor `sensor` of the plan: the mass
-// beyond its joint per body, the contact links and pushes beyond it.
-template <class Ft>
-Ft force_torque_sensor(const RobotConfig& c, const SimPlan& plan, const model::Model& m,
-                       const urdf::ModelInterface& urdf_model, std::size_t sensor) {
-  Ft x;
-  const std::set<std::string> beyond =
-      links_beyond(urdf_model, plan.force_torque[sensor].child_link);
-  for (const auto& name : beyond) {
-    const auto link = urdf_model.getLink(name);
-    if (!link->inertial || link->inertial->mass <= 0.0) {
-      continue;
-    }
-    const auto fi = static_cast<std::size_t>(m.frame_id(name));
-    const int body = m.frame_body[fi];
-    const auto& in = *link->inertial;
-    const Matrix3d R_LI = rotation_of(in.origin.rotation);
-    Matrix3d I_I;
-    I_I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
-    const Matrix3d R_BI = m.frame_R_BF[fi] * R_LI;
-    const Vector3d c_B = m.frame_p_BF[fi] + m.frame_R_BF[fi] * vector_of(in.origin.position);
-    auto it = std::find(x.bodies.begin(), x.bodies.end(), body);
-    if (it == x.bodies.end()) {
-      x.bodies.push_back(body);
-      x.pieces.emplace_back();
-      it = x.bodies.end() - 1;
-    }
-    x.pieces[static_cast<std::size_t>(it - x.bodies.begin())].add(in.mass, c_B,
-                                                                  R_BI * I_I * R_BI.transpose());
-  }
-  for (std::size_t i = 0; i < plan.contact_links.size(); ++i) {
-    if (beyond.count(plan.contact_links[i]) != 0) {
-      x.contact_links.push_back(static_cast<int>(i));
-    }
-  }
-  for (std::size_t i = 0; i < c.pushes.size(); ++i) {
-    if (beyond.count(c.pushes[i].link) != 0) {
-      x.pushes.push_back(static_cast<int>(i));
-    }
-  }
-  return x;
-}
-
-}  // namespace
 
 actuation::BackendDescription SimBackend::on_configure() {
   const RobotConfig& c = config_;
@@ -310,7 +160,7 @@ actuation::BackendDescription SimBackend::on_configure() {
   }
   s.wrenches.assign(plan.contact_links.size() + plan.pushes.size(), model::ExternalWrench{});
   for (std::size_t i = 0; i < plan.force_torque.size(); ++i) {
-    s.fts.push_back(force_torque_sensor<Impl::Ft>(c, plan, m, *urdf_model, i));
+    s.fts.push_back(force_torque_model(c, plan, m, *urdf_model, i));
   }
 
   impl_ = std::move(impl);
@@ -514,7 +364,7 @@ void SimBackend::compute_sensors_after_step() {
   // beyond it:  f_J = Σ_b (I_b a_b + v_b ×* I_b v_b) − Σ w_ext   (world origin,
   // a_b includes −g), measured wrench (child on parent) = −f_J.
   for (std::size_t i = 0; i < s.fts.size(); ++i) {
-    Impl::Ft& ft = s.fts[i];
+    ForceTorqueModel& ft = s.fts[i];
     Vector6d f = Vector6d::Zero();
     for (std::size_t k = 0; k < ft.bodies.size(); ++k) {
       const auto b = static_cast<std::size_t>(ft.bodies[k]);
