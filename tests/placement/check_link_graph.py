@@ -4,8 +4,11 @@ directly or through others, on the deploy-file reader (wbi_placement, or
 wbi_launch which links it) or on a controller (any target of controllers/):
 components never depend on controllers; the programs that assemble both live
 in apps/. Also when a bottom layer reaches a project target above it (the
-vocabulary links none, the IDL only the vocabulary, dds/ only those two), and
-when a simulation engine reaches another (they share wbi_sim_models).
+vocabulary links none, the IDL only the vocabulary, dds/ only those two, the
+model libraries of model_service/ only the vocabulary), when a simulation
+engine reaches another (they share wbi_sim_models), and when a target outside
+cli/ reaches one of cli/ (the command line is a thin layer on top: its verbs
+call the libraries, never the other way round).
 
 Input: lines "TARGET|FOLDER|DEP;DEP;..." written by tests/placement/CMakeLists.txt
 at generate time; aliases wbi::x name wbi_x.
@@ -23,6 +26,7 @@ BELOW = {
     "vocabulary": set(),
     "idl": {"wbi_vocabulary"},
     "dds": {"wbi_vocabulary", "wbi_idl"},
+    "model_service": {"wbi_vocabulary"},
 }
 
 
@@ -73,6 +77,20 @@ def engine_failures(edges, folder_of):
     return failures
 
 
+def cli_failures(edges, folder_of):
+    """A target outside cli/ that reaches a target of cli/."""
+    cli_targets = {t for t, f in folder_of.items() if f == "cli" or f.startswith("cli/")}
+    failures = []
+    for target, folder in sorted(folder_of.items()):
+        if target in cli_targets:
+            continue
+        for dependency, path_to in sorted(reachable(edges, target).items()):
+            if dependency in cli_targets:
+                failures.append(f"{target} ({folder}) reaches {dependency} of cli/: " +
+                                " -> ".join(path_to))
+    return failures
+
+
 def main(path):
     edges, folder_of = {}, {}
     with open(path) as graph:
@@ -103,19 +121,22 @@ def main(path):
     failures += layer_failed
     engine_failed = engine_failures(edges, folder_of)
     failures += engine_failed
+    cli_failed = cli_failures(edges, folder_of)
+    failures += cli_failed
     for failure in failures:
         print("FAIL:", failure)
     if checked == 0:
         print(f"FAIL: no target of dds/ or components/ in {path}")
         return 1
     if layer_checked == 0:
-        print(f"FAIL: no target of vocabulary/, idl/ or dds/ in {path}")
+        print(f"FAIL: no target of vocabulary/, idl/, dds/ or model_service/ in {path}")
         return 1
     print(f"{checked} targets of dds/ and components/ checked; "
-          f"{len(failures) - len(layer_failed) - len(engine_failed)} reach the deploy-file reader "
-          f"or a controller; {layer_checked} targets of vocabulary/, idl/ and dds/: "
-          f"{len(layer_failed)} reach above their layer; {len(engine_failed)} engine targets "
-          f"reach another engine")
+          f"{len(failures) - len(layer_failed) - len(engine_failed) - len(cli_failed)} reach the "
+          f"deploy-file reader or a controller; {layer_checked} targets of vocabulary/, idl/, "
+          f"dds/ and model_service/: {len(layer_failed)} reach above their layer; "
+          f"{len(engine_failed)} engine targets reach another engine; {len(cli_failed)} targets "
+          f"outside cli/ reach cli/")
     return 1 if failures else 0
 
 
