@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <unistd.h>
+
 #include <wbi/mjcf/mjcf.hpp>
 #include <wbi/model_inspect/mjcf_export.hpp>
 
@@ -74,13 +76,15 @@ TEST(MjcfExport, SummaryNamesTheModelAndItsSizes) {
 }
 
 TEST(MjcfExport, SaveTextFileWritesTheBytesOrNamesTheFile) {
-  const auto path = std::filesystem::temp_directory_path() / "wbi_inspect_export.xml";
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("wbi_inspect_export_" + std::to_string(::getpid()) + ".xml");
   const std::string text = "<mujoco>\n\t\xc2\xb5\n</mujoco>";  // a tab and a UTF-8 µ, kept as is
   inspect::save_text_file(text, path.string());
   std::ifstream in(path, std::ios::binary);
   std::ostringstream back;
   back << in.rdbuf();
   EXPECT_EQ(back.str(), text);
+  std::filesystem::remove(path);
   try {
     inspect::save_text_file(text, "/no/such/dir/x.xml");
     FAIL() << "no error";

@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <unistd.h>
+
 #include <wbi/model/algorithms.hpp>
 #include <wbi/model_inspect/state_evaluation.hpp>
 
@@ -55,8 +57,11 @@ std::string error_of(const char* file, const json& state) {
   return "";
 }
 
+// A file in the temporary directory, its name made unique by the process id (two
+// build trees may run this test at the same time).
 std::filesystem::path temp_file(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / name;
+  const auto path =
+      std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name);
   std::ofstream(path) << text;
   return path;
 }
@@ -176,4 +181,7 @@ TEST(StateEvaluation, ReadStateReadsAnObjectAndNamesTheFileOtherwise) {
   const auto broken = temp_file("wbi_inspect_state_broken.json", "{\"q\": ");
   EXPECT_EQ(
       error_of_file(broken.string()).rfind("state '" + broken.string() + "': JSON error: ", 0), 0u);
+  for (const auto& file : {good, array, broken}) {
+    std::filesystem::remove(file);
+  }
 }
