@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Fails when a project target (library or program) reaches, directly or through
 others, a target of a layer it may not use (LAYERS below, the table of the
-top-level README), or when a simulation engine reaches another engine.
+top-level README), when a simulation engine reaches another engine, or when a
+target outside cli/ reaches one of cli/.
 
 The layer of a target is the top folder it is declared in. Among what this
 enforces: components never depend on controllers or on the deploy-file reader
@@ -80,6 +81,19 @@ def layer_failures(edges, folder_of):
     return failures, checked
 
 
+def cli_failures(edges, folder_of):
+    """Targets outside cli/ that reach a target of cli/ (the verbs are the top)."""
+    failures = []
+    for target, folder in sorted(folder_of.items()):
+        if layer_of(folder) == "cli":
+            continue
+        for dependency, path_to in sorted(reachable(edges, target).items()):
+            if layer_of(folder_of.get(dependency, "")) == "cli":
+                failures.append(f"{target} ({folder}) reaches {dependency} of cli/: " +
+                                " -> ".join(path_to))
+    return failures
+
+
 def engine_failures(edges, folder_of):
     """An engine's targets that reach another engine's library."""
     failures = []
@@ -104,14 +118,14 @@ def main(path):
             folder_of[target] = folder
             edges[target] = {name_of(d) for d in dependencies.split(";") if d.strip()}
     layer_failed, checked = layer_failures(edges, folder_of)
-    engine_failed = engine_failures(edges, folder_of)
+    engine_failed = engine_failures(edges, folder_of) + cli_failures(edges, folder_of)
     missing = [f"no target in {layer}/" for layer in ("vocabulary", "dds", "components",
                                                        "robot_side", "runtime")
                if not any(layer_of(f) == layer for f in folder_of.values())]
     for failure in layer_failed + engine_failed + missing:
         print("FAIL:", failure)
     print(f"{checked} targets in {len(LAYERS)} layers checked: {len(layer_failed)} reach a layer "
-          f"theirs may not use; {len(engine_failed)} engine targets reach another engine")
+          f"theirs may not use; {len(engine_failed)} reach another engine or cli/")
     return 1 if layer_failed or engine_failed or missing else 0
 
 
