@@ -23,6 +23,23 @@ namespace wbi::dds::detail {
 
 namespace fdds = eprosima::fastdds::dds;
 
+// 24 lower-case hex digits.
+inline std::string prefix_text(const eprosima::fastrtps::rtps::GuidPrefix_t& prefix) {
+  static constexpr char kDigits[] = "0123456789abcdef";
+  std::string text;
+  for (const auto byte : prefix.value) {
+    text += kDigits[byte >> 4];
+    text += kDigits[byte & 0xf];
+  }
+  return text;
+}
+
+// Who this participant is, for others' discovery (ParticipantInfo): a robot
+// refuses to start when its name is taken, and names the other by host and pid.
+inline constexpr const char* kHostProperty = "wbi.host";
+inline constexpr const char* kPidProperty = "wbi.pid";
+inline constexpr const char* kStartProperty = "wbi.start_ns";
+
 // Whether `other` is a participant of a process of `host` that has ended (its
 // announcement stays until its lease ends).
 bool ended_on_host(const ParticipantInfo& other, const std::string& host);

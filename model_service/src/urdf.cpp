@@ -1,6 +1,7 @@
 // URDF → Model. The XML is first read with tinyxml2 to report syntax errors
 // with their line and to check the tree structure (one root, no loops, no
-// dangling links); urdfdom then provides the values.
+// dangling links; urdf_structure.cpp); urdfdom then provides the values, whose
+// inertias are checked or repaired (urdf_inertia.cpp).
 #include "wbi/model/urdf.hpp"
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include <Eigen/Geometry>
 
 #include "joint.hpp"
+#include "urdf_detail.hpp"
 
 namespace wbi::model {
 
@@ -40,214 +42,11 @@ Placement to_placement(const urdf::Pose& pose) {
   return x;
 }
 
-class Error {
- public:
-  explicit Error(std::string source) : source_(std::move(source)) {}
-  [[noreturn]] void fail(const std::string& what) const {
-    throw std::runtime_error("URDF '" + source_ + "': " + what);
-  }
-
- private:
-  std::string source_;
-};
-
-std::string line_of(const tinyxml2::XMLElement* e) {
-  return " (line " + std::to_string(e->GetLineNum()) + ")";
-}
-
-// What the raw XML says about one joint.
-struct RawJoint {
-  std::string parent, child, type;
-  int order = 0;  // position in the file
-  int line = 0;
-};
-
-// Structure checks on the raw XML; returns the joints by name.
-std::map<std::string, RawJoint> check_structure(const std::string& xml, const Error& err) {
-  tinyxml2::XMLDocument doc;
-  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) {
-    err.fail("XML error at line " + std::to_string(doc.ErrorLineNum()) + ": " + doc.ErrorStr());
-  }
-  const tinyxml2::XMLElement* robot = doc.RootElement();
-  if (robot == nullptr || std::string(robot->Name()) != "robot") {
-    err.fail("the root element is not <robot>");
-  }
-  std::map<std::string, int> link_line;
-  for (auto* l = robot->FirstChildElement("link"); l != nullptr;
-       l = l->NextSiblingElement("link")) {
-    const char* name = l->Attribute("name");
-    if (name == nullptr) {
-      err.fail("<link> without a name" + line_of(l));
-    }
-    if (!link_line.emplace(name, l->GetLineNum()).second) {
-      err.fail("link '" + std::string(name) + "' is defined twice" + line_of(l));
-    }
-  }
-  if (link_line.empty()) {
-    err.fail("no <link> in <robot>");
-  }
-  std::map<std::string, RawJoint> joints;
-  std::map<std::string, std::string> parent_joint;  // child link → joint
-  int order = 0;
-  for (auto* j = robot->FirstChildElement("joint"); j != nullptr;
-       j = j->NextSiblingElement("joint")) {
-    const char* name = j->Attribute("name");
-    if (name == nullptr) {
-      err.fail("<joint> without a name" + line_of(j));
-    }
-    RawJoint raw;
-    raw.order = order++;
-    raw.line = j->GetLineNum();
-    raw.type = j->Attribute("type") != nullptr ? j->Attribute("type") : "";
-    const auto* p = j->FirstChildElement("parent");
-    const auto* c = j->FirstChildElement("child");
-    if (p == nullptr || p->Attribute("link") == nullptr || c == nullptr ||
-        c->Attribute("link") == nullptr) {
-      err.fail("joint '" + std::string(name) + "' needs <parent link=…> and <child link=…>" +
-               line_of(j));
-    }
-    raw.parent = p->Attribute("link");
-    raw.child = c->Attribute("link");
-    for (const std::string& l : {raw.parent, raw.child}) {
-      if (link_line.count(l) == 0) {
-        err.fail("joint '" + std::string(name) + "' refers to unknown link '" + l + "'" +
-                 line_of(j));
-      }
-    }
-    if (raw.parent == raw.child) {
-      err.fail("joint '" + std::string(name) + "' connects link '" + raw.parent + "' to itself" +
-               line_of(j));
-    }
-    if (auto it = parent_joint.find(raw.child); it != parent_joint.end()) {
-      err.fail("link '" + raw.child + "' is the child of two joints ('" + it->second + "' and '" +
-               name + "'): kinematic loop" + line_of(j));
-    }
-    parent_joint[raw.child] = name;
-    // the axis, checked on the raw text: a zero axis cannot be normalised
-    if (const auto* axis = j->FirstChildElement("axis");
-        axis != nullptr && raw.type != "fixed" && axis->Attribute("xyz") != nullptr) {
-      std::istringstream in(axis->Attribute("xyz"));
-      double x = 0, y = 0, z = 0;
-      if (!(in >> x >> y >> z) || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) {
-        err.fail("joint '" + std::string(name) + "' has a malformed axis" + line_of(axis));
-      }
-      if (std::sqrt(x * x + y * y + z * z) < 1e-12) {
-        err.fail("joint '" + std::string(name) + "' has a zero axis" + line_of(axis));
-      }
-    }
-    if (!joints.emplace(name, raw).second) {
-      err.fail("joint '" + std::string(name) + "' is defined twice" + line_of(j));
-    }
-  }
-  std::vector<std::string> roots;
-  for (const auto& [link, line] : link_line) {
-    if (parent_joint.count(link) == 0) {
-      roots.push_back(link);
-    }
-  }
-  if (roots.empty()) {
-    err.fail("no root link: the joints form a kinematic loop");
-  }
-  if (roots.size() > 1) {
-    std::string list;
-    for (const auto& r : roots) {
-      list += (list.empty() ? "'" : ", '") + r + "'";
-    }
-    err.fail("several root links (" + list + "): the links do not form one tree");
-  }
-  // every link reachable from the root, else a loop
-  std::map<std::string, std::vector<std::string>> children;
-  for (const auto& [name, raw] : joints) {
-    children[raw.parent].push_back(raw.child);
-  }
-  std::set<std::string> seen{roots.front()};
-  std::vector<std::string> stack{roots.front()};
-  while (!stack.empty()) {
-    const std::string l = stack.back();
-    stack.pop_back();
-    for (const auto& c : children[l]) {
-      if (seen.insert(c).second) {
-        stack.push_back(c);
-      }
-    }
-  }
-  if (seen.size() != link_line.size()) {
-    for (const auto& [link, line] : link_line) {
-      if (seen.count(link) == 0) {
-        err.fail("link '" + link + "' (line " + std::to_string(line) +
-                 ") is not reachable from the root: kinematic loop");
-      }
-    }
-  }
-  return joints;
-}
-
-void check_inertial(const urdf::Link& link, bool strict, const Error& err) {
-  if (!link.inertial) {
-    return;
-  }
-  const urdf::Inertial& in = *link.inertial;
-  const double m = in.mass;
-  if (!std::isfinite(m) || m < 0.0) {
-    err.fail("link '" + link.name + "' has a negative or non-finite mass (" + std::to_string(m) +
-             ")");
-  }
-  Matrix3d I;
-  I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
-  if (!I.allFinite()) {
-    err.fail("link '" + link.name + "' has a non-finite inertia");
-  }
-  // always: no negative moment of inertia about the inertial axes
-  if (I.diagonal().minCoeff() < 0.0) {
-    std::ostringstream msg;
-    msg << "link '" << link.name << "' has a non-physical inertia (negative moment: ixx " << in.ixx
-        << ", iyy " << in.iyy << ", izz " << in.izz << ")";
-    err.fail(msg.str());
-  }
-  if (!strict) {
-    return;
-  }
-  // strict: positive semi-definite and triangle inequality λ1 + λ2 ≥ λ3
-  const Vector3d e =
-      Eigen::SelfAdjointEigenSolver<Matrix3d>(I, Eigen::EigenvaluesOnly).eigenvalues();
-  const double tol = 1e-9 * std::max(1e-9, e.cwiseAbs().maxCoeff());
-  if (e[0] < -tol || e[0] + e[1] < e[2] - tol) {
-    std::ostringstream msg;
-    msg << "link '" << link.name << "' has a non-physical inertia (principal moments " << e[0]
-        << ", " << e[1] << ", " << e[2] << ")";
-    err.fail(msg.str());
-  }
-}
-
-// Inertia repair (LoadOptions::repair_inertia). A rotational inertia about the CoM
-// is physical iff it is the inertia of some mass distribution: with principal
-// moments λ_k, the second moments of mass along the principal axes,
-// σ_k = (λ1 + λ2 + λ3)/2 − λ_k = ∫ x_k² dm, are all ≥ 0 (σ_k ≥ 0 is the triangle
-// inequality λ_i + λ_j ≥ λ_k, and implies λ_k ≥ 0). The repair keeps the principal
-// axes and raises each negative σ_k to kRepairFloor · Σσ (a flat but not
-// infinitely thin body), which is the nearest valid inertia in the σ coordinates
-// and strictly inside the valid set, so that MuJoCo's check (A + B ≥ C, no
-// tolerance) also passes after rounding. Values σ_k ≥ −kRepairTolerance · Σσ
-// count as valid (round-off of a body on the boundary, e.g. a thin plate).
-constexpr double kRepairFloor = 1e-9;
-constexpr double kRepairTolerance = 1e-12;
-
-// Returns true and writes the repaired inertia when I is not physical.
-bool repair_inertia(const Matrix3d& I, Matrix3d& repaired) {
-  const Eigen::SelfAdjointEigenSolver<Matrix3d> eig(I);
-  const Vector3d lambda = eig.eigenvalues();
-  const double s = 0.5 * lambda.sum();
-  Vector3d sigma = Vector3d::Constant(s) - lambda;
-  if (!(s > 0.0) || sigma.minCoeff() >= -kRepairTolerance * s) {
-    return false;  // zero (massless or point mass) or physical
-  }
-  sigma = sigma.cwiseMax(kRepairFloor * s);
-  const Vector3d moments = Vector3d::Constant(sigma.sum()) - sigma;  // λ'_k = Σσ' − σ'_k
-  const Matrix3d V = eig.eigenvectors();
-  repaired = V * moments.asDiagonal() * V.transpose();
-  repaired = 0.5 * (repaired + repaired.transpose()).eval();
-  return true;
-}
+using detail::check_inertial;
+using detail::check_structure;
+using detail::Error;
+using detail::RawJoint;
+using detail::repair_inertia;
 
 struct Builder {
   const urdf::ModelInterface& urdf;

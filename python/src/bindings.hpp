@@ -8,7 +8,11 @@ namespace wbi::python {
 // wbi.Model: the rigid-body model library (model_bindings.cpp).
 void bind_model(pybind11::module_& module);
 
-// wbi.DdsInterface and the interface's vocabulary (interface_bindings.cpp).
+// wbi.DdsInterface (interface_bindings.cpp), after the interface's vocabulary.
 void bind_interface(pybind11::module_& module);
+
+// The interface's vocabulary: its enums, Stamp, RobotState and errors
+// (vocabulary_bindings.cpp; bind_interface calls it first).
+void bind_vocabulary(pybind11::module_& module);
 
 }  // namespace wbi::python

@@ -1,0 +1,110 @@
+// Private to the estimator component: the EstimatorComponent class (its inputs,
+// estimators and state), whose parts are estimator_component*.cpp.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <wbi/dds/publisher.hpp>
+#include <wbi/dds/subscriber.hpp>
+#include <wbi/estimation/estimator_factory.hpp>
+#include <wbi/estimation/low_pass_filter.hpp>
+
+#include "wbi/estimator/base_estimator.hpp"
+#include "wbi/estimator/estimator_component.hpp"
+#include "wbi/estimator/legged_base_estimator.hpp"
+
+namespace wbi::estimator::detail {
+
+enum class BaseSource { fixed, fixed_link, legged, topic };
+
+class EstimatorComponent final : public runtime::Component {
+ public:
+  void on_configure(const runtime::Parameters& parameters,
+                    const runtime::ComponentContext& context) override;
+  void on_activate() override;
+  void on_deactivate() override { active_ = false; }
+  void on_cleanup() override;
+  void on_shutdown() override { on_cleanup(); }
+
+ private:
+  void configure_legged(const runtime::Parameters& parameters);
+  void prepare_legged(const wbi::msg::RobotDescription& description,
+                      const std::vector<std::string>& joints);
+  bool prepare(std::size_t joints);
+  bool prepare_sized(std::size_t joints);
+  void on_description();
+  void on_base_sample();
+  bool ready(std::size_t joints);
+  void process_pending();  // caller holds mutex_
+  void on_sample(const wbi::msg::SensorSample& sample, const dds::detail::Guid& writer);
+  void on_new_producer(const dds::detail::Guid& writer);  // caller holds mutex_
+  void estimate(const wbi::msg::SensorSample& sample);
+  void filter_force_torque(const wbi::msg::SensorSample& sample);
+  void publish(const wbi::msg::SensorSample& sample);
+  void write_base(const BaseState& base);
+  bool has_legged_inputs(const wbi::msg::SensorSample& sample) const;
+  ImuInput sample_imu() const;
+  const Eigen::Matrix3Xd& foot_forces();
+  void fill_base(const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq);
+  void on_parameter(const wbi::msg::EstimatorParameter& parameter);
+  void apply_parameter(const wbi::msg::EstimatorParameter& parameter);
+
+  std::string robot_;
+  std::string method_;
+  estimation::Parameters method_parameters_;
+  double cutoff_hz_ = 0.0;
+  BaseSource base_source_ = BaseSource::fixed;
+  std::string urdf_;
+  std::string fixed_link_;
+  Eigen::Matrix4d base_pose_ = Eigen::Matrix4d::Identity();
+
+  std::atomic<bool> active_{false};
+  std::mutex mutex_;  // between the sample and the parameter callbacks
+  std::unique_ptr<estimation::DerivativeEstimator> estimator_;
+  std::optional<estimation::LowPassFilter> torque_filter_;
+  std::optional<estimation::LowPassFilter> force_torque_filter_;  // 6 per F/T sensor; none: no F/T
+  Eigen::VectorXd wrenches_;  // [6 m] the sample's F/T readings (force, torque)
+  std::unique_ptr<FixedLinkBaseEstimator> base_estimator_;
+  std::unique_ptr<LeggedBaseEstimator> legged_estimator_;
+  LeggedBaseOptions legged_options_;
+  std::string imu_sensor_;  // base: legged; empty: the first IMU
+  // base: legged; each foot's F/T sensors (none: unmeasured feet)
+  std::array<std::vector<std::string>, 2> foot_sensors_;
+  int imu_index_ = -1;                  // among the sample's IMU readings
+  std::vector<int> foot_sensor_index_;  // among the sample's F/T readings, the left foot's first
+  Eigen::Matrix3Xd foot_forces_;        // their forces, one column each
+  int needed_force_torques_ = 0;        // F/T readings a sample must have for them
+  const wbi::msg::SensorSample* current_sample_ = nullptr;  // while publishing its estimate
+  bool have_base_sample_ = false;                           // base: topic
+  bool failed_ = false;                            // the description did not fit the base estimator
+  std::optional<wbi::msg::SensorSample> pending_;  // a sample that came before the description
+  Eigen::VectorXd q_;
+  Eigen::VectorXd tau_;
+  std::uint32_t ignored_ = 0;
+  runtime::StatusCounter* dropped_ = nullptr;  // the report's counters (on_configure)
+  runtime::StatusCounter* duplicated_ = nullptr;
+  runtime::StatusCounter* out_of_order_ = nullptr;
+  runtime::StatusCounter* gaps_ = nullptr;
+  runtime::StatusCounter* non_finite_ = nullptr;
+  runtime::StatusCounter* wrong_size_ = nullptr;
+  runtime::StatusCounter* new_producers_ = nullptr;
+  dds::detail::Guid producer_{};              // the writer of the last sensor sample
+  estimation::StampCounters earlier_counts_;  // of the filters before a new producer
+  wbi::msg::StateEstimate state_;
+  dds::Received<wbi::msg::GroundTruth> ground_truth_rx_;
+
+  std::unique_ptr<dds::Subscriber<wbi::msg::RobotDescription>> description_;
+  std::unique_ptr<dds::Publisher<wbi::msg::StateEstimate>> state_publisher_;
+  std::unique_ptr<dds::Subscriber<wbi::msg::GroundTruth>> ground_truth_;
+  std::unique_ptr<dds::Subscriber<wbi::msg::EstimatorParameter>> parameter_subscriber_;
+  std::unique_ptr<dds::Subscriber<wbi::msg::SensorSample>> sensors_;
+};
+
+}  // namespace wbi::estimator::detail

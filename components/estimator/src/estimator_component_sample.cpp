@@ -1,0 +1,236 @@
+// The estimator component's work per sensor sample: waiting for its inputs,
+// estimating joints, F/T and base state, and publishing the StateEstimate.
+#include <algorithm>
+#include <cstdio>
+#include <mutex>
+#include <string>
+
+#include <Eigen/Geometry>
+#include <wbi/runtime/console_line.hpp>
+
+#include "estimator_component_impl.hpp"
+
+namespace wbi::estimator {
+
+namespace {
+
+void write_pose(wbi::msg::Pose& pose, const Eigen::Matrix4d& H) {
+  const Eigen::Quaterniond q(Eigen::Matrix3d(H.topLeftCorner<3, 3>()));
+  pose.position().x(H(0, 3));
+  pose.position().y(H(1, 3));
+  pose.position().z(H(2, 3));
+  pose.orientation().w(q.w());
+  pose.orientation().x(q.x());
+  pose.orientation().y(q.y());
+  pose.orientation().z(q.z());
+}
+
+}  // namespace
+
+namespace detail {
+
+// A sample that came before activation or before the description is kept and
+// estimated once both are there: a lockstep robot sends its next sample only
+// after this one has been answered.
+void EstimatorComponent::on_description() {
+  std::lock_guard lock(mutex_);
+  process_pending();
+}
+
+void EstimatorComponent::on_base_sample() {
+  std::lock_guard lock(mutex_);
+  have_base_sample_ = true;
+  process_pending();
+}
+
+// Every input of an estimate is there: active, the description, the base sample (topic).
+bool EstimatorComponent::ready(std::size_t joints) {
+  return active_ && (base_source_ != BaseSource::topic || have_base_sample_) &&
+         (estimator_ || prepare(joints));
+}
+
+void EstimatorComponent::process_pending() {  // caller holds mutex_
+  if (pending_ && ready(pending_->encoder_position().size())) {
+    estimate(*pending_);
+    pending_.reset();
+  }
+}
+
+void EstimatorComponent::on_sample(const wbi::msg::SensorSample& sample,
+                                   const dds::detail::Guid& writer) {
+  std::lock_guard lock(mutex_);
+  if (writer != producer_) {
+    on_new_producer(writer);
+  }
+  if (!ready(sample.encoder_position().size())) {
+    pending_ = sample;  // start-up only: not active, no description or no base sample yet
+    return;
+  }
+  estimate(sample);
+}
+
+// Samples from another writer than the last one: the robot restarted (a new
+// process, whose stamps and sequence numbers start again; the sensor reader
+// moves to a new writer only when the one it took is gone, dds/producers.hpp). Every filter
+// starts afresh from its samples, sized again from its description: continued, they would ignore
+// its samples as out of order until its stamps passed the old ones, or differentiate across the
+// jump. Allocates: an event, not a tick.
+void EstimatorComponent::on_new_producer(const dds::detail::Guid& writer) {  // caller holds mutex_
+  const bool first = producer_ == dds::detail::Guid{};
+  producer_ = writer;
+  if (first) {
+    return;
+  }
+  new_producers_->add();
+  const std::string text = "estimator of robot '" + robot_ + "': sensor samples from a new " +
+                           "writer " + dds::detail::guid_hex(writer) +
+                           " (the robot restarted?): filters restarted";
+  report().set_error(text);
+  runtime::print_line(stderr, text);
+  if (estimator_) {
+    earlier_counts_ += estimator_->stamp_counters();
+  }
+  estimator_.reset();  // prepared anew at the next sample (prepare_sized)
+  base_estimator_.reset();
+  legged_estimator_.reset();
+  failed_ = false;
+}
+
+void EstimatorComponent::estimate(const wbi::msg::SensorSample& sample) {
+  const auto& positions = sample.encoder_position();
+  if (positions.size() != static_cast<std::size_t>(q_.size())) {
+    ++ignored_;  // a sample of the wrong size is not this robot's: never applied
+    wrong_size_->set(ignored_);
+    return;
+  }
+  if (base_source_ == BaseSource::legged && !has_legged_inputs(sample)) {
+    ++ignored_;  // no IMU or foot F/T reading where the description has them
+    wrong_size_->set(ignored_);
+    return;
+  }
+  q_ = Eigen::Map<const Eigen::VectorXd>(positions.data(), q_.size());
+  estimator_->update(sample.header().stamp_ns(), q_);
+  const auto& tau_in = sample.joint_torque();
+  if (tau_in.size() == positions.size()) {
+    torque_filter_->update(sample.header().stamp_ns(),
+                           Eigen::Map<const Eigen::VectorXd>(tau_in.data(), q_.size()));
+    tau_ = torque_filter_->value();
+  }
+  filter_force_torque(sample);
+  publish(sample);
+}
+
+// The F/T readings, low-passed like the joint torques, into the state's
+// force_torque (sensor frame, in the description's order). A sample without
+// every reading leaves the last estimate.
+void EstimatorComponent::filter_force_torque(const wbi::msg::SensorSample& sample) {
+  const auto& readings = sample.force_torque();
+  if (!force_torque_filter_ || 6 * readings.size() != static_cast<std::size_t>(wrenches_.size())) {
+    return;
+  }
+  for (std::size_t i = 0; i < readings.size(); ++i) {
+    const auto& w = readings[i].wrench();
+    wrenches_.segment<6>(static_cast<Eigen::Index>(6 * i)) << w.force().x(), w.force().y(),
+        w.force().z(), w.torque().x(), w.torque().y(), w.torque().z();
+  }
+  force_torque_filter_->update(sample.header().stamp_ns(), wrenches_);
+  const auto& filtered = force_torque_filter_->value();
+  for (std::size_t i = 0; i < readings.size(); ++i) {
+    const auto k = static_cast<Eigen::Index>(6 * i);
+    auto& out = state_.force_torque()[i];
+    out.force().x(filtered[k]);
+    out.force().y(filtered[k + 1]);
+    out.force().z(filtered[k + 2]);
+    out.torque().x(filtered[k + 3]);
+    out.torque().y(filtered[k + 4]);
+    out.torque().z(filtered[k + 5]);
+  }
+}
+
+void EstimatorComponent::publish(const wbi::msg::SensorSample& sample) {
+  auto& state = state_;
+  state.header().stamp_ns(sample.header().stamp_ns());
+  state.header().seq(sample.header().seq());
+  const auto& dq = estimator_->velocity();
+  const auto& ddq = estimator_->acceleration();
+  for (Eigen::Index j = 0; j < q_.size(); ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    state.q()[k] = q_[j];
+    state.dq()[k] = dq[j];
+    state.ddq()[k] = ddq[j];
+    state.tau()[k] = tau_[j];
+  }
+  current_sample_ = &sample;
+  fill_base(dq, ddq);
+  current_sample_ = nullptr;
+  auto counters = earlier_counts_;
+  counters += estimator_->stamp_counters();
+  state.warnings(static_cast<std::uint32_t>(counters.anomalies()) + ignored_);
+  dropped_->set(counters.dropped);
+  duplicated_->set(counters.duplicated);
+  out_of_order_->set(counters.out_of_order);
+  gaps_->set(counters.gaps);
+  non_finite_->set(counters.non_finite);
+  state_publisher_->publish(state);
+}
+
+void EstimatorComponent::write_base(const BaseState& base) {
+  write_pose(state_.base_pose(), base.world_H_base);
+  std::copy(base.velocity.data(), base.velocity.data() + 6, state_.base_velocity().begin());
+  std::copy(base.acceleration.data(), base.acceleration.data() + 6,
+            state_.base_acceleration().begin());
+}
+
+bool EstimatorComponent::has_legged_inputs(const wbi::msg::SensorSample& sample) const {
+  return static_cast<int>(sample.imus().size()) > imu_index_ &&
+         static_cast<int>(sample.force_torque().size()) >= needed_force_torques_;
+}
+
+ImuInput EstimatorComponent::sample_imu() const {
+  const auto& imu = current_sample_->imus()[static_cast<std::size_t>(imu_index_)];
+  const auto& o = imu.orientation();
+  const auto& w = imu.angular_velocity();
+  const auto& a = imu.linear_acceleration();
+  ImuInput input;
+  input.orientation = Eigen::Quaterniond(o.w(), o.x(), o.y(), o.z());
+  input.gyro << w.x(), w.y(), w.z();
+  input.accelerometer << a.x(), a.y(), a.z();
+  return input;
+}
+
+// The feet's F/T forces, in the order of the legged estimator's force_frames.
+const Eigen::Matrix3Xd& EstimatorComponent::foot_forces() {
+  for (std::size_t i = 0; i < foot_sensor_index_.size(); ++i) {
+    const auto index = static_cast<std::size_t>(foot_sensor_index_[i]);
+    const auto& f = current_sample_->force_torque()[index].wrench().force();
+    foot_forces_.col(static_cast<Eigen::Index>(i)) << f.x(), f.y(), f.z();
+  }
+  return foot_forces_;
+}
+
+void EstimatorComponent::fill_base(const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq) {
+  auto& state = state_;
+  switch (base_source_) {
+    case BaseSource::fixed:
+      write_pose(state.base_pose(), base_pose_);
+      break;
+    case BaseSource::fixed_link:
+      write_base(base_estimator_->update(q_, dq, ddq));
+      break;
+    case BaseSource::legged:
+      write_base(legged_estimator_->update(current_sample_->header().stamp_ns(), q_, dq, ddq,
+                                           sample_imu(), foot_forces()));
+      break;
+    case BaseSource::topic:
+      if (ground_truth_->latest_into(ground_truth_rx_)) {
+        state.base_pose(ground_truth_rx_.sample.base_pose());
+        state.base_velocity(ground_truth_rx_.sample.base_velocity());
+        state.base_acceleration(ground_truth_rx_.sample.base_acceleration());
+      }
+      break;
+  }
+}
+
+}  // namespace detail
+
+}  // namespace wbi::estimator
