@@ -104,7 +104,7 @@ class Writer {
   const std::filesystem::path& path() const;
 
  private:
-  struct Impl;  // the file, the open chunk and what the summary needs (writer.cpp)
+  struct Impl;  // the file, the open chunk and what the summary needs (writer_impl.hpp)
   std::unique_ptr<Impl> impl_;
 };
 
