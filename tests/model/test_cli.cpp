@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "json_eigen.hpp"
 #include "model_test_common.hpp"
 #include "verb.hpp"
 
@@ -42,24 +43,8 @@ std::string write_state(const json& state) {
   return path.string();
 }
 
-Eigen::MatrixXd matrix(const json& rows) {
-  Eigen::MatrixXd m(static_cast<Eigen::Index>(rows.size()),
-                    static_cast<Eigen::Index>(rows[0].size()));
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    for (std::size_t c = 0; c < rows[r].size(); ++c) {
-      m(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = rows[r][c].get<double>();
-    }
-  }
-  return m;
-}
-
-Eigen::VectorXd vector(const json& v) {
-  Eigen::VectorXd x(static_cast<Eigen::Index>(v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    x[static_cast<Eigen::Index>(i)] = v[i].get<double>();
-  }
-  return x;
-}
+Eigen::MatrixXd matrix(const json& rows) { return wbi::test::matrix_of_json(rows); }
+Eigen::VectorXd vector(const json& v) { return wbi::test::vector_of_json(v); }
 
 std::string humanoid() { return wbi::test::project_model("humanoid.urdf").string(); }
 

@@ -15,6 +15,7 @@
 #include <wbi/model/algorithms.hpp>
 #include <wbi/model_inspect/state_evaluation.hpp>
 
+#include "json_eigen.hpp"
 #include "test_support.hpp"
 
 namespace wm = wbi::model;
@@ -27,24 +28,8 @@ std::unique_ptr<wm::ModelBackend> backend_of(const char* file) {
   return wm::make_model_backend("wbi", wbi::test::project_model(file).string());
 }
 
-Eigen::MatrixXd matrix_of(const json& rows) {
-  Eigen::MatrixXd m(static_cast<Eigen::Index>(rows.size()),
-                    static_cast<Eigen::Index>(rows[0].size()));
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    for (std::size_t c = 0; c < rows[r].size(); ++c) {
-      m(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = rows[r][c].get<double>();
-    }
-  }
-  return m;
-}
-
-Eigen::VectorXd vector_of(const json& v) {
-  Eigen::VectorXd x(static_cast<Eigen::Index>(v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    x[static_cast<Eigen::Index>(i)] = v[i].get<double>();
-  }
-  return x;
-}
+Eigen::MatrixXd matrix_of(const json& rows) { return wbi::test::matrix_of_json(rows); }
+Eigen::VectorXd vector_of(const json& v) { return wbi::test::vector_of_json(v); }
 
 // The message of the std::runtime_error that evaluate_state throws, "" if none.
 std::string error_of(const char* file, const json& state) {
