@@ -10,11 +10,11 @@
 
 namespace wbi::sim::test {
 
-using wbi::ControlMode;
 using actuation::JointCommandBatch;
 using actuation::JointController;
 using actuation::JointControllerConfig;
 using actuation::PidGains;
+using wbi::ControlMode;
 
 inline std::string model_path(const std::string& file) {
   return wbi::test::project_model(file).string();

@@ -31,9 +31,8 @@ void run_without_allocation(RobotConfig c, ControlMode mode, bool ramp = false) 
   JointController& ctl = held.ctl;
   const auto& d = sim.description();
   const Eigen::VectorXd& q_j0 = held.q_j0;
-  JointCommandBatch batch =
-      all_joints(d.n_joints(), mode,
-                 mode == ControlMode::torque ? Eigen::VectorXd::Zero(d.n_joints()) : q_j0);
+  JointCommandBatch batch = all_joints(
+      d.n_joints(), mode, mode == ControlMode::torque ? Eigen::VectorXd::Zero(d.n_joints()) : q_j0);
   ctl.submit(batch, sim.stamp());
   tick(sim, ctl);  // first tick outside (nothing should allocate there either)
 

@@ -26,7 +26,7 @@ namespace wbi::proxy {
 
 // Kinds of read that keep their own "seen" count for blocking reads.
 constexpr std::size_t kSensorReads = enum_count<SensorKind>();
-constexpr std::size_t kStateReads = 9;   // EstimateKind, then read_robot_state
+constexpr std::size_t kStateReads = 9;  // EstimateKind, then read_robot_state
 constexpr std::size_t kRobotStateRead = 8;
 
 std::int64_t system_now_ns();

@@ -51,19 +51,20 @@ void plan_joints(const RobotConfig& c, const model::Model& m, SimPlan& plan) {
   plan.description = joint_description(m, c);
 }
 
-void plan_initial_state(const RobotConfig& c, const model::Model& m, SimPlan& plan) {
+void plan_initial_state(const RobotConfig& c, const model::Model& m, const std::string& where,
+                        SimPlan& plan) {
   Eigen::VectorXd& q = plan.q0;
   q = Eigen::VectorXd::Zero(m.nq);
   if (m.floating_base) {
     if (!(c.initial_base_orientation.norm() > 0.0)) {
-      throw std::invalid_argument(plan.where + ": 'initial_base_orientation' must be non-zero");
+      throw std::invalid_argument(where + ": 'initial_base_orientation' must be non-zero");
     }
     q.head<3>() = c.initial_base_position;
     q.segment<4>(3) = c.initial_base_orientation.normalized();
   }
   for (const auto& [name, value] : c.initial_joint_positions) {
     if (!m.has_joint(name)) {
-      throw std::invalid_argument(plan.where + ": initial_joint_positions: unknown joint '" + name +
+      throw std::invalid_argument(where + ": initial_joint_positions: unknown joint '" + name +
                                   "' in " + c.urdf);
     }
     q[m.base_nq + m.joint_id(name)] = value;
@@ -87,7 +88,6 @@ actuation::GroundTruth SimPlan::initial_ground_truth() const {
 
 SimPlan make_sim_plan(const RobotConfig& c, const model::Model& m, const std::string& where) {
   SimPlan plan;
-  plan.where = where;
   auto frame_of = [&](const std::string& link, const std::string& item) {
     if (!m.has_frame(link)) {
       throw std::invalid_argument(where + ": " + item + ": unknown link or frame '" + link +
@@ -96,7 +96,7 @@ SimPlan make_sim_plan(const RobotConfig& c, const model::Model& m, const std::st
     return m.frame_id(link);
   };
   plan_joints(c, m, plan);
-  plan_initial_state(c, m, plan);
+  plan_initial_state(c, m, where, plan);
 
   using Enable = robot_config::ContactModel::Enable;
   plan.contacts_on = c.wbi.contact.enable == Enable::kOn ||

@@ -65,9 +65,7 @@ class Registry {
   }
 
   // Throws std::invalid_argument as create() does.
-  const std::string& description(const std::string& name) const {
-    return entry(name).description;
-  }
+  const std::string& description(const std::string& name) const { return entry(name).description; }
 
  private:
   struct Entry {

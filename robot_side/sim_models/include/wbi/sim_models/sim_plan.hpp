@@ -22,8 +22,6 @@
 namespace wbi::sim_models {
 
 struct SimPlan {
-  std::string where;  // names the config in errors, e.g. "robot config (mujoco engine)"
-
   // ---- joints [n], in the model's order ----
   int n_joints = 0;
   int nv = 0;                    // velocity dimension (6 + n with a floating base)
