@@ -1,7 +1,7 @@
 #include "components.hpp"
 
 #include <wbi/controllers/momentum_balance_component.hpp>
-#include <wbi/controllers/pd_gravity_component.hpp>
+#include <wbi/controllers/controller_host_component.hpp>
 #include <wbi/estimator/estimator_component.hpp>
 #include <wbi/model_service/component.hpp>
 #include <wbi/sim_robot/sim_robot.hpp>

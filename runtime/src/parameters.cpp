@@ -195,6 +195,28 @@ T Parameters::require(const std::string& key) const {
   return get<T>(key, T{});
 }
 
+Parameters Parameters::child(const std::string& key, const std::string& context) const {
+  if (!has(key)) {
+    return Parameters(YAML::Node(), impl_->file, impl_->context + ", " + context);
+  }
+  const YAML::Node value = impl_->node[key];
+  if (!value.IsMap()) {
+    throw ParameterError(where(key) + ": parameter '" + key + "' must be a map, got " +
+                         shown(value));
+  }
+  return Parameters(value, impl_->file, impl_->context + ", " + context);
+}
+
+std::vector<std::string> Parameters::keys() const {
+  std::vector<std::string> out;
+  if (impl_->node && impl_->node.IsMap()) {
+    for (const auto& entry : impl_->node) {
+      out.push_back(entry.first.Scalar());
+    }
+  }
+  return out;
+}
+
 void Parameters::reject_unknown() const {
   if (!impl_->node || !impl_->node.IsMap()) {
     return;

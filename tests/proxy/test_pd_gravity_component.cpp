@@ -4,7 +4,7 @@
 // with the sensor sample they answer.
 #include <gtest/gtest.h>
 
-#include <wbi/controllers/pd_gravity_component.hpp>
+#include <wbi/controllers/controller_host_component.hpp>
 #include <wbi/runtime/clock.hpp>
 #include <wbi/runtime/runner.hpp>
 

@@ -6,9 +6,11 @@
 namespace wbi::cli {
 
 int run_bag(Args args);
+int run_controller(Args args);
 int run_estimate(Args args);
 int run_launch(Args args);
 int run_model(Args args);
+int run_param(Args args);
 int run_play(Args args);
 int run_render(Args args);
 int run_record(Args args);

@@ -58,8 +58,20 @@ void PdGravity::set_reference(const ConstVectorRef& q_desired) {
   q_desired_ = q_desired;
 }
 
+void PdGravity::set_gains(const Eigen::MatrixXd& kp, const Eigen::MatrixXd& kd) {
+  require_square("kp", kp, robot_.dofs());
+  require_square("kd", kd, robot_.dofs());
+  gains_.kp = kp;
+  gains_.kd = kd;
+}
+
 // The paper's loop: read the state, compute the gravity bias forces, send torques.
 void PdGravity::update(ReadMode mode) {
+  compute(mode);
+  robot_.actuators().set_control_reference(tau_);
+}
+
+void PdGravity::compute(ReadMode mode) {
   robot_.state().read_robot_state(state_, mode);
   robot_.model().gravity_forces(state_.q, state_.world_H_base, gravity_, g_);
   error_ = state_.q - q_desired_;
@@ -67,7 +79,6 @@ void PdGravity::update(ReadMode mode) {
   tau_.noalias() -= gains_.kp * error_;
   tau_.noalias() -= gains_.kd * state_.dq;
   max_error_ = error_.cwiseAbs().maxCoeff();
-  robot_.actuators().set_control_reference(tau_);
 }
 
 }  // namespace wbi::controllers

@@ -6,6 +6,7 @@
 
 #include <wbi/msg/claimsPubSubTypes.h>
 #include <wbi/msg/commandsPubSubTypes.h>
+#include <wbi/msg/controllersPubSubTypes.h>
 #include <wbi/msg/descriptionPubSubTypes.h>
 #include <wbi/msg/modelPubSubTypes.h>
 #include <wbi/msg/playbackPubSubTypes.h>
@@ -42,6 +43,9 @@ WBI_DDS_MESSAGE(Signals)
 WBI_DDS_MESSAGE(JointClaimRequest)
 WBI_DDS_MESSAGE(JointClaimReply)
 WBI_DDS_MESSAGE(JointOwners)
+WBI_DDS_MESSAGE(ControllerRequest)
+WBI_DDS_MESSAGE(ControllerReply)
+WBI_DDS_MESSAGE(ControllerParameters)
 
 #undef WBI_DDS_MESSAGE
 

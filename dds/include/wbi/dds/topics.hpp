@@ -48,6 +48,15 @@ inline std::string joint_owners(const std::string& robot) {
   return robot_topic(robot, "claims/owners");
 }
 
+// The controller host of a robot (request/reply, idl/controllers.idl) and its
+// parameters' current values (wbi::msg::ControllerParameters, latched).
+inline std::string controller_service(const std::string& robot) {
+  return robot_topic(robot, "controllers");
+}
+inline std::string controller_parameters(const std::string& robot) {
+  return robot_topic(robot, "controllers/parameters");
+}
+
 // A controller's named signals (wbi::msg::Signals): wbi/<robot>/signals/<controller>.
 inline std::string signals(const std::string& robot, const std::string& controller) {
   return "wbi/" + robot + "/signals/" + controller;

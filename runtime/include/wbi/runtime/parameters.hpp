@@ -50,6 +50,13 @@ class Parameters {
   // Whether the key is given (counts as asking for it).
   bool has(const std::string& key) const;
 
+  // The map under `key` as parameters of their own, e.g. one controller's in a
+  // host's `controllers:` (context: "<context>, <key> '<name>'"); none when
+  // absent. Throws ParameterError when the value is not a map.
+  Parameters child(const std::string& key, const std::string& context) const;
+  // This map's keys, in file order (does not count as asking for them).
+  std::vector<std::string> keys() const;
+
   // Throws ParameterError for the first key nobody asked for.
   void reject_unknown() const;
   // "file:line: context" for messages about a key (or about the map when key is empty).

@@ -39,8 +39,14 @@ class PdGravity {
   void start();
   // One control tick: read state, compute τ, send it. No allocation.
   void update(ReadMode mode = ReadMode::latest);
+  // The same without sending τ (torques()), for a caller that adds to it.
+  void compute(ReadMode mode = ReadMode::latest);
 
   void set_reference(const ConstVectorRef& q_desired);
+  // New gains of the same size (no allocation). Throws wbi::Error naming a wrong size.
+  void set_gains(const Eigen::MatrixXd& kp, const Eigen::MatrixXd& kd);
+  const PdGravityGains& gains() const { return gains_; }
+  const Eigen::VectorXd& reference() const { return q_desired_; }
   const Eigen::VectorXd& torques() const { return tau_; }
   // max |q − q_d| at the last update [rad]
   double max_error() const { return max_error_; }

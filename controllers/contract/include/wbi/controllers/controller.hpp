@@ -1,0 +1,85 @@
+// The controller contract: what the controller host (controllers/host) runs.
+// No DDS here: a controller sees the robot only through the whole-body
+// interface, and its parameters only through its ParameterTable.
+//
+// Lifecycle (as ros2_control's controllers; the host drives it):
+//   declared    parameters() and signal_names(): what it takes and shows.
+//   configure   INACTIVE: sizes its buffers for robot.dofs(), reads its
+//               parameters. May allocate, may throw wbi::Error (the host then
+//               refuses to run it, naming why).
+//   activate    INACTIVE → ACTIVE, at a tick boundary, on the loop thread:
+//               `measured` is the state of that tick, `applied` the command
+//               the robot was given until now (the previous controller's
+//               last; empty at the first start). The first command continues
+//               from them (bumpless): no jump in the torque sent.
+//   update      ACTIVE, once per tick: read, compute, send. Real-time: no
+//               allocation, no blocking. A StaleDataError skips the tick (no
+//               command; the robot's watchdog guards); any other exception
+//               makes the host fall back to `hold` and say why.
+//   deactivate  ACTIVE → INACTIVE, at a tick boundary; sends nothing.
+// A parameter change reaches an active controller between two ticks:
+// parameters_changed() then re-reads what it uses (real-time as update).
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <wbi/registry.hpp>
+
+#include "wbi/controllers/parameter_table.hpp"
+#include "wbi/whole_body_interface.hpp"
+
+namespace wbi::controllers {
+
+class Controller {
+ public:
+  virtual ~Controller() = default;
+  Controller(const Controller&) = delete;
+  Controller& operator=(const Controller&) = delete;
+
+  virtual std::vector<ParameterSpec> parameters() const = 0;
+  // What signals() carries, in order (published on wbi/<robot>/signals/<host>).
+  virtual std::vector<std::string> signal_names() const { return {}; }
+
+  virtual void configure(WholeBodyInterface& robot, const ParameterTable& parameters) = 0;
+  virtual void activate(const RobotState& measured, std::span<const double> applied) = 0;
+  // time_s: since the host started its loop; period_s: the nominal period.
+  virtual void update(double time_s, double period_s) = 0;
+  virtual void deactivate() {}
+  virtual void parameters_changed(const ParameterTable& /*parameters*/) {}
+
+  // The joint torques (or references) of the last update().
+  virtual const Eigen::VectorXd& command() const = 0;
+  // Values of signal_names() at the last update().
+  virtual std::span<const double> signals() const { return {}; }
+  // One line of progress, e.g. "max joint error 0.0012 rad" (no allocation).
+  virtual void progress(char* line, std::size_t size) const {
+    if (size > 0) {
+      line[0] = '\0';
+    }
+  }
+  // Printed when the host shuts down, e.g. "final max joint error: 0.0006 rad".
+  virtual std::string summary() const { return {}; }
+
+ protected:
+  Controller() = default;
+};
+
+// Controller types by name. A controller library exports a registration
+// function; controllers/host/src/controller_types.cpp calls each (one line).
+class ControllerRegistry : public wbi::Registry<Controller> {
+ public:
+  ControllerRegistry() : wbi::Registry<Controller>("controller type") {}
+  using wbi::Registry<Controller>::add;
+  template <class C>
+  void add(const std::string& type, std::string description = "") {
+    add(
+        type, [] { return std::make_unique<C>(); }, std::move(description));
+  }
+};
+
+}  // namespace wbi::controllers

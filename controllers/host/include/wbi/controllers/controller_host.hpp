@@ -1,0 +1,128 @@
+// The controller host: runs the controllers of one robot's joints through one
+// whole-body interface, one controller active at a time, and drives their
+// lifecycle (controller.hpp). No DDS here: the component
+// (controller_host_component.cpp) gives it the interface and answers requests.
+//
+// Threads. tick() runs on the loop thread. request_switch() and
+// set_parameter() may be called from any thread: they check the request at
+// once (a refusal changes nothing and says why in one line) and hand an
+// accepted one to the loop, which applies it between two ticks, whole.
+//
+// Fallback. The built-in `hold` controller (gravity compensation and joint
+// damping about the measured posture) takes over when the active controller
+// throws in update() or overruns its period `overrun_limit` ticks in a row.
+// Each fallback is counted (status counter "fallbacks"), becomes the status's
+// last error with its reason, and is printed on stderr: never a silent stop.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <wbi/runtime/status_report.hpp>
+
+#include "wbi/controllers/controller.hpp"
+
+namespace wbi::controllers {
+
+inline constexpr const char* kHoldController = "hold";
+
+struct ControllerInfo {
+  std::string name, type;
+  bool active = false;
+  std::string configure_error;  // empty when configured
+};
+
+struct SwitchResult {
+  bool done = false;
+  std::string text;           // the refusal, or what happened ("pd → hold at t = 2.000 s …")
+  double torque_step = 0.0;   // ‖τ_after − τ_before‖ / ‖τ_before‖ at the switch tick
+  double time_s = 0.0;        // when it took effect
+};
+
+class ControllerHost {
+ public:
+  struct Options {
+    int overrun_limit = 10;  // consecutive overrunning ticks before the fallback
+    std::chrono::milliseconds switch_timeout{2000};  // request_switch waits this long for the loop
+  };
+
+  // robot: initialized, with the host's joints. report: counters and last error.
+  ControllerHost(WholeBodyInterface& robot, runtime::StatusReport& report, Options options);
+  ~ControllerHost();
+  ControllerHost(const ControllerHost&) = delete;
+  ControllerHost& operator=(const ControllerHost&) = delete;
+
+  // Setup, before the loop. Adds a controller and returns its parameter table
+  // (sized, with defaults) for the caller to set values; then configure(name).
+  // Throws wbi::Error for a name taken.
+  ParameterTable& add(const std::string& name, const std::string& type,
+                      std::unique_ptr<Controller> controller);
+  // Configures `name`. A failure is kept (the controller cannot be activated;
+  // list() shows why) and rethrown as wbi::Error naming the controller.
+  void configure(const std::string& name);
+  // The controller active from the first tick (reads the state then).
+  void set_initial(const std::string& name);
+
+  // Loop thread, once per tick: applies a pending switch and parameter
+  // changes, then runs the active controller. Allocates nothing (a switch
+  // or fallback runs activate(), which may).
+  void tick(double time_s, double period_s);
+  // The active controller's name, "" before the first tick.
+  const std::string& active() const;
+  Controller* active_controller();
+
+  // Any thread.
+  SwitchResult request_switch(const std::vector<std::string>& activate,
+                              const std::vector<std::string>& deactivate);
+  // Throws wbi::Error with one line naming the controller, parameter, value and range.
+  void set_parameter(const std::string& controller, const std::string& parameter,
+                     const std::vector<double>& values);
+  const ParameterTable& parameters(const std::string& controller) const;
+  std::vector<ControllerInfo> list() const;
+
+  // Summaries of the active controller and the host's counters, for shutdown.
+  std::string summary() const;
+
+ private:
+  struct Hosted;
+  Hosted& find(const std::string& name) const;
+  // first_start: nothing was commanded before (no blend from a last command).
+  bool activate(Hosted& hosted, bool first_start);
+  void deactivate(Hosted& hosted);
+  bool apply_switch(double time_s);  // false: not this tick
+  void finish_switch();
+  void fall_back(const std::string& reason, double time_s);
+  void run_active(double time_s, double period_s);
+
+  WholeBodyInterface& robot_;
+  runtime::StatusReport& report_;
+  Options options_;
+  std::vector<std::unique_ptr<Hosted>> hosted_;
+  Hosted* active_ = nullptr;
+  Hosted* initial_ = nullptr;
+  RobotState measured_;          // read at an activation
+  Eigen::VectorXd last_command_;  // the active controller's, before this tick
+  int overruns_in_a_row_ = 0;
+  runtime::StatusCounter *switches_, *refused_, *fallbacks_, *stale_, *overruns_, *changes_;
+
+  // A switch handed from request_switch() to the loop.
+  mutable std::mutex switch_mutex_;
+  std::condition_variable switch_done_;
+  struct PendingSwitch {
+    bool pending = false;
+    Hosted* activate = nullptr;    // null: none
+    Hosted* deactivate = nullptr;  // null: none
+    SwitchResult result;
+    std::uint64_t id = 0;
+  } switch_;
+  std::atomic<bool> switch_requested_{false};  // switch_.pending, for the loop's check without the lock
+  std::uint64_t switches_done_ = 0;
+};
+
+}  // namespace wbi::controllers

@@ -1,0 +1,29 @@
+// The controller host as a component (controller_host.hpp), and each
+// controller type as a one-controller host of its own name.
+//
+// type controller_host:
+//   the interface options (interface_options.hpp), and
+//   joints             required; the controlled joints, by name
+//   controllers        map: name → {type: <controller type> (default: the name),
+//                      <its declared parameters>}; `hold` is always hosted
+//   active             the controller active from the first tick (default: hold)
+//   overrun_limit      ticks in a row over the period before the fallback (default 10)
+//   wait_for_state     false (default): cycles on the clock at rate_hz, each with
+//                      the newest estimate; true: a cycle starts when a new
+//                      estimate arrives (waiting at most state_timeout_s,
+//                      default 0.005 s) and answers it at once
+//   init_timeout_s     wait for the robot's components (default 30 s)
+//   progress_period_s  a progress line every so often (default 1 s; 0: none)
+// type pd_gravity (and every other controller type): the same host with one
+// controller of that type, active, whose parameters sit beside the host's.
+// At shutdown the host prints "stale cycles: N" and the active controller's
+// summary (pd_gravity: "final max joint error: X rad").
+#pragma once
+
+#include "wbi/runtime/registry.hpp"
+
+namespace wbi::controllers {
+
+void register_components(runtime::Registry& registry);
+
+}  // namespace wbi::controllers

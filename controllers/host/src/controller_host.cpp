@@ -1,0 +1,384 @@
+#include "wbi/controllers/controller_host.hpp"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace wbi::controllers {
+
+struct ControllerHost::Hosted {
+  std::string name, type;
+  std::unique_ptr<Controller> controller;
+  std::unique_ptr<ParameterTable> parameters;
+  bool configured = false;
+  std::string configure_error = "not configured";
+};
+
+namespace {
+std::string seconds(double t) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f s", t);
+  return text;
+}
+}  // namespace
+
+ControllerHost::ControllerHost(WholeBodyInterface& robot, runtime::StatusReport& report,
+                               Options options)
+    : robot_(robot),
+      report_(report),
+      options_(options),
+      measured_(robot.dofs()),
+      last_command_(Eigen::VectorXd::Zero(robot.dofs())),
+      switches_(&report.counter("switches")),
+      refused_(&report.counter("refused_switches")),
+      fallbacks_(&report.counter("fallbacks")),
+      stale_(&report.counter("stale_cycles")),
+      overruns_(&report.counter("overruns")),
+      changes_(&report.counter("parameter_changes")) {}
+
+ControllerHost::~ControllerHost() = default;
+
+ControllerHost::Hosted& ControllerHost::find(const std::string& name) const {
+  for (const auto& hosted : hosted_) {
+    if (hosted->name == name) {
+      return *hosted;
+    }
+  }
+  std::string known;
+  for (const auto& hosted : hosted_) {
+    known += (known.empty() ? "" : ", ") + hosted->name;
+  }
+  throw Error("unknown controller '" + name + "' (hosted: " + (known.empty() ? "none" : known) +
+              ")");
+}
+
+ParameterTable& ControllerHost::add(const std::string& name, const std::string& type,
+                                    std::unique_ptr<Controller> controller) {
+  for (const auto& hosted : hosted_) {
+    if (hosted->name == name) {
+      throw Error("controller '" + name + "' is hosted twice");
+    }
+  }
+  auto hosted = std::make_unique<Hosted>();
+  hosted->name = name;
+  hosted->type = type;
+  hosted->parameters = std::make_unique<ParameterTable>(name, controller->parameters());
+  hosted->parameters->size_for(robot_.dofs());
+  hosted->controller = std::move(controller);
+  hosted_.push_back(std::move(hosted));
+  return *hosted_.back()->parameters;
+}
+
+void ControllerHost::configure(const std::string& name) {
+  Hosted& hosted = find(name);
+  try {
+    hosted.controller->configure(robot_, *hosted.parameters);
+    hosted.configured = true;
+    hosted.configure_error.clear();
+  } catch (const std::exception& e) {
+    hosted.configured = false;
+    hosted.configure_error = e.what();
+    throw Error(std::string("controller '") + name + "' did not configure: " + e.what());
+  }
+}
+
+void ControllerHost::set_initial(const std::string& name) {
+  Hosted& hosted = find(name);
+  if (!hosted.configured) {
+    throw Error("controller '" + name + "' cannot start: " + hosted.configure_error);
+  }
+  initial_ = &hosted;
+}
+
+const std::string& ControllerHost::active() const {
+  static const std::string none;
+  std::lock_guard lock(switch_mutex_);
+  return active_ ? active_->name : none;
+}
+
+Controller* ControllerHost::active_controller() { return active_ ? active_->controller.get() : nullptr; }
+
+bool ControllerHost::activate(Hosted& hosted, bool first_start) {
+  try {
+    robot_.state().read_robot_state(measured_, ReadMode::latest);
+  } catch (const StaleDataError&) {
+    stale_->add();
+    return false;  // no state to continue from: tried again at the next tick
+  }
+  // At a switch, the new controller continues from the last command sent.
+  hosted.controller->activate(measured_, first_start ? std::span<const double>()
+                                                     : std::span<const double>(last_command_.data(),
+                                                                               last_command_.size()));
+  std::lock_guard lock(switch_mutex_);
+  active_ = &hosted;
+  overruns_in_a_row_ = 0;
+  return true;
+}
+
+void ControllerHost::deactivate(Hosted& hosted) {
+  try {
+    hosted.controller->deactivate();
+  } catch (const std::exception& e) {
+    report_.set_error("controller '" + hosted.name + "' threw in deactivate: " + e.what());
+  }
+  std::lock_guard lock(switch_mutex_);
+  if (active_ == &hosted) {
+    active_ = nullptr;
+  }
+}
+
+void ControllerHost::fall_back(const std::string& reason, double time_s) {
+  const std::string from = active_ ? active_->name : std::string("none");
+  if (active_) {
+    deactivate(*active_);
+  }
+  fallbacks_->add();
+  std::string line = "controller '" + from + "' " + reason + ": fell back to '" +
+                     kHoldController + "' at t = " + seconds(time_s);
+  Hosted* hold = nullptr;
+  try {
+    hold = &find(kHoldController);
+  } catch (const Error&) {
+  }
+  if (from == kHoldController || !hold || !hold->configured) {
+    line = "controller '" + from + "' " + reason + ": no controller active (" +
+           (from == kHoldController ? "hold itself failed" : "no hold configured") +
+           "); the robot's watchdog takes over";
+  } else {
+    try {
+      if (!activate(*hold, false)) {
+        initial_ = hold;  // activated at the first tick with a fresh state
+      }
+    } catch (const std::exception& e) {
+      line += std::string("; hold did not activate: ") + e.what();
+    }
+  }
+  report_.set_error(line);
+  std::fprintf(stderr, "%s\n", line.c_str());
+  std::fflush(stderr);
+}
+
+bool ControllerHost::apply_switch(double time_s) {
+  std::unique_lock lock(switch_mutex_, std::try_to_lock);
+  if (!lock.owns_lock() || !switch_.pending) {
+    return false;  // the requester holds the lock for a moment: at the next tick
+  }
+  Hosted* from = switch_.deactivate;
+  Hosted* to = switch_.activate;
+  lock.unlock();
+  if (from) {
+    deactivate(*from);
+  }
+  bool activated = true;
+  std::string failure;
+  if (to) {
+    try {
+      activated = activate(*to, false);
+      if (!activated) {
+        failure = "no fresh state to activate it from";
+      }
+    } catch (const std::exception& e) {
+      activated = false;
+      failure = e.what();
+    }
+  }
+  lock.lock();
+  switch_.result.time_s = time_s;
+  if (activated) {
+    switch_.result.done = true;
+    switch_.result.text = (from ? from->name : std::string("none")) + " → " +
+                          (to ? to->name : std::string("none")) + " at t = " + seconds(time_s);
+  } else {
+    switch_.result.text = "'" + to->name + "' did not activate: " + failure;
+  }
+  lock.unlock();
+  if (!activated && from) {
+    fall_back("was switched out but '" + to->name + "' did not activate (" + failure + ")",
+              time_s);
+  }
+  return true;
+}
+
+void ControllerHost::run_active(double time_s, double period_s) {
+  Controller& controller = *active_->controller;
+  ParameterTable& parameters = *active_->parameters;
+  if (parameters.apply_staged()) {
+    controller.parameters_changed(parameters);
+    changes_->add();
+  }
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    controller.update(time_s, period_s);
+  } catch (const StaleDataError&) {
+    stale_->add();  // no fresh state this tick: no command; the robot's watchdog guards
+    return;
+  } catch (const std::exception& e) {
+    fall_back(std::string("threw in update (") + e.what() + ")", time_s);
+    return;
+  }
+  const double took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+                            .count();
+  if (took_s > period_s) {
+    overruns_->add();
+    if (++overruns_in_a_row_ >= options_.overrun_limit) {
+      char reason[128];
+      std::snprintf(reason, sizeof reason,
+                    "overran its %.3f ms period %d ticks in a row (last %.3f ms)", 1e3 * period_s,
+                    overruns_in_a_row_, 1e3 * took_s);
+      fall_back(reason, time_s);
+    }
+  } else {
+    overruns_in_a_row_ = 0;
+  }
+}
+
+void ControllerHost::tick(double time_s, double period_s) {
+  if (initial_ && !active_) {
+    Hosted* first = initial_;
+    try {
+      if (activate(*first, true)) {
+        initial_ = nullptr;
+      }
+    } catch (const std::exception& e) {
+      initial_ = nullptr;
+      fall_back(std::string("threw in activate (") + e.what() + ")", time_s);
+    }
+  }
+  const bool switching =
+      switch_requested_.load(std::memory_order_acquire) && apply_switch(time_s);
+  // Inactive controllers take their staged values too (they use them when activated).
+  for (auto& hosted : hosted_) {
+    if (hosted.get() != active_ && hosted->configured && hosted->parameters->apply_staged()) {
+      hosted->controller->parameters_changed(*hosted->parameters);
+      changes_->add();
+    }
+  }
+  if (!active_) {
+    if (switching) {
+      finish_switch();
+    }
+    return;
+  }
+  run_active(time_s, period_s);
+  if (switching) {
+    finish_switch();
+  }
+  last_command_ = active_->controller->command();
+}
+
+// After the switch tick's command: its step, then the requester is answered.
+void ControllerHost::finish_switch() {
+  std::unique_lock lock(switch_mutex_);
+  if (!switch_.pending) {
+    return;
+  }
+  if (switch_.result.done && active_) {
+    // The first command of the new controller against the last of the old.
+    const Eigen::VectorXd& now = active_->controller->command();
+    const double before = last_command_.norm();
+    switch_.result.torque_step = before > 0.0 ? (now - last_command_).norm() / before : 0.0;
+    char step[96];
+    std::snprintf(step, sizeof step, "; torque step %.2f %% of the %.3g N m applied",
+                  100.0 * switch_.result.torque_step, before);
+    switch_.result.text += step;
+  }
+  switch_.pending = false;
+  switch_requested_.store(false, std::memory_order_release);
+  ++switches_done_;
+  lock.unlock();
+  switch_done_.notify_all();
+}
+
+SwitchResult ControllerHost::request_switch(const std::vector<std::string>& activate,
+                                            const std::vector<std::string>& deactivate) {
+  SwitchResult refused;
+  const auto refuse = [&](std::string text) {
+    refused_->add();
+    refused.text = std::move(text);
+    return refused;
+  };
+  if (activate.size() > 1 || deactivate.size() > 1) {
+    return refuse("the host runs one controller at a time on its joints: name at most one to "
+                  "activate and one to deactivate");
+  }
+  Hosted* to = nullptr;
+  Hosted* from = nullptr;
+  try {
+    to = activate.empty() ? nullptr : &find(activate[0]);
+    from = deactivate.empty() ? nullptr : &find(deactivate[0]);
+  } catch (const Error& e) {
+    return refuse(e.what());
+  }
+  std::unique_lock lock(switch_mutex_);
+  if (switch_.pending) {
+    return refuse("another switch is pending");
+  }
+  if (to && !to->configured) {
+    return refuse("'" + to->name + "' cannot be activated: " + to->configure_error);
+  }
+  if (from && from != active_) {
+    return refuse("'" + from->name + "' is not active (active: " +
+                  (active_ ? active_->name : std::string("none")) + ")");
+  }
+  if (to && to == active_ && from != to) {
+    return refuse("'" + to->name + "' is already active");
+  }
+  if (to && active_ && !from) {
+    return refuse("'" + active_->name + "' is active on the same joints: deactivate it in the " +
+                  "same switch (--deactivate " + active_->name + ")");
+  }
+  if (!to) {
+    return refuse(std::string("nothing would command the joints: activate '") + kHoldController +
+                  "' to hold the posture");
+  }
+  switch_ = PendingSwitch{.pending = true, .activate = to, .deactivate = from, .result = {},
+                          .id = switches_done_};
+  switch_requested_.store(true, std::memory_order_release);
+  const std::uint64_t id = switches_done_;
+  const bool applied = switch_done_.wait_for(lock, options_.switch_timeout,
+                                             [&] { return switches_done_ > id; });
+  if (!applied) {
+    switch_.pending = false;
+    switch_requested_.store(false, std::memory_order_release);
+    return refuse("the switch did not take effect within " +
+                  std::to_string(options_.switch_timeout.count()) +
+                  " ms: is the host's loop running?");
+  }
+  if (switch_.result.done) {
+    switches_->add();
+  } else {
+    refused_->add();
+  }
+  return switch_.result;
+}
+
+void ControllerHost::set_parameter(const std::string& controller, const std::string& parameter,
+                                   const std::vector<double>& values) {
+  Hosted& hosted = find(controller);
+  const std::size_t index = hosted.parameters->index(parameter);
+  bool active = false;
+  {
+    std::lock_guard lock(switch_mutex_);
+    active = active_ == &hosted;
+  }
+  hosted.parameters->stage(index, values, active);
+}
+
+const ParameterTable& ControllerHost::parameters(const std::string& controller) const {
+  return *find(controller).parameters;
+}
+
+std::vector<ControllerInfo> ControllerHost::list() const {
+  std::lock_guard lock(switch_mutex_);
+  std::vector<ControllerInfo> out;
+  for (const auto& hosted : hosted_) {
+    out.push_back({hosted->name, hosted->type, hosted.get() == active_, hosted->configure_error});
+  }
+  return out;
+}
+
+std::string ControllerHost::summary() const {
+  std::lock_guard lock(switch_mutex_);
+  return active_ ? active_->controller->summary() : std::string();
+}
+
+}  // namespace wbi::controllers

@@ -1,0 +1,89 @@
+// PD + gravity (pd_gravity.hpp) under the controller contract, and `hold`,
+// the controller host's fallback: the same law about the posture measured when
+// it is activated.
+//
+// pd_gravity's parameters:
+//   target        q_d, one per controlled joint [rad]                 live
+//   bandwidth_hz  gains from the joint block of M(q_d): K_p = ω² M_jj,
+//                 K_d = 2ω M_jj, ω = 2π bandwidth (default 5)          at configure
+//   kp, kd        diagonal gains instead, one per joint (both or neither)
+//   gain_scale    multiplies K_p and K_d (default 1)                  live
+//   transition_s  the reference moves from the measured posture (at
+//                 activation) or from the last reference (at a change of
+//                 target) to the target in this time, minimum jerk
+//                 (default 0: a step, as the paper's controller)      live
+//   blend_s       after a switch, the difference between the torque applied
+//                 before and this law's decays with this time constant, so
+//                 that the first command continues the last (default 0.1) live
+// hold's: bandwidth_hz (default 2, gains from M at the held posture, taken
+// at each activation), gain_scale and blend_s.
+#pragma once
+
+#include <array>
+#include <optional>
+
+#include "wbi/controllers/controller.hpp"
+#include "wbi/controllers/pd_gravity.hpp"
+
+namespace wbi::controllers {
+
+class PdGravityController : public Controller {
+ public:
+  std::vector<ParameterSpec> parameters() const override;
+  std::vector<std::string> signal_names() const override;
+  void configure(WholeBodyInterface& robot, const ParameterTable& parameters) override;
+  void activate(const RobotState& measured, std::span<const double> applied) override;
+  void update(double time_s, double period_s) override;
+  void parameters_changed(const ParameterTable& parameters) override;
+  const Eigen::VectorXd& command() const override { return command_; }
+  std::span<const double> signals() const override { return signals_; }
+  void progress(char* line, std::size_t size) const override;
+  std::string summary() const override;
+
+ protected:
+  // Unscaled gains K_p = ω² M_jj, K_d = 2ω M_jj from the inertia at `posture`.
+  void gains_from_inertia(const Eigen::VectorXd& posture, const Transform& world_H_base,
+                          double bandwidth_hz);
+
+  // Sizes the law and the buffers for robot.dofs().
+  void size_for(WholeBodyInterface& robot);
+  // K = gain_scale × the unscaled gains (no allocation).
+  void apply_gain_scale(double scale);
+  // Keeps `applied` for the first update's blend (none when empty).
+  void start_blend(std::span<const double> applied);
+
+  WholeBodyInterface* robot_ = nullptr;
+  std::optional<PdGravity> law_;
+  Eigen::MatrixXd mass_matrix_, unscaled_kp_, unscaled_kd_, kp_, kd_;
+  Eigen::VectorXd from_, goal_, reference_, command_, blend_;
+  bool blend_pending_ = false, blending_ = false;
+  double blend_s_ = 0.1, blend_start_s_ = 0.0;
+  double gain_scale_ = 1.0;
+  double transition_s_ = 0.0;
+  double transition_start_s_ = -1.0;  // < 0: at the next update
+  double last_time_s_ = 0.0;
+  std::array<double, 2> signals_{};  // max joint error, reference's distance to the target
+
+ private:
+  struct Indices {
+    std::size_t target, bandwidth, kp, kd, scale, transition, blend;
+  };
+  Indices index_{};
+};
+
+class HoldController final : public PdGravityController {
+ public:
+  std::vector<ParameterSpec> parameters() const override;
+  void configure(WholeBodyInterface& robot, const ParameterTable& parameters) override;
+  void activate(const RobotState& measured, std::span<const double> applied) override;
+  void parameters_changed(const ParameterTable& parameters) override;
+  std::string summary() const override { return {}; }
+
+ private:
+  std::size_t bandwidth_index_ = 0, scale_index_ = 0, blend_index_ = 0;
+  double bandwidth_hz_ = 2.0;
+};
+
+void register_pd_gravity(ControllerRegistry& registry);
+
+}  // namespace wbi::controllers

@@ -1,0 +1,239 @@
+#include "wbi/controllers/pd_gravity_controller.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace wbi::controllers {
+
+namespace {
+// Minimum jerk from 0 to 1 over τ ∈ [0, 1]: zero velocity and acceleration at both ends.
+double minimum_jerk(double tau) {
+  tau = std::clamp(tau, 0.0, 1.0);
+  return tau * tau * tau * (10.0 - 15.0 * tau + 6.0 * tau * tau);
+}
+
+ParameterSpec blend_spec() {
+  return {.name = "blend_s",
+          .unit = "s",
+          .help = "after a switch, the torque applied before blends into this law's",
+          .default_value = {0.1},
+          .min = 1e-3,
+          .max = 10.0};
+}
+
+ParameterSpec gain_scale_spec() {
+  return {.name = "gain_scale",
+          .help = "multiplies K_p and K_d",
+          .default_value = {1.0},
+          .min = 0.0,
+          .max = 10.0};
+}
+}  // namespace
+
+std::vector<ParameterSpec> PdGravityController::parameters() const {
+  return {
+      {.name = "target", .unit = "rad", .help = "q_d, one per controlled joint", .size = kPerJoint},
+      {.name = "bandwidth_hz",
+       .unit = "Hz",
+       .help = "gains from the joint inertia at the target: every mode critically damped",
+       .default_value = {5.0},
+       .min = 1e-3,
+       .max = 200.0,
+       .live = false},
+      {.name = "kp",
+       .unit = "N m/rad",
+       .help = "diagonal stiffness instead of bandwidth_hz (with kd)",
+       .size = kPerJoint,
+       .min = 0.0,
+       .live = false,
+       .optional = true},
+      {.name = "kd",
+       .unit = "N m s/rad",
+       .help = "diagonal damping instead of bandwidth_hz (with kp)",
+       .size = kPerJoint,
+       .min = 0.0,
+       .live = false,
+       .optional = true},
+      gain_scale_spec(),
+      {.name = "transition_s",
+       .unit = "s",
+       .help = "time the reference takes to reach a new target (minimum jerk); 0: a step",
+       .default_value = {0.0},
+       .min = 0.0,
+       .max = 600.0},
+      blend_spec(),
+  };
+}
+
+std::vector<std::string> PdGravityController::signal_names() const {
+  return {"max_joint_error", "reference_to_target"};
+}
+
+void PdGravityController::size_for(WholeBodyInterface& robot) {
+  robot_ = &robot;
+  const int n = robot.dofs();
+  law_.emplace(robot, PdGravityGains{Eigen::MatrixXd::Zero(n, n), Eigen::MatrixXd::Zero(n, n)},
+               Eigen::VectorXd::Zero(n));
+  mass_matrix_.setZero(n + 6, n + 6);
+  unscaled_kp_.setZero(n, n);
+  unscaled_kd_.setZero(n, n);
+  kp_.setZero(n, n);
+  kd_.setZero(n, n);
+  from_.setZero(n);
+  goal_.setZero(n);
+  reference_.setZero(n);
+  command_.setZero(n);
+  blend_.setZero(n);
+}
+
+void PdGravityController::start_blend(std::span<const double> applied) {
+  blend_pending_ = static_cast<Eigen::Index>(applied.size()) == blend_.size();
+  blending_ = false;
+  if (blend_pending_) {
+    blend_ = Eigen::Map<const Eigen::VectorXd>(applied.data(), blend_.size());
+  }
+}
+
+void PdGravityController::gains_from_inertia(const Eigen::VectorXd& posture,
+                                             const Transform& world_H_base, double bandwidth_hz) {
+  const int n = robot_->dofs();
+  robot_->mass_matrix(posture, world_H_base, mass_matrix_);
+  const double omega = 2.0 * M_PI * bandwidth_hz;
+  unscaled_kp_.noalias() = omega * omega * mass_matrix_.bottomRightCorner(n, n);
+  unscaled_kd_.noalias() = 2.0 * omega * mass_matrix_.bottomRightCorner(n, n);
+}
+
+void PdGravityController::apply_gain_scale(double scale) {
+  gain_scale_ = scale;
+  kp_.noalias() = scale * unscaled_kp_;
+  kd_.noalias() = scale * unscaled_kd_;
+  law_->set_gains(kp_, kd_);
+}
+
+void PdGravityController::configure(WholeBodyInterface& robot, const ParameterTable& parameters) {
+  size_for(robot);
+  index_ = {parameters.index("target"),     parameters.index("bandwidth_hz"),
+            parameters.index("kp"),         parameters.index("kd"),
+            parameters.index("gain_scale"), parameters.index("transition_s"),
+            parameters.index("blend_s")};
+  if (parameters.is_set(index_.kp) != parameters.is_set(index_.kd)) {
+    throw Error(parameters.owner() + ": give both kp and kd, or neither (gains from bandwidth_hz)");
+  }
+  goal_ = Eigen::Map<const Eigen::VectorXd>(parameters.values(index_.target).data(), robot.dofs());
+  if (parameters.is_set(index_.kp)) {
+    const auto n = robot.dofs();
+    unscaled_kp_ = Eigen::Map<const Eigen::VectorXd>(parameters.values(index_.kp).data(), n)
+                       .asDiagonal();
+    unscaled_kd_ = Eigen::Map<const Eigen::VectorXd>(parameters.values(index_.kd).data(), n)
+                       .asDiagonal();
+  } else {
+    // Every mode critically damped at the bandwidth, from the inertia at the target.
+    gains_from_inertia(goal_, Transform::Identity(), parameters.value(index_.bandwidth));
+  }
+  parameters_changed(parameters);
+  reference_ = goal_;
+}
+
+void PdGravityController::parameters_changed(const ParameterTable& parameters) {
+  apply_gain_scale(parameters.value(index_.scale));
+  transition_s_ = parameters.value(index_.transition);
+  blend_s_ = parameters.value(index_.blend);
+  const auto target = parameters.values(index_.target);
+  if (!std::equal(target.begin(), target.end(), goal_.data())) {
+    from_ = reference_;  // a new target: the reference moves on from where it is
+    goal_ = Eigen::Map<const Eigen::VectorXd>(target.data(), robot_->dofs());
+    transition_start_s_ = -1.0;
+  }
+}
+
+void PdGravityController::activate(const RobotState& measured, std::span<const double> applied) {
+  robot_->set_control_mode(ControlMode::torque);
+  start_blend(applied);
+  from_ = measured.q;
+  reference_ = transition_s_ > 0.0 ? from_ : goal_;
+  transition_start_s_ = -1.0;
+}
+
+// The paper's loop (PdGravity::update) about a reference that reaches the target.
+void PdGravityController::update(double time_s, double /*period_s*/) {
+  last_time_s_ = time_s;
+  if (transition_start_s_ < 0.0) {
+    transition_start_s_ = time_s;
+  }
+  if (transition_s_ > 0.0) {
+    const double s = minimum_jerk((time_s - transition_start_s_) / transition_s_);
+    reference_ = from_ + s * (goal_ - from_);
+  } else {
+    reference_ = goal_;
+  }
+  law_->set_reference(reference_);
+  law_->compute(ReadMode::latest);
+  if (blend_pending_) {  // the first tick: what was applied, less this law's torque
+    blend_ -= law_->torques();
+    blend_pending_ = false;
+    blending_ = true;
+    blend_start_s_ = time_s;
+  }
+  command_ = law_->torques();
+  if (blending_) {
+    command_ += std::exp(-(time_s - blend_start_s_) / blend_s_) * blend_;
+  }
+  robot_->actuators().set_control_reference(command_);
+  signals_[0] = law_->max_error();
+  signals_[1] = (reference_ - goal_).cwiseAbs().maxCoeff();
+}
+
+void PdGravityController::progress(char* line, std::size_t size) const {
+  std::snprintf(line, size, "max joint error %.4f rad", law_->max_error());
+}
+
+std::string PdGravityController::summary() const {
+  char line[64];
+  std::snprintf(line, sizeof line, "final max joint error: %.9g rad", law_->max_error());
+  return line;
+}
+
+std::vector<ParameterSpec> HoldController::parameters() const {
+  return {{.name = "bandwidth_hz",
+           .unit = "Hz",
+           .help = "gains from the joint inertia at the held posture, taken at activation",
+           .default_value = {2.0},
+           .min = 1e-3,
+           .max = 200.0},
+          gain_scale_spec(), blend_spec()};
+}
+
+void HoldController::configure(WholeBodyInterface& robot, const ParameterTable& parameters) {
+  size_for(robot);
+  bandwidth_index_ = parameters.index("bandwidth_hz");
+  scale_index_ = parameters.index("gain_scale");
+  blend_index_ = parameters.index("blend_s");
+  parameters_changed(parameters);
+}
+
+void HoldController::parameters_changed(const ParameterTable& parameters) {
+  bandwidth_hz_ = parameters.value(bandwidth_index_);  // used at the next activation
+  apply_gain_scale(parameters.value(scale_index_));
+  blend_s_ = parameters.value(blend_index_);
+}
+
+void HoldController::activate(const RobotState& measured, std::span<const double> applied) {
+  robot_->set_control_mode(ControlMode::torque);
+  start_blend(applied);
+  gains_from_inertia(measured.q, measured.world_H_base, bandwidth_hz_);
+  apply_gain_scale(gain_scale_);
+  goal_ = measured.q;
+  reference_ = goal_;
+  transition_s_ = 0.0;
+  transition_start_s_ = -1.0;
+}
+
+void register_pd_gravity(ControllerRegistry& registry) {
+  registry.add<PdGravityController>("pd_gravity",
+                                    "PD + gravity compensation towards a target posture");
+  registry.add<HoldController>(
+      "hold", "gravity compensation and joint damping about the posture measured at activation");
+}
+
+}  // namespace wbi::controllers

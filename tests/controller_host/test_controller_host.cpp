@@ -1,0 +1,241 @@
+// The controller host on the project's arm, simulated in lockstep in this
+// process, over real DDS: a switch at a tick boundary with a small torque
+// step, refused switches and parameters that change nothing, a live gain
+// change that changes the motion, and the fallback to hold when a controller
+// throws.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <future>
+#include <optional>
+
+#include <wbi/controllers/controller_host.hpp>
+#include <wbi/controllers/controller_types.hpp>
+#include <wbi/dds_interface.hpp>
+#include <wbi/sim_rig/in_process_robot.hpp>
+
+#include "test_support.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+using wbi::controllers::Controller;
+using wbi::controllers::ControllerHost;
+using wbi::controllers::ParameterSpec;
+using wbi::controllers::ParameterTable;
+
+const std::vector<std::string> kArm{"joint_1", "joint_2", "joint_3", "joint_4",
+                                    "joint_5", "joint_6", "joint_7"};
+const std::vector<double> kTarget{0.3, 0.6, -0.2, 1.2, 0.1, 0.9, 0.0};
+constexpr double kPeriod = 0.001;
+
+// Sends zero torque, and throws at its `throw_at`-th update: a controller with a bug.
+class ThrowingController final : public Controller {
+ public:
+  std::vector<ParameterSpec> parameters() const override {
+    return {{.name = "throw_at", .default_value = {5.0}, .min = 1.0}};
+  }
+  void configure(wbi::WholeBodyInterface& robot, const ParameterTable& parameters) override {
+    robot_ = &robot;
+    throw_at_ = static_cast<int>(parameters.value(0));
+    tau_.setZero(robot.dofs());
+  }
+  void activate(const wbi::RobotState&, std::span<const double>) override { updates_ = 0; }
+  void update(double, double) override {
+    if (++updates_ >= throw_at_) {
+      throw std::runtime_error("index 9 out of range");
+    }
+    robot_->set_control_reference(tau_);
+  }
+  const Eigen::VectorXd& command() const override { return tau_; }
+
+ private:
+  wbi::WholeBodyInterface* robot_ = nullptr;
+  int throw_at_ = 5, updates_ = 0;
+  Eigen::VectorXd tau_;
+};
+
+// The simulated arm, its estimator, and a host with pd (active), hold and a
+// thrower, on robot `robot`. Each tick() waits for the next estimate, as the
+// host's component does with wait_for_state.
+class HostedArm {
+ public:
+  explicit HostedArm(const std::string& robot, double gain_scale = 1.0)
+      : rig_("controller_host",
+             "robot: " + robot + "\nconfig: " + config() +
+                 "\nlockstep: true\nlockstep_controllers: [host]\n",
+             "robot: " + robot + "\nmethod: backward-difference\ncutoff: 100\n") {
+    wbi::DdsInterfaceOptions options;
+    options.robot = robot;
+    options.controller = "host";
+    options.urdf = wbi::test::project_model("arm7.urdf").string();
+    options.max_age_s = 5.0;  // lockstep: time is the simulation's
+    arm_ = wbi::make_dds_interface(options);
+    arm_->add_joints(kArm);
+    rig_.start_simulation();
+    arm_->init(20s);
+    q_.setZero(arm_->dofs());
+    state_ = wbi::RobotState(arm_->dofs());
+    host_.emplace(*arm_, report_, ControllerHost::Options{});
+    const auto& types = wbi::controllers::controller_types();
+    ParameterTable& pd = host_->add("pd", "pd_gravity", types.create("pd_gravity"));
+    pd.set(pd.index("target"), kTarget);
+    pd.set(pd.index("gain_scale"), std::vector<double>{gain_scale});
+    host_->configure("pd");
+    host_->add("hold", "hold", types.create("hold"));
+    host_->configure("hold");
+    host_->add("thrower", "thrower", std::make_unique<ThrowingController>());
+    host_->configure("thrower");
+    host_->set_initial("pd");
+  }
+  ~HostedArm() {
+    rig_.sim().shutdown();
+    rig_.estimator().shutdown();
+  }
+
+  static std::string config() {
+    return (wbi::test::source_dir() / "deploy" / "robots" / "arm.yaml").string();
+  }
+
+  void tick() {
+    // The first tick answers the estimate init() read; each later one the next.
+    arm_->state().read_robot_state(
+        state_, time_s_ == 0.0 ? wbi::ReadMode::latest : wbi::ReadMode::blocking);
+    q_ = state_.q;
+    host_->tick(time_s_, kPeriod);
+    time_s_ += kPeriod;
+  }
+  void run(int ticks) {
+    for (int k = 0; k < ticks; ++k) {
+      tick();
+    }
+  }
+  // Ticks until `request` returns (it waits for the loop to apply it).
+  template <class Result>
+  Result tick_until(std::future<Result>& request) {
+    for (int k = 0; k < 5000 && request.wait_for(0s) != std::future_status::ready; ++k) {
+      tick();
+    }
+    return request.get();
+  }
+  double error_to_target() const {
+    double error = 0.0;
+    for (int i = 0; i < q_.size(); ++i) {
+      error = std::max(error, std::abs(q_[i] - kTarget[static_cast<std::size_t>(i)]));
+    }
+    return error;
+  }
+  std::uint64_t counter(const std::string& name) const {
+    for (std::size_t i = 0; i < report_.counter_count(); ++i) {
+      if (report_.counter_name(i) == name) {
+        return report_.counter_value(i);
+      }
+    }
+    return 0;
+  }
+
+  ControllerHost& host() { return *host_; }
+  wbi::runtime::StatusReport& report() { return report_; }
+
+ private:
+  wbi::sim_rig::InProcessRobot rig_;
+  std::unique_ptr<wbi::WholeBodyInterface> arm_;
+  wbi::runtime::StatusReport report_;
+  std::optional<ControllerHost> host_;
+  wbi::RobotState state_;
+  Eigen::VectorXd q_;
+  double time_s_ = 0.0;
+};
+
+TEST(ControllerHost, SwitchesAtATickBoundaryWithoutATorqueJump) {
+  HostedArm arm("host_switch");
+  arm.run(1500);
+  EXPECT_EQ(arm.host().active(), "pd");
+  EXPECT_LT(arm.error_to_target(), 0.02) << "pd reached the target";
+  auto request = std::async(std::launch::async,
+                            [&] { return arm.host().request_switch({"hold"}, {"pd"}); });
+  const auto result = arm.tick_until(request);
+  ASSERT_TRUE(result.done) << result.text;
+  std::printf("%s\n", result.text.c_str());
+  EXPECT_EQ(arm.host().active(), "hold");
+  // hold's first command continues pd's last (its blend): no step at the switch.
+  EXPECT_LT(result.torque_step, 0.05) << result.text;
+  EXPECT_EQ(arm.counter("switches"), 1u);
+  arm.run(500);
+  EXPECT_LT(arm.error_to_target(), 0.03) << "hold keeps the posture it took over";
+}
+
+TEST(ControllerHost, ARefusedSwitchChangesNothing) {
+  HostedArm arm("host_refuse");
+  arm.run(10);
+  const auto unknown = arm.host().request_switch({"balance"}, {"pd"});
+  EXPECT_FALSE(unknown.done);
+  EXPECT_NE(unknown.text.find("unknown controller 'balance'"), std::string::npos) << unknown.text;
+  const auto not_active = arm.host().request_switch({"thrower"}, {"hold"});
+  EXPECT_FALSE(not_active.done);
+  EXPECT_NE(not_active.text.find("'hold' is not active"), std::string::npos) << not_active.text;
+  const auto both = arm.host().request_switch({"hold"}, {});
+  EXPECT_FALSE(both.done);
+  EXPECT_NE(both.text.find("--deactivate pd"), std::string::npos) << both.text;
+  arm.run(10);
+  EXPECT_EQ(arm.host().active(), "pd");
+  EXPECT_EQ(arm.counter("refused_switches"), 3u);
+  EXPECT_EQ(arm.counter("switches"), 0u);
+}
+
+TEST(ControllerHost, ARefusedParameterChangesNothing) {
+  HostedArm arm("host_param_refused");
+  arm.run(10);
+  try {
+    arm.host().set_parameter("pd", "gain_scale", {20.0});
+    FAIL() << "20 is out of range";
+  } catch (const wbi::Error& e) {
+    EXPECT_STREQ(e.what(), "pd: gain_scale = 20 is outside [0, 10]");
+  }
+  EXPECT_THROW(arm.host().set_parameter("pd", "bandwidth_hz", {10.0}), wbi::Error)
+      << "not live while pd is active";
+  EXPECT_NO_THROW(arm.host().set_parameter("hold", "bandwidth_hz", {1.0})) << "hold is inactive";
+  arm.run(10);
+  const auto& pd = arm.host().parameters("pd");
+  EXPECT_EQ(pd.snapshot(pd.index("gain_scale"))[0], 1.0);
+  EXPECT_EQ(pd.snapshot(pd.index("bandwidth_hz"))[0], 5.0);
+}
+
+// Half the gains from the first tick, in one run, and halved live at the same
+// tick in another: the same motion, and slower than with the full gains.
+TEST(ControllerHost, ALiveGainChangeChangesTheMotion) {
+  double full = 0.0, halved_live = 0.0;
+  {
+    HostedArm arm("host_gain_full");
+    arm.run(300);
+    full = arm.error_to_target();
+  }
+  {
+    HostedArm arm("host_gain_live");
+    arm.run(1);
+    arm.host().set_parameter("pd", "gain_scale", {0.5});
+    arm.run(299);
+    halved_live = arm.error_to_target();
+    EXPECT_EQ(arm.counter("parameter_changes"), 1u);
+  }
+  EXPECT_GT(halved_live, 1.5 * full) << "full gains: " << full << " rad, halved: " << halved_live;
+}
+
+TEST(ControllerHost, AControllerThatThrowsFallsBackToHold) {
+  HostedArm arm("host_fallback");
+  arm.run(500);
+  auto request = std::async(std::launch::async,
+                            [&] { return arm.host().request_switch({"thrower"}, {"pd"}); });
+  ASSERT_TRUE(arm.tick_until(request).done);
+  arm.run(20);  // throws at its 5th update
+  EXPECT_EQ(arm.host().active(), "hold");
+  EXPECT_EQ(arm.counter("fallbacks"), 1u);
+  const std::string error = arm.report().last_error();
+  EXPECT_NE(error.find("controller 'thrower' threw in update (index 9 out of range)"),
+            std::string::npos)
+      << error;
+  EXPECT_NE(error.find("fell back to 'hold'"), std::string::npos) << error;
+}
+
+}  // namespace
