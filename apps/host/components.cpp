@@ -1,6 +1,5 @@
 #include "components.hpp"
 
-#include <wbi/controllers/momentum_balance_component.hpp>
 #include <wbi/controllers/controller_host_component.hpp>
 #include <wbi/estimator/estimator_component.hpp>
 #include <wbi/model_service/component.hpp>
@@ -13,7 +12,6 @@ void register_components(wbi::runtime::Registry& registry) {
   wbi::estimator::register_components(registry);
   wbi::sim_robot::register_components(registry);
   wbi::controllers::register_components(registry);
-  wbi::controllers::register_momentum_balance(registry);
 }
 
 }  // namespace wbi::host

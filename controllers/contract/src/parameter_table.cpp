@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 
 #include <wbi/types.hpp>
 
@@ -67,6 +66,11 @@ void ParameterTable::size_for(int joints) {
     entry.staged.reserve(static_cast<std::size_t>(entry.count));
     const auto& fallback = entry.spec.default_value;
     entry.values.clear();
+    if (entry.spec.text) {
+      entry.count = 0;
+      entry.text = entry.spec.text_default;
+      continue;
+    }
     if (fallback.size() == 1 && entry.count > 1) {
       entry.values.assign(static_cast<std::size_t>(entry.count), fallback[0]);
     } else if (!fallback.empty()) {
@@ -109,10 +113,28 @@ std::vector<double> ParameterTable::snapshot(std::size_t index) const {
   return entries_.at(index).values;
 }
 
+std::string ParameterTable::text(std::size_t index) const {
+  std::lock_guard lock(mutex_);
+  return entries_.at(index).text;
+}
+
+void ParameterTable::set_text(std::size_t index, const std::string& value) {
+  Entry& entry = entries_.at(index);
+  if (!entry.spec.text) {
+    throw Error(owner_ + ": " + entry.spec.name + " takes numbers, not text ('" + value + "')");
+  }
+  std::lock_guard lock(mutex_);
+  entry.text = value;
+  generation_.fetch_add(1, std::memory_order_acq_rel);
+}
+
 std::string ParameterTable::check(std::size_t index, std::span<const double> values,
                                   bool active) const {
   const Entry& entry = entries_.at(index);
   const ParameterSpec& spec = entry.spec;
+  if (spec.text) {
+    return owner_ + ": " + spec.name + " takes a text, not numbers";
+  }
   const std::string named = owner_ + ": " + spec.name + " = " + format_values(values);
   if (active && !spec.live) {
     return owner_ + ": " + spec.name +
@@ -173,17 +195,6 @@ bool ParameterTable::apply_staged() {
   any_staged_.store(false, std::memory_order_release);
   generation_.fetch_add(1, std::memory_order_acq_rel);
   return true;
-}
-
-std::string ParameterTable::describe() const {
-  std::lock_guard lock(mutex_);
-  std::ostringstream text;
-  for (const auto& entry : entries_) {
-    text << entry.spec.name << " = "
-         << (entry.values.empty() ? std::string("(unset)") : format_values(entry.values))
-         << (entry.spec.unit.empty() ? "" : " " + entry.spec.unit) << "\n";
-  }
-  return text.str();
 }
 
 }  // namespace wbi::controllers

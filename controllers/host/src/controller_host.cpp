@@ -201,6 +201,9 @@ bool ControllerHost::apply_switch(double time_s) {
 void ControllerHost::run_active(double time_s, double period_s) {
   Controller& controller = *active_->controller;
   ParameterTable& parameters = *active_->parameters;
+  if (state_source_changed_.exchange(false)) {
+    controller.state_source_changed();
+  }
   if (parameters.apply_staged()) {
     controller.parameters_changed(parameters);
     changes_->add();

@@ -1,5 +1,6 @@
 #include "wbi/controllers/controller_host_component.hpp"
 
+#include <array>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -7,7 +8,10 @@
 #include <wbi/controllers/controller_host.hpp>
 #include <wbi/controllers/controller_types.hpp>
 #include <wbi/controllers/interface_options.hpp>
+#include <wbi/dds/publisher.hpp>
+#include <wbi/dds/topics.hpp>
 #include <wbi/dds_interface.hpp>
+#include <wbi/runtime/process_exit.hpp>
 #include <wbi/runtime/producer_counters.hpp>
 
 #include "host_service.hpp"
@@ -20,6 +24,10 @@ namespace {
 void read_declared(const runtime::Parameters& parameters, ParameterTable& table) {
   for (std::size_t i = 0; i < table.size(); ++i) {
     const ParameterSpec& spec = table.spec(i);
+    if (spec.text) {
+      table.set_text(i, parameters.get<std::string>(spec.name, spec.text_default));
+      continue;
+    }
     const bool required = spec.default_value.empty() && !spec.optional;
     if (!parameters.has(spec.name)) {
       if (required) {
@@ -59,7 +67,22 @@ class ControllerHostComponent final : public runtime::Component {
     ControllerHost::Options host_options;
     host_options.overrun_limit = parameters.get<int>("overrun_limit", host_options.overrun_limit);
 
-    options.on_producer_event = runtime::count_producer_events(report());
+    // A new estimator is a rebound of the state stream (wbi/dds/producers.hpp),
+    // said before its first sample is taken.
+    new_estimators_ = &report().counter("new_estimators");
+    std::string state_topic = "'";  // as the rebound's line quotes it
+    state_topic += dds::topics::state(options.robot);
+    state_topic += '\'';
+    options.on_producer_event = [count = runtime::count_producer_events(report()),
+                                 state = std::move(state_topic),
+                                 this](const dds::ProducerEvent& event) {
+      count(event);
+      if (event.kind == dds::ProducerEvent::Kind::rebound &&
+          event.text.find(state) != std::string_view::npos && host_) {
+        new_estimators_->add();
+        host_->notify_state_source_changed();
+      }
+    };
     robot_ = make_dds_interface(options);
     robot_->add_joints(joints);
     robot_->init(std::chrono::milliseconds(static_cast<std::int64_t>(init_timeout_s * 1000)));
@@ -87,6 +110,15 @@ class ControllerHostComponent final : public runtime::Component {
       throw runtime::ParameterError(parameters.where("active") + ": " + e.what());
     }
     newest_q_.setZero(robot_->dofs());
+    if (parameters.get<bool>("signals", true)) {
+      signals_publisher_ = std::make_unique<dds::Publisher<msg::Signals>>(
+          *context.participant, dds::topics::signals(options.robot, context.instance),
+          dds::qos::kStream);
+      signals_.header().robot(options.robot);
+      signals_.source(context.instance);
+      signals_.names().reserve(msg::MAX_SIGNALS);
+      signals_.values().reserve(msg::MAX_SIGNALS);
+    }
     service_.emplace(*context.participant, options.robot, context.instance, *host_);
     service_->publish_parameters();
   }
@@ -114,6 +146,15 @@ class ControllerHostComponent final : public runtime::Component {
     const double t = 1e-9 * static_cast<double>(time_ns - start_ns_);
     host_->tick(t, 1e-9 * static_cast<double>(period_ns));
     Controller* active = host_->active_controller();
+    if (active) {
+      publish_signals(*active);
+      if (active->finished() && !exit_requested_) {
+        // The run is over: end the hosting process (wbi_host shuts the
+        // components down, so the summary is printed), and `wbi launch` with it.
+        exit_requested_ = true;
+        runtime::request_process_exit(0);
+      }
+    }
     if (active && progress_period_s_ > 0 && time_ns >= next_progress_ns_) {
       next_progress_ns_ += static_cast<std::int64_t>(progress_period_s_ * 1e9);
       active->progress(progress_line_.data(), progress_line_.size());
@@ -132,6 +173,7 @@ class ControllerHostComponent final : public runtime::Component {
       std::fflush(stdout);
     }
     service_.reset();
+    signals_publisher_.reset();
     host_.reset();
     if (robot_) {
       robot_->close();
@@ -139,6 +181,28 @@ class ControllerHostComponent final : public runtime::Component {
   }
 
  private:
+  // The active controller's signals, once per state it answered; the names
+  // are set again when the active controller changed (the only allocation).
+  void publish_signals(const Controller& active) {
+    const auto values = active.signals();
+    const std::int64_t stamp = active.signals_stamp_ns();
+    if (!signals_publisher_ || values.empty() || values.size() > msg::MAX_SIGNALS ||
+        (&active == signals_of_ && stamp == signals_.header().stamp_ns())) {
+      return;
+    }
+    if (&active != signals_of_) {
+      signals_of_ = &active;
+      signals_.names().clear();
+      for (const auto& name : active.signal_names()) {
+        signals_.names().emplace_back(name);
+      }
+    }
+    signals_.values().assign(values.begin(), values.end());
+    signals_.header().stamp_ns(stamp);
+    signals_.header().seq(signals_seq_++);
+    signals_publisher_->publish(signals_);
+  }
+
   void add(const std::string& name, const std::string& type,
            const runtime::Parameters& parameters) {
     std::unique_ptr<Controller> controller;
@@ -185,6 +249,12 @@ class ControllerHostComponent final : public runtime::Component {
   std::int64_t next_progress_ns_ = 0;
   std::uint64_t event_timeouts_ = 0;
   std::array<char, 160> progress_line_{};
+  bool exit_requested_ = false;
+  runtime::StatusCounter* new_estimators_ = nullptr;
+  std::unique_ptr<dds::Publisher<msg::Signals>> signals_publisher_;
+  msg::Signals signals_;
+  const Controller* signals_of_ = nullptr;  // whose names signals_ carries
+  std::uint64_t signals_seq_ = 0;
 };
 
 }  // namespace

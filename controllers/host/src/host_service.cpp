@@ -105,6 +105,8 @@ void HostService::list_parameters(const std::string& controller,
       entry.max(spec.max);
       entry.live(spec.live);
       entry.values(table.snapshot(i));
+      entry.is_text(spec.text);
+      entry.text(table.text(i));
       out.push_back(entry);
     }
   }
@@ -119,6 +121,11 @@ void HostService::set_parameter(const msg::ControllerRequest& request,
   const std::string parameter = request.parameter().to_string();
   const ParameterTable& table = host_.parameters(controller);
   const std::uint64_t before = table.generation();
+  if (table.spec(table.index(parameter)).text) {
+    reply.error(controller + ": " + parameter +
+                " is a text read at configure (e.g. a frame name): change it in the deploy file");
+    return;
+  }
   host_.set_parameter(controller, parameter,
                       std::vector<double>(request.values().begin(), request.values().end()));
   // Applied between two ticks: answer (and publish) once it is.

@@ -25,6 +25,19 @@ Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
 
 }  // namespace
 
+void MomentumBalance::set_tracking(const MomentumBalanceParameters& parameters) {
+  const auto& p = parameters;
+  require(p.com_kp >= 0.0 && p.com_kd >= 0.0 && p.angular_momentum_kd >= 0.0, "gains must be >= 0");
+  require(p.torque_weight >= 0.0 && p.wrench_weight > 0.0 && p.foot_moment_weight >= 0.0,
+          "torque_weight and foot_moment_weight must be >= 0, wrench_weight > 0");
+  p_.com_kp = p.com_kp;
+  p_.com_kd = p.com_kd;
+  p_.angular_momentum_kd = p.angular_momentum_kd;
+  p_.torque_weight = p.torque_weight;
+  p_.wrench_weight = p.wrench_weight;
+  p_.foot_moment_weight = p.foot_moment_weight;
+}
+
 MomentumBalance::MomentumBalance(WholeBodyInterface& robot, MomentumBalanceParameters parameters,
                                  Eigen::VectorXd q_posture)
     : robot_(robot),
@@ -43,11 +56,8 @@ MomentumBalance::MomentumBalance(WholeBodyInterface& robot, MomentumBalanceParam
   require(p_.foot_x_min < 0.0 && p_.foot_x_max > 0.0 && p_.foot_y_min < 0.0 && p_.foot_y_max > 0.0,
           "the foot rectangle must contain the sole origin (x_min < 0 < x_max, y_min < 0 < y_max)");
   require(p_.min_normal_force >= 0.0, "min_normal_force must be >= 0");
-  require(p_.com_kp >= 0.0 && p_.com_kd >= 0.0 && p_.angular_momentum_kd >= 0.0 &&
-              p_.posture_bandwidth_hz >= 0.0,
-          "gains must be >= 0");
-  require(p_.torque_weight >= 0.0 && p_.wrench_weight > 0.0 && p_.foot_moment_weight >= 0.0,
-          "torque_weight and foot_moment_weight must be >= 0, wrench_weight > 0");
+  require(p_.posture_bandwidth_hz >= 0.0, "gains must be >= 0");
+  set_tracking(p_);
 
   const int N = 6 + n_;
   state_ = RobotState(n_);

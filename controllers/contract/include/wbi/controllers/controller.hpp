@@ -22,6 +22,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
@@ -51,11 +52,19 @@ class Controller {
   virtual void update(double time_s, double period_s) = 0;
   virtual void deactivate() {}
   virtual void parameters_changed(const ParameterTable& /*parameters*/) {}
+  // A new estimator took over the state stream: its world frame need not be
+  // the old one's (loop thread, before the next update).
+  virtual void state_source_changed() {}
+  // True when the controller's run is over (e.g. an experiment of fixed
+  // length): the host then ends its process.
+  virtual bool finished() const { return false; }
 
   // The joint torques (or references) of the last update().
   virtual const Eigen::VectorXd& command() const = 0;
-  // Values of signal_names() at the last update().
+  // Values of signal_names() at the last update(), and the source stamp of the
+  // state they come from (the host publishes them once per new stamp).
   virtual std::span<const double> signals() const { return {}; }
+  virtual std::int64_t signals_stamp_ns() const { return 0; }
   // One line of progress, e.g. "max joint error 0.0012 rad" (no allocation).
   virtual void progress(char* line, std::size_t size) const {
     if (size > 0) {

@@ -34,6 +34,10 @@ struct ParameterSpec {
   double max = std::numeric_limits<double>::infinity();
   bool live = true;       // may change while the controller is active
   bool optional = false;  // may stay unset (no values): the controller derives it
+  // A text parameter (a frame name, say): one string, text_default, no
+  // numbers; read at configure only.
+  bool text = false;
+  std::string text_default{};
 };
 
 class ParameterTable {
@@ -63,6 +67,11 @@ class ParameterTable {
   bool is_set(std::size_t index) const { return !entries_[index].values.empty(); }
   // A copy of the current values, from any thread.
   std::vector<double> snapshot(std::size_t index) const;
+  // A text parameter's value.
+  std::string text(std::size_t index) const;
+  // Sets a text parameter, before the controller is configured. Throws
+  // wbi::Error naming a parameter that is not a text one.
+  void set_text(std::size_t index, const std::string& value);
 
   // "" when `values` may become the parameter's values now, else one line
   // naming the parameter, the value and what was expected.
@@ -79,9 +88,6 @@ class ParameterTable {
   // +1 at every set() or applied change.
   std::uint64_t generation() const { return generation_.load(std::memory_order_acquire); }
 
-  // Every parameter with its values, "name = v [unit]" (v1 v2 … for several), one per line.
-  std::string describe() const;
-
  private:
   struct Entry {
     ParameterSpec spec;
@@ -89,6 +95,7 @@ class ParameterTable {
     std::vector<double> values;   // current; capacity `count`
     std::vector<double> staged;   // capacity `count`
     bool has_staged = false;
+    std::string text;             // a text parameter's value
   };
   int expected_count(const ParameterSpec& spec) const;
 

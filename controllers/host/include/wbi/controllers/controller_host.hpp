@@ -78,6 +78,9 @@ class ControllerHost {
   Controller* active_controller();
 
   // Any thread.
+  // A new estimator took over the state stream: told to the active controller
+  // before its next update.
+  void notify_state_source_changed() { state_source_changed_.store(true); }
   SwitchResult request_switch(const std::vector<std::string>& activate,
                               const std::vector<std::string>& deactivate);
   // Throws wbi::Error with one line naming the controller, parameter, value and range.
@@ -109,6 +112,7 @@ class ControllerHost {
   RobotState measured_;          // read at an activation
   Eigen::VectorXd last_command_;  // the active controller's, before this tick
   int overruns_in_a_row_ = 0;
+  std::atomic<bool> state_source_changed_{false};
   runtime::StatusCounter *switches_, *refused_, *fallbacks_, *stale_, *overruns_, *changes_;
 
   // A switch handed from request_switch() to the loop.

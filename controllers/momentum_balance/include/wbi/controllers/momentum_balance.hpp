@@ -61,6 +61,11 @@ class MomentumBalance {
   // … then evaluates the model, solves the QP and sends τ.
   void control();
 
+  // The fields used per tick (com_kp, com_kd, angular_momentum_kd,
+  // torque_weight, wrench_weight, foot_moment_weight) from `parameters`; the
+  // others stay as constructed. Throws wbi::Error as the constructor does.
+  void set_tracking(const MomentumBalanceParameters& parameters);
+
   // CoM reference (position, velocity, acceleration) in the world.
   void set_com_reference(const Eigen::Vector3d& position, const Eigen::Vector3d& velocity,
                          const Eigen::Vector3d& acceleration);

@@ -37,6 +37,7 @@ class PdGravityController : public Controller {
   void parameters_changed(const ParameterTable& parameters) override;
   const Eigen::VectorXd& command() const override { return command_; }
   std::span<const double> signals() const override { return signals_; }
+  std::int64_t signals_stamp_ns() const override { return law_->state().stamp.source_ns; }
   void progress(char* line, std::size_t size) const override;
   std::string summary() const override;
 

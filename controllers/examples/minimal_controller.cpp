@@ -1,0 +1,44 @@
+// controllers/README.md, "Writing a controller": PD + gravity under the
+// controller contract, whole. Built (not registered) so that the README stays true.
+#include <wbi/controllers/controller.hpp>
+
+namespace example {
+using namespace wbi;
+using namespace wbi::controllers;
+
+class MinimalPd final : public Controller {
+ public:
+  std::vector<ParameterSpec> parameters() const override {
+    return {{.name = "target", .unit = "rad", .size = kPerJoint},
+            {.name = "kp", .unit = "N m/rad", .default_value = {100.0}, .min = 0.0},
+            {.name = "kd", .unit = "N m s/rad", .default_value = {10.0}, .min = 0.0}};
+  }
+  void configure(WholeBodyInterface& robot, const ParameterTable& parameters) override {
+    robot_ = &robot;
+    state_ = RobotState(robot.dofs());
+    g_.setZero(robot.dofs() + 6);
+    tau_.setZero(robot.dofs());
+    parameters_changed(parameters);
+  }
+  void parameters_changed(const ParameterTable& p) override {  // between two ticks
+    q_d_ = Eigen::Map<const Eigen::VectorXd>(p.values(0).data(), robot_->dofs());
+    kp_ = p.value(1), kd_ = p.value(2);
+  }
+  void activate(const RobotState&, std::span<const double>) override {
+    robot_->set_control_mode(ControlMode::torque);
+  }
+  void update(double /*time_s*/, double /*period_s*/) override {  // no allocation
+    robot_->state().read_robot_state(state_, ReadMode::latest);
+    robot_->model().gravity_forces(state_.q, state_.world_H_base, {0, 0, -9.81}, g_);
+    tau_ = g_.tail(robot_->dofs()) - kp_ * (state_.q - q_d_) - kd_ * state_.dq;
+    robot_->actuators().set_control_reference(tau_);
+  }
+  const Eigen::VectorXd& command() const override { return tau_; }
+
+ private:
+  WholeBodyInterface* robot_ = nullptr;
+  RobotState state_;
+  Eigen::VectorXd q_d_, g_, tau_;
+  double kp_ = 0.0, kd_ = 0.0;
+};
+}  // namespace example

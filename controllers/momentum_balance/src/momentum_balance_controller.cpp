@@ -1,0 +1,213 @@
+#include "wbi/controllers/momentum_balance_controller.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace wbi::controllers {
+
+namespace {
+
+const MomentumBalanceParameters kDefaults{};
+
+// A number the balancer reads at configure (live: false) or per tick (live: true).
+ParameterSpec number(const char* name, const char* unit, double value, double min, double max,
+                     bool live, const char* help) {
+  return {.name = name,
+          .unit = unit,
+          .help = help,
+          .default_value = {value},
+          .min = min,
+          .max = max,
+          .live = live};
+}
+
+}  // namespace
+
+std::vector<ParameterSpec> MomentumBalanceController::parameters() const {
+  const auto& d = kDefaults;
+  const double inf = std::numeric_limits<double>::infinity();
+  return {
+      {.name = "left_sole", .help = "left contact frame", .text = true, .text_default = d.left_sole},
+      {.name = "right_sole", .help = "right contact frame", .text = true,
+       .text_default = d.right_sole},
+      number("foot_x_min", "m", d.foot_x_min, -1.0, 0.0, false, "support rectangle, sole frame"),
+      number("foot_x_max", "m", d.foot_x_max, 0.0, 1.0, false, "support rectangle, sole frame"),
+      number("foot_y_min", "m", d.foot_y_min, -1.0, 0.0, false, "support rectangle, sole frame"),
+      number("foot_y_max", "m", d.foot_y_max, 0.0, 1.0, false, "support rectangle, sole frame"),
+      number("friction", "", d.friction, 1e-3, 10.0, false, "friction pyramid's mu"),
+      number("torsional_friction", "m", d.torsional_friction, 0.0, 1.0, false,
+             "|tau_z| <= this x f_z"),
+      number("min_normal_force", "N", d.min_normal_force, 0.0, inf, false, "per foot"),
+      number("com_kp", "1/s^2", d.com_kp, 0.0, inf, true, "CoM stiffness"),
+      number("com_kd", "1/s", d.com_kd, 0.0, inf, true, "CoM damping"),
+      number("angular_momentum_kd", "1/s", d.angular_momentum_kd, 0.0, inf, true,
+             "angular momentum damping"),
+      number("posture_bandwidth_hz", "Hz", d.posture_bandwidth_hz, 0.0, 100.0, false,
+             "null-space joint PD"),
+      number("torque_weight", "", d.torque_weight, 0.0, inf, true, "of |tau|^2 in the QP"),
+      number("wrench_weight", "", d.wrench_weight, 1e-12, inf, true, "|f|^2 regularisation"),
+      number("foot_moment_weight", "", d.foot_moment_weight, 0.0, inf, true,
+             "extra weight on the feet moments"),
+      {.name = "posture",
+       .unit = "rad",
+       .help = "postural task's reference (default: measured at configure)",
+       .size = kPerJoint,
+       .live = false,
+       .optional = true},
+      number("com_amplitude", "m", 0.05, 0.0, 1.0, false, "CoM sinusoid's amplitude"),
+      number("com_frequency_hz", "Hz", 0.2, 0.0, 10.0, false, "CoM sinusoid's frequency"),
+      {.name = "com_direction",
+       .help = "CoM sinusoid's direction (not all zero)",
+       .default_value = {0.0, 1.0, 0.0},
+       .size = 3,
+       .live = false},
+      number("settle_s", "s", 0.5, 0.0, inf, false, "hold the measured CoM this long first"),
+      number("exit_after_s", "s", 0.0, 0.0, inf, false, "end the run after this long (0: never)"),
+  };
+}
+
+std::vector<std::string> MomentumBalanceController::signal_names() const {
+  return {"com_x",     "com_y",     "com_z",    "com_ref_x", "com_ref_y",
+          "com_ref_z", "com_error", "left_f_z", "right_f_z"};
+}
+
+void MomentumBalanceController::configure(WholeBodyInterface& robot,
+                                          const ParameterTable& parameters) {
+  robot_ = &robot;
+  const auto value = [&](const char* name) { return parameters.value(parameters.index(name)); };
+  MomentumBalanceParameters p;
+  p.left_sole = parameters.text(parameters.index("left_sole"));
+  p.right_sole = parameters.text(parameters.index("right_sole"));
+  p.foot_x_min = value("foot_x_min");
+  p.foot_x_max = value("foot_x_max");
+  p.foot_y_min = value("foot_y_min");
+  p.foot_y_max = value("foot_y_max");
+  p.friction = value("friction");
+  p.torsional_friction = value("torsional_friction");
+  p.min_normal_force = value("min_normal_force");
+  p.posture_bandwidth_hz = value("posture_bandwidth_hz");
+  tracking_ = p;
+  const int n = robot.dofs();
+  Eigen::VectorXd posture(n);
+  if (const std::size_t i = parameters.index("posture"); parameters.is_set(i)) {
+    posture = Eigen::Map<const Eigen::VectorXd>(parameters.values(i).data(), n);
+  } else {
+    robot.read_estimates(EstimateKind::joint_position, posture);
+  }
+  const auto direction = parameters.values(parameters.index("com_direction"));
+  const Eigen::Vector3d d(direction[0], direction[1], direction[2]);
+  if (d.norm() == 0.0) {
+    throw Error(parameters.owner() + ": com_direction must not be all zero");
+  }
+  reference_.direction = d.normalized();
+  reference_.amplitude = value("com_amplitude");
+  reference_.frequency_hz = value("com_frequency_hz");
+  reference_.settle_s = value("settle_s");
+  exit_after_s_ = value("exit_after_s");
+  parameters_changed(parameters);  // the live gains into p
+  p.com_kp = tracking_.com_kp, p.com_kd = tracking_.com_kd;
+  p.angular_momentum_kd = tracking_.angular_momentum_kd;
+  p.torque_weight = tracking_.torque_weight, p.wrench_weight = tracking_.wrench_weight;
+  p.foot_moment_weight = tracking_.foot_moment_weight;
+  balance_.emplace(robot, p, posture);
+}
+
+void MomentumBalanceController::parameters_changed(const ParameterTable& parameters) {
+  const auto value = [&](const char* name) { return parameters.value(parameters.index(name)); };
+  tracking_.com_kp = value("com_kp");
+  tracking_.com_kd = value("com_kd");
+  tracking_.angular_momentum_kd = value("angular_momentum_kd");
+  tracking_.torque_weight = value("torque_weight");
+  tracking_.wrench_weight = value("wrench_weight");
+  tracking_.foot_moment_weight = value("foot_moment_weight");
+  if (balance_) {
+    balance_->set_tracking(tracking_);
+  }
+}
+
+void MomentumBalanceController::activate(const RobotState& /*measured*/,
+                                         std::span<const double> /*applied*/) {
+  balance_->start();
+  start_ns_ = -1;
+  has_seq_ = false;
+}
+
+void MomentumBalanceController::state_source_changed() { new_estimator_ = true; }
+
+void MomentumBalanceController::update(double /*time_s*/, double /*period_s*/) {
+  const Stamp stamp = balance_->read_state(ReadMode::latest);
+  if (has_seq_ && stamp.seq == last_seq_) {
+    return;  // this estimate was answered already
+  }
+  if (has_seq_ && new_estimator_) {
+    // A new estimator: its world frame need not be the old one's (a legged
+    // base starts at x = y = 0 wherever the robot stands). The reference
+    // moves with the CoM's estimate, so that the robot does not (it moved
+    // 5 cm to the shifted reference before).
+    const Eigen::Vector3d shift = balance_->com_of_state() - balance_->com();
+    reference_.origin += shift;
+    ++new_estimators_;
+    std::printf("new estimator: CoM reference moved with its frame by (%.4f, %.4f, %.4f) m\n",
+                shift.x(), shift.y(), shift.z());
+    std::fflush(stdout);
+    new_estimator_ = false;
+  }
+  has_seq_ = true;
+  last_seq_ = stamp.seq;
+  stamp_ns_ = stamp.source_ns;
+  if (start_ns_ < 0) {
+    start_ns_ = stamp.source_ns;
+  }
+  const double t = 1e-9 * static_cast<double>(stamp.source_ns - start_ns_);
+  follow_reference(t);
+  balance_->control();
+  // The run's figures end at exit_after_s: the ticks answered while the
+  // process shuts down are not counted (how many depends on timing).
+  if (t >= reference_.settle_s && !finished_) {
+    const double error = (balance_->com() - balance_->com_reference()).norm();
+    squared_error_ += error * error;
+    max_error_ = std::max(max_error_, error);
+    ++samples_;
+  }
+  publish_signals();
+  finished_ = exit_after_s_ > 0.0 && t >= exit_after_s_;
+}
+
+void MomentumBalanceController::follow_reference(double t) {
+  reference_.follow(
+      t, [&] { return balance_->com_of_state(); },
+      [&] { return balance_->feet_center_of_state(); });
+  Eigen::Vector3d x, v, a;
+  reference_.at(t, x, v, a);
+  balance_->set_com_reference(x, v, a);
+}
+
+void MomentumBalanceController::publish_signals() {
+  const Eigen::Vector3d& c = balance_->com();
+  const Eigen::Vector3d& r = balance_->com_reference();
+  const auto& w = balance_->wrenches();
+  signals_ = {c.x(), c.y(), c.z(), r.x(), r.y(), r.z(), (c - r).norm(), w[2], w[8]};
+}
+
+void MomentumBalanceController::progress(char* line, std::size_t size) const {
+  const Eigen::Vector3d& c = balance_->com();
+  const auto& w = balance_->wrenches();
+  std::snprintf(line, size, "com (%.4f, %.4f, %.4f) m  error %.4f m  feet f_z %.1f / %.1f N",
+                c.x(), c.y(), c.z(), (c - balance_->com_reference()).norm(), w[2], w[8]);
+}
+
+std::string MomentumBalanceController::summary() const {
+  char text[192];
+  std::snprintf(text, sizeof text, "qp failures: %llu\nmax com error: %.6f m\ncom tracking rms: %.6f m",
+                static_cast<unsigned long long>(balance_->qp_failures()), max_error_,
+                samples_ > 0 ? std::sqrt(squared_error_ / static_cast<double>(samples_)) : 0.0);
+  return text;
+}
+
+void register_momentum_balance(ControllerRegistry& registry) {
+  registry.add<MomentumBalanceController>(
+      "momentum_balance", "momentum-based balancing on two feet, with a CoM sinusoid reference");
+}
+
+}  // namespace wbi::controllers
