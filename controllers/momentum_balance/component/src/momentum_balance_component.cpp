@@ -170,7 +170,9 @@ class MomentumBalanceComponent final : public runtime::Component {
     set_reference(t);
     controller_->control();
 
-    if (t >= reference_.settle_s) {
+    // The run's figures end at exit_after_s: the ticks answered while the
+    // process shuts down are not counted (how many depends on timing).
+    if (t >= reference_.settle_s && !exit_requested_) {
       const double error = (controller_->com() - controller_->com_reference()).norm();
       squared_error_ += error * error;
       max_error_ = std::max(max_error_, error);
