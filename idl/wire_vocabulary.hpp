@@ -5,6 +5,8 @@
 // sample may carry any 32-bit value.
 #pragma once
 
+#include <cstdint>
+#include <limits>
 #include <optional>
 
 #include <wbi/msg/commands.h>
@@ -25,6 +27,12 @@ static_assert(FINALIZED == static_cast<int>(wbi::LifecycleState::finalized) &&
 static_assert(GYROSCOPE == static_cast<int>(wbi::SensorKind::gyroscope) &&
                   enum_count<wbi::SensorKind>() == GYROSCOPE + 1,
               "idl/description.idl's SensorKind must follow wbi::SensorKind");
+
+// ActuatorCommand.tick of a command that answers no lockstep tick: one sent
+// before the controller computed any reference from a sample (its start-up mode
+// switch, say). The robot applies such a command as any other, but its
+// lockstep pacer does not step on it.
+inline constexpr std::uint64_t kNoTick = std::numeric_limits<std::uint64_t>::max();
 
 constexpr ControlMode to_wire(wbi::ControlMode mode) { return static_cast<ControlMode>(mode); }
 constexpr LifecycleState to_wire(wbi::LifecycleState state) {

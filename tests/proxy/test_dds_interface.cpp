@@ -8,10 +8,13 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <mutex>
 #include <thread>
+#include <utility>
 
 #include <wbi/model/algorithms.hpp>
+#include <wbi/msg/wire_vocabulary.hpp>
 
 #include "arm_peer.hpp"
 
@@ -201,7 +204,7 @@ TEST(DdsInterface, TheRobotStateIsOneEstimate) {
     EXPECT_DOUBLE_EQ(state.base_velocity[0], seq) << k;
     EXPECT_DOUBLE_EQ(state.world_H_base(0, 3), seq) << k;
     EXPECT_DOUBLE_EQ(state.world_H_base(2, 3), 0.25);
-    if (mode == wbi::ReadMode::blocking) {
+    if (mode == wbi::ReadMode::blocking && k > 0) {  // the first: the newest, init()'s included
       EXPECT_GT(stamp.seq, previous) << "a blocking read returns a newer estimate";
     }
     previous = stamp.seq;
@@ -301,6 +304,42 @@ TEST(DdsInterface, CommandsCarryTheRobotsJointIndices) {
   EXPECT_EQ(parameter.sample.name(), "fixed_link");
   EXPECT_EQ(parameter.sample.text(), "ee_link");
   EXPECT_THROW(robot->set_estimation_parameter("fixed_link", 1e6), wbi::Error);
+}
+
+// Lockstep (docs/conventions.md): only a reference answers a tick, that of the
+// newest sample read; a mode switch answers none: it carries kNoTick before
+// the first reference, the last reference's tick after.
+TEST(DdsInterface, OnlyAReferenceAnswersALockstepTick) {
+  ArmPeer peer("arm_tick");
+  auto robot = wbi::make_dds_interface(arm_options("arm_tick"));
+  robot->add_joints({"joint_1", "joint_2"});
+  robot->init(10s);
+  wbi::dds::Received<wbi::msg::ActuatorCommand> command;
+  std::uint64_t seen = 0;
+  const auto next = [&] {
+    EXPECT_TRUE(peer.commands().wait_newer(command, seen, 5s));
+    seen = command.count;
+    return std::pair(command.sample.tick(), command.sample.source_stamp_ns());
+  };
+  const std::pair<std::uint64_t, std::int64_t> none(wbi::msg::kNoTick, 0);
+
+  robot->set_control_mode(wbi::ControlMode::torque);
+  EXPECT_EQ(next(), none) << "a mode switch before any reference";
+  Eigen::VectorXd q(2);
+  const auto first =
+      robot->read_sensors(wbi::SensorKind::encoder_position, q, wbi::ReadMode::blocking);
+  robot->set_control_mode(wbi::ControlMode::torque);
+  EXPECT_EQ(next(), none) << "a mode switch after a read, before any reference";
+  robot->set_control_reference(Eigen::Vector2d(1.0, 2.0));
+  EXPECT_EQ(next(), std::pair(first.seq, first.source_ns));
+
+  const auto second =
+      robot->read_sensors(wbi::SensorKind::encoder_position, q, wbi::ReadMode::blocking);
+  ASSERT_GT(second.seq, first.seq);
+  robot->set_control_mode(wbi::ControlMode::torque, 1);
+  EXPECT_EQ(next(), std::pair(first.seq, first.source_ns)) << "the last reference's tick";
+  robot->set_control_reference(3.0, 1);
+  EXPECT_EQ(next(), std::pair(second.seq, second.source_ns));
 }
 
 TEST(DdsInterface, ModelOverASubsetAgreesWithTheFullModel) {

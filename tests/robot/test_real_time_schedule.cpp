@@ -1,13 +1,15 @@
 // The real-time pacer's schedule on given times: jitter is caught up, a stall
 // is not (the simulation pauses with its process instead of stepping the
 // missed time in a burst); a stall's line on stderr at most once a period; the
-// pacer's end-of-run line counts the ticks behind their deadline.
+// pacer's end-of-run line counts the ticks behind their deadline. The lockstep
+// pacer counts a command with no tick (a mode switch) as no answer.
 #include <gtest/gtest.h>
 
 #include <chrono>
 
 #include <string>
 
+#include <wbi/msg/wire_vocabulary.hpp>
 #include <wbi/runtime/status_report.hpp>
 
 #include "tick_pacer.hpp"
@@ -111,6 +113,29 @@ TEST(RealTimePacer, CountsTheTicksBehindTheirDeadline) {
   EXPECT_NE(line.find("0 stall(s) not caught up"), std::string::npos) << line;
   pacer.start();  // a new activation counts anew
   EXPECT_NE(pacer.summary().find("real time: 0 of 0 ticks"), std::string::npos);
+}
+
+// A controller's start-up mode switch carries no tick (docs/conventions.md):
+// it must not answer tick 0, or the simulation steps it before the first
+// command computed from a sample, or after, as timing decides.
+TEST(LockstepPacer, ACommandWithNoTickAnswersNothing) {
+  wbi::runtime::StatusCounter timeouts;
+  wbi::robot::LockstepPacer pacer({{"balance"}, 0.05, 0.05}, "sim_robot 'humanoid'", timeouts);
+  pacer.start();
+  wbi::msg::ActuatorCommand command;
+  command.controller("balance");
+  command.tick(wbi::msg::kNoTick);
+  pacer.observe(command);
+  pacer.wait(0);
+  EXPECT_EQ(timeouts.value(), 1u) << "tick 0 was taken as answered by a command with no tick";
+  command.tick(0);
+  pacer.observe(command);
+  pacer.wait(0);
+  EXPECT_EQ(timeouts.value(), 1u) << "tick 0 not answered by a command for it";
+  command.tick(wbi::msg::kNoTick);  // a mode switch later on: tick 1 is still open
+  pacer.observe(command);
+  pacer.wait(1);
+  EXPECT_EQ(timeouts.value(), 2u);
 }
 
 }  // namespace

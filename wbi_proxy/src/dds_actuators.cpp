@@ -41,6 +41,8 @@ void DdsActuators::prepare() {
   command_.joints(robot_.robot_index);
   command_.modes().assign(n, wbi::msg::ControlMode::IDLE);
   command_.references().assign(n, 0.0);
+  answered_tick_ = msg::kNoTick;
+  answered_stamp_ns_ = 0;
   parameters_msg_.header().robot(options.robot);
   parameters_msg_.controller(options.controller);
   parameters_msg_.joints(robot_.robot_index);
@@ -66,28 +68,28 @@ void DdsActuators::set_control_mode(ControlMode mode) {
   for (int k = 0; k < dofs(); ++k) {
     switch_mode(k, mode);
   }
-  publish_command();
+  publish_command(false);
 }
 
 void DdsActuators::set_control_mode(ControlMode mode, int joint) {
   robot_.require_init();
   check_index("joint", joint, dofs());
   switch_mode(joint, mode);
-  publish_command();
+  publish_command(false);
 }
 
 void DdsActuators::set_control_reference(const ConstVectorRef& reference) {
   robot_.require_init();
   check_size("control reference", reference.size(), dofs());
   references_ = reference;
-  publish_command();
+  publish_command(true);
 }
 
 void DdsActuators::set_control_reference(double reference, int joint) {
   robot_.require_init();
   check_index("joint", joint, dofs());
   references_[joint] = reference;
-  publish_command();
+  publish_command(true);
 }
 
 void DdsActuators::set_control_parameter(ControlParameter parameter, const ConstVectorRef& values) {
@@ -122,21 +124,31 @@ void DdsActuators::switch_mode(int joint, ControlMode mode) {
   }
 }
 
-void DdsActuators::publish_command() {
+void DdsActuators::publish_command(bool answers) {
   if (claim_) {
     claim_->check();  // throws once another controller took a joint
   }
-  const auto& sensors = robot_.sensors.received.sample.header();
-  const auto& state = robot_.state.received.sample.header();
+  // Lockstep: a reference answers the tick of the newest sample the controller
+  // read (sensor and state samples carry the robot's tick as their sequence
+  // number), once it read one. A mode switch, or a reference sent before any
+  // read, answers nothing: it carries the last answer's tick (kNoTick before the
+  // first). Else the start-up mode switch, sent with tick 0 before any sample,
+  // could answer tick 0, and the robot would step it with zero torque or with
+  // the first computed command depending on timing.
+  const auto& sensors = robot_.sensors.received;
+  const auto& state = robot_.state.received;
+  if (answers && (sensors.count > 0 || state.count > 0)) {
+    answered_tick_ = std::max(sensors.sample.header().seq(), state.sample.header().seq());
+    // Latency: the sensor sample this command was computed from (a state
+    // estimate carries its sensor sample's stamp).
+    answered_stamp_ns_ =
+        std::max(sensors.sample.header().stamp_ns(), state.sample.header().stamp_ns());
+  }
   auto& header = command_.header();
   header.stamp_ns(system_now_ns());
   header.seq(command_seq_++);
-  // Lockstep: the tick this command answers is the newest sample the controller read
-  // (sensor and state samples carry the robot's tick as their sequence number).
-  command_.tick(std::max(sensors.seq(), state.seq()));
-  // Latency: the sensor sample this command was computed from (a state
-  // estimate carries its sensor sample's stamp).
-  command_.source_stamp_ns(std::max(sensors.stamp_ns(), state.stamp_ns()));
+  command_.tick(answered_tick_);
+  command_.source_stamp_ns(answered_stamp_ns_);
   for (std::size_t k = 0; k < modes_.size(); ++k) {
     command_.modes()[k] = msg::to_wire(modes_[k]);
     command_.references()[k] = references_[static_cast<Eigen::Index>(k)];

@@ -6,11 +6,13 @@
 #pragma once
 
 #include <chrono>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <wbi/dds/publisher.hpp>
+#include <wbi/msg/wire_vocabulary.hpp>
 
 #include "joint_claim.hpp"
 #include "robot_connection.hpp"
@@ -42,7 +44,9 @@ class DdsActuators final : public wbi::Actuators {
  private:
   int dofs() const { return static_cast<int>(modes_.size()); }
   void switch_mode(int joint, ControlMode mode);
-  void publish_command();
+  // answers: the command is a reference computed from the samples read (it
+  // answers their tick), not a mode switch (it carries the last answer's tick).
+  void publish_command(bool answers);
   std::vector<double>& parameter_values(ControlParameter parameter);
   void publish_parameters(ControlParameter parameter);
 
@@ -54,6 +58,10 @@ class DdsActuators final : public wbi::Actuators {
   wbi::msg::ActuatorCommand command_;
   wbi::msg::ControlParameters parameters_msg_;
   std::uint64_t command_seq_ = 0;
+  // The tick the last reference answered and the stamp of its sample
+  // (ActuatorCommand.tick and source_stamp_ns): msg::kNoTick and 0 until one did.
+  std::uint64_t answered_tick_ = msg::kNoTick;
+  std::int64_t answered_stamp_ns_ = 0;
   std::uint64_t parameters_seq_ = 0;
   std::unique_ptr<JointClaim> claim_;  // from claim() to release()
 };

@@ -43,9 +43,13 @@ void RobotConnection::wait(std::chrono::steady_clock::time_point deadline,
   if (!state.subscriber.wait_newer(state.received, 0, remaining())) {
     missing.push_back("state estimates on " + dds::topics::state(options.robot) + " (estimator)");
   }
-  // Blocking reads from now on wait for samples newer than those init() saw.
-  sensors.seen.fill(sensors.received.count);
-  state.seen.fill(state.received.count);
+  // The first blocking read of each kind returns the newest sample, the one
+  // init() saw included; later ones wait for a newer one. In lockstep the robot
+  // holds tick 0 until a command computed from tick 0's sample answers it (a
+  // mode switch does not: docs/conventions.md), so that read must not wait
+  // for tick 1.
+  sensors.seen.fill(sensors.received.count > 0 ? sensors.received.count - 1 : 0);
+  state.seen.fill(state.received.count > 0 ? state.received.count - 1 : 0);
 }
 
 void RobotConnection::resolve(const IdList& joints) {

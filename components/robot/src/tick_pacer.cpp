@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include <wbi/msg/wire_vocabulary.hpp>
+
 #include "wbi/runtime/console_line.hpp"
 
 namespace wbi::robot {
@@ -101,7 +103,12 @@ void LockstepPacer::start() {
 }
 
 // On a DDS thread, after the actuator side staged the command.
+// A command with no tick (msg::kNoTick: a mode switch before the controller's
+// first reference) answers nothing; the actuator side applied it all the same.
 void LockstepPacer::observe(const wbi::msg::ActuatorCommand& command) {
+  if (command.tick() == wbi::msg::kNoTick) {
+    return;
+  }
   {
     std::lock_guard lock(mutex_);
     const auto sender = answered_.find(command.controller().to_string());
