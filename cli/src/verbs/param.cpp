@@ -24,13 +24,15 @@ std::string range(const msg::ControllerParameter& parameter) {
 
 void print_parameter(const msg::ControllerParameter& parameter, bool details) {
   std::cout << parameter.name().to_string() << " = "
-            << (parameter.values().empty() ? std::string("(unset)")
-                                           : controllers::format_values(parameter.values()));
+            << (parameter.is_text()          ? parameter.text().to_string()
+                : parameter.values().empty() ? std::string("(unset)")
+                                             : controllers::format_values(parameter.values()));
   if (!parameter.unit().to_string().empty()) {
     std::cout << " " << parameter.unit().to_string();
   }
   if (details) {
-    std::cout << "  " << range(parameter) << (parameter.live() ? "  live" : "  while inactive")
+    std::cout << "  " << (parameter.is_text() ? std::string("text") : range(parameter))
+              << (parameter.live() ? "  live" : "  while inactive")
               << "  " << parameter.help().to_string();
   }
   std::cout << "\n";
@@ -125,7 +127,13 @@ int run_set(Args args) {
       used = 0;
     }
     if (used != text.size()) {
-      throw UsageError("value '" + text + "' is not a number");
+      // Not a number: the value of a text parameter (a frame name), when alone.
+      if (options.rest_values().size() != 1) {
+        throw UsageError("value '" + text + "' is not a number");
+      }
+      request.text(text);
+      request.values().clear();
+      break;
     }
     request.values().push_back(value);
   }
