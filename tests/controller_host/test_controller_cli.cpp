@@ -65,17 +65,17 @@ TEST(ControllerCli, ListSetRefuseAndSwitchWhileTheArmRuns) {
   ASSERT_TRUE(echo.wait(30s).has_value());
   EXPECT_TRUE(contains(echo.output(), "gain_scale")) << echo.output();
 
-  const auto unknown = wbi_command({"controller", "switch", "--activate", "balance",
-                                    "--deactivate", "pd"});
+  const auto unknown =
+      wbi_command({"controller", "switch", "--activate", "balance", "--deactivate", "pd"});
   EXPECT_EQ(unknown.code, 1) << unknown.output;
   EXPECT_TRUE(contains(unknown.output, "refused: unknown controller 'balance' (hosted: pd, hold)"))
       << unknown.output;
   const auto still = wbi_command({"controller", "list"});
   EXPECT_TRUE(contains(still.output, "* pd")) << "a refused switch changes nothing\n"
-                                               << still.output;
+                                              << still.output;
 
-  const auto to_hold = wbi_command({"controller", "switch", "--activate", "hold",
-                                    "--deactivate", "pd"});
+  const auto to_hold =
+      wbi_command({"controller", "switch", "--activate", "hold", "--deactivate", "pd"});
   ASSERT_EQ(to_hold.code, 0) << to_hold.output;
   EXPECT_TRUE(contains(to_hold.output, "switched pd → hold at t = ")) << to_hold.output;
   const auto after = wbi_command({"controller", "list"});

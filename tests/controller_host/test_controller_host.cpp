@@ -153,8 +153,8 @@ TEST(ControllerHost, SwitchesAtATickBoundaryWithoutATorqueJump) {
   arm.run(1500);
   EXPECT_EQ(arm.host().active(), "pd");
   EXPECT_LT(arm.error_to_target(), 0.02) << "pd reached the target";
-  auto request = std::async(std::launch::async,
-                            [&] { return arm.host().request_switch({"hold"}, {"pd"}); });
+  auto request =
+      std::async(std::launch::async, [&] { return arm.host().request_switch({"hold"}, {"pd"}); });
   const auto result = arm.tick_until(request);
   ASSERT_TRUE(result.done) << result.text;
   std::printf("%s\n", result.text.c_str());

@@ -14,8 +14,12 @@ using wbi::controllers::ParameterTable;
 std::vector<ParameterSpec> specs() {
   return {{.name = "target", .unit = "rad", .size = kPerJoint},
           {.name = "gain_scale", .default_value = {1.0}, .min = 0.0, .max = 10.0},
-          {.name = "bandwidth_hz", .unit = "Hz", .default_value = {5.0}, .min = 0.001,
-           .max = 200.0, .live = false},
+          {.name = "bandwidth_hz",
+           .unit = "Hz",
+           .default_value = {5.0},
+           .min = 0.001,
+           .max = 200.0,
+           .live = false},
           {.name = "kp", .size = kPerJoint, .min = 0.0, .optional = true},
           {.name = "offsets", .default_value = {0.5}, .size = kPerJoint}};
 }

@@ -32,8 +32,8 @@ void print_parameter(const msg::ControllerParameter& parameter, bool details) {
   }
   if (details) {
     std::cout << "  " << (parameter.is_text() ? std::string("text") : range(parameter))
-              << (parameter.live() ? "  live" : "  while inactive")
-              << "  " << parameter.help().to_string();
+              << (parameter.live() ? "  live" : "  while inactive") << "  "
+              << parameter.help().to_string();
   }
   std::cout << "\n";
 }

@@ -74,8 +74,8 @@ void ParameterTable::size_for(int joints) {
     if (fallback.size() == 1 && entry.count > 1) {
       entry.values.assign(static_cast<std::size_t>(entry.count), fallback[0]);
     } else if (!fallback.empty()) {
-      if (const std::string problem = check(static_cast<std::size_t>(&entry - entries_.data()),
-                                            fallback, false);
+      if (const std::string problem =
+              check(static_cast<std::size_t>(&entry - entries_.data()), fallback, false);
           !problem.empty()) {
         throw Error(problem + " (its default)");
       }

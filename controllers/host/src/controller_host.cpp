@@ -95,7 +95,9 @@ const std::string& ControllerHost::active() const {
   return active_ ? active_->name : none;
 }
 
-Controller* ControllerHost::active_controller() { return active_ ? active_->controller.get() : nullptr; }
+Controller* ControllerHost::active_controller() {
+  return active_ ? active_->controller.get() : nullptr;
+}
 
 bool ControllerHost::activate(Hosted& hosted, bool first_start) {
   try {
@@ -105,9 +107,9 @@ bool ControllerHost::activate(Hosted& hosted, bool first_start) {
     return false;  // no state to continue from: tried again at the next tick
   }
   // At a switch, the new controller continues from the last command sent.
-  hosted.controller->activate(measured_, first_start ? std::span<const double>()
-                                                     : std::span<const double>(last_command_.data(),
-                                                                               last_command_.size()));
+  hosted.controller->activate(
+      measured_, first_start ? std::span<const double>()
+                             : std::span<const double>(last_command_.data(), last_command_.size()));
   std::lock_guard lock(switch_mutex_);
   active_ = &hosted;
   overruns_in_a_row_ = 0;
@@ -132,8 +134,8 @@ void ControllerHost::fall_back(const std::string& reason, double time_s) {
     deactivate(*active_);
   }
   fallbacks_->add();
-  std::string line = "controller '" + from + "' " + reason + ": fell back to '" +
-                     kHoldController + "' at t = " + seconds(time_s);
+  std::string line = "controller '" + from + "' " + reason + ": fell back to '" + kHoldController +
+                     "' at t = " + seconds(time_s);
   Hosted* hold = nullptr;
   try {
     hold = &find(kHoldController);
@@ -192,8 +194,7 @@ bool ControllerHost::apply_switch(double time_s) {
   }
   lock.unlock();
   if (!activated && from) {
-    fall_back("was switched out but '" + to->name + "' did not activate (" + failure + ")",
-              time_s);
+    fall_back("was switched out but '" + to->name + "' did not activate (" + failure + ")", time_s);
   }
   return true;
 }
@@ -218,8 +219,8 @@ void ControllerHost::run_active(double time_s, double period_s) {
     fall_back(std::string("threw in update (") + e.what() + ")", time_s);
     return;
   }
-  const double took_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-                            .count();
+  const double took_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (took_s > period_s) {
     overruns_->add();
     if (++overruns_in_a_row_ >= options_.overrun_limit) {
@@ -246,8 +247,7 @@ void ControllerHost::tick(double time_s, double period_s) {
       fall_back(std::string("threw in activate (") + e.what() + ")", time_s);
     }
   }
-  const bool switching =
-      switch_requested_.load(std::memory_order_acquire) && apply_switch(time_s);
+  const bool switching = switch_requested_.load(std::memory_order_acquire) && apply_switch(time_s);
   // Inactive controllers take their staged values too (they use them when activated).
   for (auto& hosted : hosted_) {
     if (hosted.get() != active_ && hosted->configured && hosted->parameters->apply_staged()) {
@@ -300,8 +300,9 @@ SwitchResult ControllerHost::request_switch(const std::vector<std::string>& acti
     return refused;
   };
   if (activate.size() > 1 || deactivate.size() > 1) {
-    return refuse("the host runs one controller at a time on its joints: name at most one to "
-                  "activate and one to deactivate");
+    return refuse(
+        "the host runs one controller at a time on its joints: name at most one to "
+        "activate and one to deactivate");
   }
   Hosted* to = nullptr;
   Hosted* from = nullptr;
@@ -333,12 +334,12 @@ SwitchResult ControllerHost::request_switch(const std::vector<std::string>& acti
     return refuse(std::string("nothing would command the joints: activate '") + kHoldController +
                   "' to hold the posture");
   }
-  switch_ = PendingSwitch{.pending = true, .activate = to, .deactivate = from, .result = {},
-                          .id = switches_done_};
+  switch_ = PendingSwitch{
+      .pending = true, .activate = to, .deactivate = from, .result = {}, .id = switches_done_};
   switch_requested_.store(true, std::memory_order_release);
   const std::uint64_t id = switches_done_;
-  const bool applied = switch_done_.wait_for(lock, options_.switch_timeout,
-                                             [&] { return switches_done_ > id; });
+  const bool applied =
+      switch_done_.wait_for(lock, options_.switch_timeout, [&] { return switches_done_ > id; });
   if (!applied) {
     switch_.pending = false;
     switch_requested_.store(false, std::memory_order_release);

@@ -139,8 +139,7 @@ void HostService::set_parameter(const msg::ControllerRequest& request,
     return;
   }
   const std::size_t index = table.index(parameter);
-  reply.text(controller + "." + parameter + " = " +
-             format_values(table.snapshot(index)) +
+  reply.text(controller + "." + parameter + " = " + format_values(table.snapshot(index)) +
              (table.spec(index).unit.empty() ? "" : " " + table.spec(index).unit));
   publish_parameters();
 }

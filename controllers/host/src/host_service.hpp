@@ -7,9 +7,9 @@
 #include <mutex>
 #include <string>
 
+#include <wbi/msg/controllers.h>
 #include <wbi/dds/publisher.hpp>
 #include <wbi/dds/server.hpp>
-#include <wbi/msg/controllers.h>
 
 #include "wbi/controllers/controller_host.hpp"
 

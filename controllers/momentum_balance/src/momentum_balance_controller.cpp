@@ -28,8 +28,13 @@ std::vector<ParameterSpec> MomentumBalanceController::parameters() const {
   const auto& d = kDefaults;
   const double inf = std::numeric_limits<double>::infinity();
   return {
-      {.name = "left_sole", .help = "left contact frame", .text = true, .text_default = d.left_sole},
-      {.name = "right_sole", .help = "right contact frame", .text = true,
+      {.name = "left_sole",
+       .help = "left contact frame",
+       .text = true,
+       .text_default = d.left_sole},
+      {.name = "right_sole",
+       .help = "right contact frame",
+       .text = true,
        .text_default = d.right_sole},
       number("foot_x_min", "m", d.foot_x_min, -1.0, 0.0, false, "support rectangle, sole frame"),
       number("foot_x_max", "m", d.foot_x_max, 0.0, 1.0, false, "support rectangle, sole frame"),
@@ -193,13 +198,14 @@ void MomentumBalanceController::publish_signals() {
 void MomentumBalanceController::progress(char* line, std::size_t size) const {
   const Eigen::Vector3d& c = balance_->com();
   const auto& w = balance_->wrenches();
-  std::snprintf(line, size, "com (%.4f, %.4f, %.4f) m  error %.4f m  feet f_z %.1f / %.1f N",
-                c.x(), c.y(), c.z(), (c - balance_->com_reference()).norm(), w[2], w[8]);
+  std::snprintf(line, size, "com (%.4f, %.4f, %.4f) m  error %.4f m  feet f_z %.1f / %.1f N", c.x(),
+                c.y(), c.z(), (c - balance_->com_reference()).norm(), w[2], w[8]);
 }
 
 std::string MomentumBalanceController::summary() const {
   char text[192];
-  std::snprintf(text, sizeof text, "qp failures: %llu\nmax com error: %.6f m\ncom tracking rms: %.6f m",
+  std::snprintf(text, sizeof text,
+                "qp failures: %llu\nmax com error: %.6f m\ncom tracking rms: %.6f m",
                 static_cast<unsigned long long>(balance_->qp_failures()), max_error_,
                 samples_ > 0 ? std::sqrt(squared_error_ / static_cast<double>(samples_)) : 0.0);
   return text;

@@ -123,10 +123,10 @@ void PdGravityController::configure(WholeBodyInterface& robot, const ParameterTa
   goal_ = Eigen::Map<const Eigen::VectorXd>(parameters.values(index_.target).data(), robot.dofs());
   if (parameters.is_set(index_.kp)) {
     const auto n = robot.dofs();
-    unscaled_kp_ = Eigen::Map<const Eigen::VectorXd>(parameters.values(index_.kp).data(), n)
-                       .asDiagonal();
-    unscaled_kd_ = Eigen::Map<const Eigen::VectorXd>(parameters.values(index_.kd).data(), n)
-                       .asDiagonal();
+    unscaled_kp_ =
+        Eigen::Map<const Eigen::VectorXd>(parameters.values(index_.kp).data(), n).asDiagonal();
+    unscaled_kd_ =
+        Eigen::Map<const Eigen::VectorXd>(parameters.values(index_.kd).data(), n).asDiagonal();
   } else {
     // Every mode critically damped at the bandwidth, from the inertia at the target.
     gains_from_inertia(goal_, Transform::Identity(), parameters.value(index_.bandwidth));
@@ -201,7 +201,8 @@ std::vector<ParameterSpec> HoldController::parameters() const {
            .default_value = {2.0},
            .min = 1e-3,
            .max = 200.0},
-          gain_scale_spec(), blend_spec()};
+          gain_scale_spec(),
+          blend_spec()};
 }
 
 void HoldController::configure(WholeBodyInterface& robot, const ParameterTable& parameters) {

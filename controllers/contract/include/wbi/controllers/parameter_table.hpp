@@ -26,10 +26,10 @@ inline constexpr int kPerJoint = -1;
 struct ParameterSpec {
   // Every member has a default ({}): designated initializers name only what differs.
   std::string name{};
-  std::string unit{};  // SI, e.g. "rad", "Hz", "1/s^2"; "" for a pure number
-  std::string help{};  // one line
+  std::string unit{};                   // SI, e.g. "rad", "Hz", "1/s^2"; "" for a pure number
+  std::string help{};                   // one line
   std::vector<double> default_value{};  // empty: none (the parameter is then required or optional)
-  int size = 1;                       // number of values, or kPerJoint
+  int size = 1;                         // number of values, or kPerJoint
   double min = -std::numeric_limits<double>::infinity();  // of each value
   double max = std::numeric_limits<double>::infinity();
   bool live = true;       // may change while the controller is active
@@ -91,11 +91,11 @@ class ParameterTable {
  private:
   struct Entry {
     ParameterSpec spec;
-    int count = 1;                // values after size_for()
-    std::vector<double> values;   // current; capacity `count`
-    std::vector<double> staged;   // capacity `count`
+    int count = 1;               // values after size_for()
+    std::vector<double> values;  // current; capacity `count`
+    std::vector<double> staged;  // capacity `count`
     bool has_staged = false;
-    std::string text;             // a text parameter's value
+    std::string text;  // a text parameter's value
   };
   int expected_count(const ParameterSpec& spec) const;
 

@@ -40,9 +40,9 @@ struct ControllerInfo {
 
 struct SwitchResult {
   bool done = false;
-  std::string text;           // the refusal, or what happened ("pd → hold at t = 2.000 s …")
-  double torque_step = 0.0;   // ‖τ_after − τ_before‖ / ‖τ_before‖ at the switch tick
-  double time_s = 0.0;        // when it took effect
+  std::string text;          // the refusal, or what happened ("pd → hold at t = 2.000 s …")
+  double torque_step = 0.0;  // ‖τ_after − τ_before‖ / ‖τ_before‖ at the switch tick
+  double time_s = 0.0;       // when it took effect
 };
 
 class ControllerHost {
@@ -109,7 +109,7 @@ class ControllerHost {
   std::vector<std::unique_ptr<Hosted>> hosted_;
   Hosted* active_ = nullptr;
   Hosted* initial_ = nullptr;
-  RobotState measured_;          // read at an activation
+  RobotState measured_;           // read at an activation
   Eigen::VectorXd last_command_;  // the active controller's, before this tick
   int overruns_in_a_row_ = 0;
   std::atomic<bool> state_source_changed_{false};
@@ -125,7 +125,8 @@ class ControllerHost {
     SwitchResult result;
     std::uint64_t id = 0;
   } switch_;
-  std::atomic<bool> switch_requested_{false};  // switch_.pending, for the loop's check without the lock
+  std::atomic<bool> switch_requested_{
+      false};  // switch_.pending, for the loop's check without the lock
   std::uint64_t switches_done_ = 0;
 };
 
