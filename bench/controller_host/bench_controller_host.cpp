@@ -1,11 +1,10 @@
 // What the controller host adds to a tick: host.tick() against calling the
-// same controller's update() directly, with two controllers hosted (the
-// active one and hold) on the project humanoid's 30 joints. The controller
-// sends a fixed torque vector, so that its own cost is small and the
-// difference is the host's: parameter staging checks, the fallback watch
-// (a steady-clock read either side of update), the last-command copy.
-// The robot is simulated in lockstep in this process; no robot I/O is timed
-// beyond the controller's own command publish, the same in both cases.
+// same controller's update() and sending its command directly, with two
+// controllers hosted (the active one and hold) on the project humanoid's 30
+// joints. The controller's command is a fixed torque vector, so that its own
+// cost is nil and the difference is the host's: parameter staging checks, the
+// fallback watch (a steady-clock read either side of update), the copy of the
+// command it sends. Both send the command (a DDS publish) once per tick.
 //   build/bin/wbi_bench_controller_host --benchmark_format=json
 #include <benchmark/benchmark.h>
 
@@ -31,15 +30,13 @@ class FixedTorque final : public wbi::controllers::Controller {
   }
   void configure(wbi::WholeBodyInterface& robot,
                  const wbi::controllers::ParameterTable& parameters) override {
-    robot_ = &robot;
     tau_ = Eigen::Map<const Eigen::VectorXd>(parameters.values(0).data(), robot.dofs());
   }
-  void activate(const wbi::RobotState&, std::span<const double>) override {}
-  void update(double, double) override { robot_->set_control_reference(tau_); }
+  void activate(const wbi::RobotState&) override {}
+  bool update(double, double) override { return true; }
   const Eigen::VectorXd& command() const override { return tau_; }
 
  private:
-  wbi::WholeBodyInterface* robot_ = nullptr;
   Eigen::VectorXd tau_;
 };
 
@@ -78,7 +75,9 @@ void BM_UpdateDirectly(benchmark::State& state) {
   FixedTorque controller;
   controller.configure(*robot.interface, parameters);
   for (auto _ : state) {
-    controller.update(0.0, 0.001);
+    if (controller.update(0.0, 0.001)) {
+      robot.interface->set_control_reference(controller.command());
+    }
   }
 }
 

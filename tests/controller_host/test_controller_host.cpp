@@ -37,21 +37,19 @@ class ThrowingController final : public Controller {
     return {{.name = "throw_at", .default_value = {5.0}, .min = 1.0}};
   }
   void configure(wbi::WholeBodyInterface& robot, const ParameterTable& parameters) override {
-    robot_ = &robot;
     throw_at_ = static_cast<int>(parameters.value(0));
     tau_.setZero(robot.dofs());
   }
-  void activate(const wbi::RobotState&, std::span<const double>) override { updates_ = 0; }
-  void update(double, double) override {
+  void activate(const wbi::RobotState&) override { updates_ = 0; }
+  bool update(double, double) override {
     if (++updates_ >= throw_at_) {
       throw std::runtime_error("index 9 out of range");
     }
-    robot_->set_control_reference(tau_);
+    return true;
   }
   const Eigen::VectorXd& command() const override { return tau_; }
 
  private:
-  wbi::WholeBodyInterface* robot_ = nullptr;
   int throw_at_ = 5, updates_ = 0;
   Eigen::VectorXd tau_;
 };

@@ -1,6 +1,7 @@
 #include "wbi/controllers/controller_host.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace wbi::controllers {
@@ -28,6 +29,8 @@ ControllerHost::ControllerHost(WholeBodyInterface& robot, runtime::StatusReport&
       options_(options),
       measured_(robot.dofs()),
       last_command_(Eigen::VectorXd::Zero(robot.dofs())),
+      before_switch_(Eigen::VectorXd::Zero(robot.dofs())),
+      blend_(Eigen::VectorXd::Zero(robot.dofs())),
       switches_(&report.counter("switches")),
       refused_(&report.counter("refused_switches")),
       fallbacks_(&report.counter("fallbacks")),
@@ -106,10 +109,10 @@ bool ControllerHost::activate(Hosted& hosted, bool first_start) {
     stale_->add();
     return false;  // no state to continue from: tried again at the next tick
   }
-  // At a switch, the new controller continues from the last command sent.
-  hosted.controller->activate(
-      measured_, first_start ? std::span<const double>()
-                             : std::span<const double>(last_command_.data(), last_command_.size()));
+  hosted.controller->activate(measured_);
+  // At a switch, the new controller's commands start from the last one sent.
+  blend_pending_ = !first_start && options_.blend_s > 0.0;
+  blending_ = false;
   std::lock_guard lock(switch_mutex_);
   active_ = &hosted;
   overruns_in_a_row_ = 0;
@@ -200,6 +203,7 @@ bool ControllerHost::apply_switch(double time_s) {
 }
 
 void ControllerHost::run_active(double time_s, double period_s) {
+  Hosted& hosted_active = *active_;  // a fallback in update() changes active_
   Controller& controller = *active_->controller;
   ParameterTable& parameters = *active_->parameters;
   if (state_source_changed_.exchange(false)) {
@@ -210,13 +214,17 @@ void ControllerHost::run_active(double time_s, double period_s) {
     changes_->add();
   }
   const auto start = std::chrono::steady_clock::now();
+  bool fresh = false;
   try {
-    controller.update(time_s, period_s);
+    fresh = controller.update(time_s, period_s);
   } catch (const StaleDataError&) {
     stale_->add();  // no fresh state this tick: no command; the robot's watchdog guards
     return;
   } catch (const std::exception& e) {
     fall_back(std::string("threw in update (") + e.what() + ")", time_s);
+    if (active_ && active_ != &hosted_active) {
+      run_active(time_s, period_s);  // hold commands this tick already: no tick goes unanswered
+    }
     return;
   }
   const double took_s =
@@ -233,6 +241,27 @@ void ControllerHost::run_active(double time_s, double period_s) {
   } else {
     overruns_in_a_row_ = 0;
   }
+  if (fresh && active_ == &hosted_active) {
+    send(time_s);
+  }
+}
+
+void ControllerHost::send(double time_s) {
+  const Eigen::VectorXd& command = active_->controller->command();
+  if (blend_pending_) {  // the first command after a switch: keep the difference to the last
+    blend_ = last_command_ - command;
+    blend_pending_ = false;
+    blending_ = true;
+    blend_start_s_ = time_s;
+  }
+  if (blending_) {
+    const double weight = std::exp(-(time_s - blend_start_s_) / options_.blend_s);
+    last_command_ = command + weight * blend_;
+    blending_ = weight > 1e-9;
+  } else {
+    last_command_ = command;
+  }
+  robot_.actuators().set_control_reference(last_command_);
 }
 
 void ControllerHost::tick(double time_s, double period_s) {
@@ -255,17 +284,15 @@ void ControllerHost::tick(double time_s, double period_s) {
       changes_->add();
     }
   }
-  if (!active_) {
-    if (switching) {
-      finish_switch();
-    }
-    return;
+  if (switching) {
+    before_switch_ = last_command_;
   }
-  run_active(time_s, period_s);
+  if (active_) {
+    run_active(time_s, period_s);
+  }
   if (switching) {
     finish_switch();
   }
-  last_command_ = active_->controller->command();
 }
 
 // After the switch tick's command: its step, then the requester is answered.
@@ -275,10 +302,10 @@ void ControllerHost::finish_switch() {
     return;
   }
   if (switch_.result.done && active_) {
-    // The first command of the new controller against the last of the old.
-    const Eigen::VectorXd& now = active_->controller->command();
-    const double before = last_command_.norm();
-    switch_.result.torque_step = before > 0.0 ? (now - last_command_).norm() / before : 0.0;
+    // The first command sent after the switch against the last one before it.
+    const double before = before_switch_.norm();
+    switch_.result.torque_step =
+        before > 0.0 ? (last_command_ - before_switch_).norm() / before : 0.0;
     char step[96];
     std::snprintf(step, sizeof step, "; torque step %.2f %% of the %.3g N m applied",
                   100.0 * switch_.result.torque_step, before);
@@ -286,9 +313,31 @@ void ControllerHost::finish_switch() {
   }
   switch_.pending = false;
   switch_requested_.store(false, std::memory_order_release);
+  last_switch_ = switch_.result;
   ++switches_done_;
   lock.unlock();
   switch_done_.notify_all();
+}
+
+SwitchResult ControllerHost::check_switch(Hosted* to, Hosted* from) const {
+  SwitchResult refused;
+  if (switch_.pending) {
+    refused.text = "another switch is pending";
+  } else if (to && !to->configured) {
+    refused.text = "'" + to->name + "' cannot be activated: " + to->configure_error;
+  } else if (from && from != active_) {
+    refused.text = "'" + from->name + "' is not active (active: " +
+                   (active_ ? active_->name : std::string("none")) + ")";
+  } else if (to && to == active_ && from != to) {
+    refused.text = "'" + to->name + "' is already active";
+  } else if (to && active_ && !from) {
+    refused.text = "'" + active_->name + "' is active on the same joints: deactivate it in the " +
+                   "same switch (--deactivate " + active_->name + ")";
+  } else if (!to) {
+    refused.text = std::string("nothing would command the joints: activate '") +
+                   kHoldController + "' to hold the posture";
+  }
+  return refused;
 }
 
 SwitchResult ControllerHost::request_switch(const std::vector<std::string>& activate,
@@ -300,9 +349,8 @@ SwitchResult ControllerHost::request_switch(const std::vector<std::string>& acti
     return refused;
   };
   if (activate.size() > 1 || deactivate.size() > 1) {
-    return refuse(
-        "the host runs one controller at a time on its joints: name at most one to "
-        "activate and one to deactivate");
+    return refuse("the host runs one controller at a time on its joints: name at most one to "
+                  "activate and one to deactivate");
   }
   Hosted* to = nullptr;
   Hosted* from = nullptr;
@@ -313,26 +361,8 @@ SwitchResult ControllerHost::request_switch(const std::vector<std::string>& acti
     return refuse(e.what());
   }
   std::unique_lock lock(switch_mutex_);
-  if (switch_.pending) {
-    return refuse("another switch is pending");
-  }
-  if (to && !to->configured) {
-    return refuse("'" + to->name + "' cannot be activated: " + to->configure_error);
-  }
-  if (from && from != active_) {
-    return refuse("'" + from->name + "' is not active (active: " +
-                  (active_ ? active_->name : std::string("none")) + ")");
-  }
-  if (to && to == active_ && from != to) {
-    return refuse("'" + to->name + "' is already active");
-  }
-  if (to && active_ && !from) {
-    return refuse("'" + active_->name + "' is active on the same joints: deactivate it in the " +
-                  "same switch (--deactivate " + active_->name + ")");
-  }
-  if (!to) {
-    return refuse(std::string("nothing would command the joints: activate '") + kHoldController +
-                  "' to hold the posture");
+  if (const SwitchResult problem = check_switch(to, from); !problem.text.empty()) {
+    return refuse(problem.text);
   }
   switch_ = PendingSwitch{
       .pending = true, .activate = to, .deactivate = from, .result = {}, .id = switches_done_};
@@ -353,6 +383,26 @@ SwitchResult ControllerHost::request_switch(const std::vector<std::string>& acti
     refused_->add();
   }
   return switch_.result;
+}
+
+std::string ControllerHost::schedule_switch(const std::string& activate) {
+  Hosted* to = nullptr;
+  try {
+    to = &find(activate);
+  } catch (const Error& e) {
+    refused_->add();
+    return e.what();
+  }
+  std::lock_guard lock(switch_mutex_);
+  if (const SwitchResult problem = check_switch(to, active_); !problem.text.empty()) {
+    refused_->add();
+    return problem.text;
+  }
+  switch_ = PendingSwitch{
+      .pending = true, .activate = to, .deactivate = active_, .result = {}, .id = switches_done_};
+  switch_requested_.store(true, std::memory_order_release);
+  switches_->add();  // applied by the next tick
+  return "";
 }
 
 void ControllerHost::set_parameter(const std::string& controller, const std::string& parameter,

@@ -66,6 +66,24 @@ class ControllerHostComponent final : public runtime::Component {
     progress_period_s_ = parameters.get<double>("progress_period_s", 1.0);
     ControllerHost::Options host_options;
     host_options.overrun_limit = parameters.get<int>("overrun_limit", host_options.overrun_limit);
+    host_options.blend_s = parameters.get<double>("blend_s", host_options.blend_s);
+    if (!(host_options.blend_s >= 0.0)) {
+      throw runtime::ParameterError(parameters.where("blend_s") + ": blend_s must be >= 0 s");
+    }
+    exit_after_s_ = parameters.get<double>("exit_after_s", 0.0);
+    switch_at_s_ = parameters.get<std::vector<double>>("switch_at_s", {});
+    switch_to_ = parameters.get<std::vector<std::string>>("switch_to", {});
+    if (switch_at_s_.size() != switch_to_.size()) {
+      throw runtime::ParameterError(parameters.where("switch_to") + ": switch_at_s has " +
+                                    std::to_string(switch_at_s_.size()) + " times, switch_to " +
+                                    std::to_string(switch_to_.size()) + " controllers");
+    }
+    for (std::size_t i = 1; i < switch_at_s_.size(); ++i) {
+      if (!(switch_at_s_[i] > switch_at_s_[i - 1])) {
+        throw runtime::ParameterError(parameters.where("switch_at_s") +
+                                      ": switch_at_s must increase");
+      }
+    }
 
     // A new estimator is a rebound of the state stream (wbi/dds/producers.hpp),
     // said before its first sample is taken.
@@ -109,6 +127,12 @@ class ControllerHostComponent final : public runtime::Component {
     } catch (const Error& e) {
       throw runtime::ParameterError(parameters.where("active") + ": " + e.what());
     }
+    for (const auto& name : switch_to_) {
+      if (!has(name)) {
+        throw runtime::ParameterError(parameters.where("switch_to") + ": no controller '" + name +
+                                      "' among this host's");
+      }
+    }
     newest_q_.setZero(robot_->dofs());
     if (parameters.get<bool>("signals", true)) {
       signals_publisher_ = std::make_unique<dds::Publisher<msg::Signals>>(
@@ -123,7 +147,10 @@ class ControllerHostComponent final : public runtime::Component {
     service_->publish_parameters();
   }
 
-  void on_activate() override { start_ns_ = -1; }
+  void on_activate() override {
+    start_ns_ = -1;
+    next_progress_s_ = 0.0;
+  }
 
   bool event_driven() const override { return wait_for_state_; }
   bool wait_for_event(std::int64_t /*timeout_ns*/) override {
@@ -138,13 +165,26 @@ class ControllerHostComponent final : public runtime::Component {
     return false;
   }
 
-  void update(std::int64_t time_ns, std::int64_t period_ns) override {
-    if (start_ns_ < 0) {
-      start_ns_ = time_ns;
-      next_progress_ns_ = time_ns;
+  void update(std::int64_t /*time_ns*/, std::int64_t period_ns) override {
+    const double period_s = 1e-9 * static_cast<double>(period_ns);
+    const double t = robot_time(period_s);
+    if (next_switch_ < switch_at_s_.size() && t >= switch_at_s_[next_switch_]) {
+      const std::string refused = host_->schedule_switch(switch_to_[next_switch_]);
+      if (!refused.empty()) {
+        std::printf("switch at t = %.3f s refused: %s\n", t, refused.c_str());
+      }
+      ++next_switch_;
     }
-    const double t = 1e-9 * static_cast<double>(time_ns - start_ns_);
-    host_->tick(t, 1e-9 * static_cast<double>(period_ns));
+    const std::uint64_t switches_before = host_->switches_ended();
+    host_->tick(t, period_s);
+    if (host_->switches_ended() != switches_before) {
+      std::printf("switch: %s\n", host_->last_switch().text.c_str());
+      std::fflush(stdout);
+    }
+    if (exit_after_s_ > 0.0 && t >= exit_after_s_ && !exit_requested_) {
+      exit_requested_ = true;
+      runtime::request_process_exit(0);
+    }
     Controller* active = host_->active_controller();
     if (active) {
       publish_signals(*active);
@@ -155,8 +195,8 @@ class ControllerHostComponent final : public runtime::Component {
         runtime::request_process_exit(0);
       }
     }
-    if (active && progress_period_s_ > 0 && time_ns >= next_progress_ns_) {
-      next_progress_ns_ += static_cast<std::int64_t>(progress_period_s_ * 1e9);
+    if (active && progress_period_s_ > 0 && t >= next_progress_s_) {
+      next_progress_s_ += progress_period_s_;
       active->progress(progress_line_.data(), progress_line_.size());
       std::printf("t = %6.2f s  %s\n", t, progress_line_.data());
       std::fflush(stdout);
@@ -181,6 +221,23 @@ class ControllerHostComponent final : public runtime::Component {
   }
 
  private:
+  // The robot's time since the first tick: the newest state's source stamp
+  // (the simulation's time in lockstep), so that times in the deploy file
+  // (switch_at_s, transitions) mean the same in every run. Without a fresh
+  // state, one period on.
+  double robot_time(double period_s) {
+    try {
+      const Stamp stamp = robot_->read_base_pose(base_pose_, ReadMode::latest);
+      if (start_ns_ < 0) {
+        start_ns_ = stamp.source_ns;
+      }
+      last_time_s_ = 1e-9 * static_cast<double>(stamp.source_ns - start_ns_);
+    } catch (const StaleDataError&) {
+      last_time_s_ += period_s;
+    }
+    return last_time_s_;
+  }
+
   // The active controller's signals, once per state it answered; the names
   // are set again when the active controller changed (the only allocation).
   void publish_signals(const Controller& active) {
@@ -245,11 +302,16 @@ class ControllerHostComponent final : public runtime::Component {
   double progress_period_s_ = 1.0;
   bool wait_for_state_ = false;
   Eigen::VectorXd newest_q_;  // wait_for_event's read (the tick reads the same sample again)
-  std::int64_t start_ns_ = -1;
-  std::int64_t next_progress_ns_ = 0;
+  std::int64_t start_ns_ = -1;  // source stamp of the first state
+  double last_time_s_ = 0.0, next_progress_s_ = 0.0;
+  Transform base_pose_ = Transform::Identity();
+  double exit_after_s_ = 0.0;
+  std::vector<double> switch_at_s_;
+  std::vector<std::string> switch_to_;
+  std::size_t next_switch_ = 0;
   std::uint64_t event_timeouts_ = 0;
   std::array<char, 160> progress_line_{};
-  bool exit_requested_ = false;
+  bool exit_requested_ = false;  // by the host's exit_after_s or a finished controller
   runtime::StatusCounter* new_estimators_ = nullptr;
   std::unique_ptr<dds::Publisher<msg::Signals>> signals_publisher_;
   msg::Signals signals_;

@@ -229,6 +229,11 @@ void MomentumBalance::update(ReadMode mode) {
 }
 
 void MomentumBalance::control() {
+  compute();
+  robot_.set_control_reference(tau_);
+}
+
+void MomentumBalance::compute() {
   robot_.mass_matrix(state_.q, state_.world_H_base, M_);
   robot_.bias_forces(state_.q, state_.world_H_base, state_.dq, state_.base_velocity, p_.gravity,
                      h_);
@@ -259,7 +264,6 @@ void MomentumBalance::control() {
   solve_wrenches();
   tau_ = tau_c_;
   tau_.noalias() -= T_ * wrench_;
-  robot_.set_control_reference(tau_);
 }
 
 }  // namespace wbi::controllers

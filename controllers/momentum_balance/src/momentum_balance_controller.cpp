@@ -131,8 +131,7 @@ void MomentumBalanceController::parameters_changed(const ParameterTable& paramet
   }
 }
 
-void MomentumBalanceController::activate(const RobotState& /*measured*/,
-                                         std::span<const double> /*applied*/) {
+void MomentumBalanceController::activate(const RobotState& /*measured*/) {
   balance_->start();
   start_ns_ = -1;
   has_seq_ = false;
@@ -140,10 +139,10 @@ void MomentumBalanceController::activate(const RobotState& /*measured*/,
 
 void MomentumBalanceController::state_source_changed() { new_estimator_ = true; }
 
-void MomentumBalanceController::update(double /*time_s*/, double /*period_s*/) {
+bool MomentumBalanceController::update(double /*time_s*/, double /*period_s*/) {
   const Stamp stamp = balance_->read_state(ReadMode::latest);
   if (has_seq_ && stamp.seq == last_seq_) {
-    return;  // this estimate was answered already
+    return false;  // this estimate was answered already
   }
   if (has_seq_ && new_estimator_) {
     // A new estimator: its world frame need not be the old one's (a legged
@@ -166,7 +165,7 @@ void MomentumBalanceController::update(double /*time_s*/, double /*period_s*/) {
   }
   const double t = 1e-9 * static_cast<double>(stamp.source_ns - start_ns_);
   follow_reference(t);
-  balance_->control();
+  balance_->compute();
   // The run's figures end at exit_after_s: the ticks answered while the
   // process shuts down are not counted (how many depends on timing).
   if (t >= reference_.settle_s && !finished_) {
@@ -177,6 +176,7 @@ void MomentumBalanceController::update(double /*time_s*/, double /*period_s*/) {
   }
   publish_signals();
   finished_ = exit_after_s_ > 0.0 && t >= exit_after_s_;
+  return true;
 }
 
 void MomentumBalanceController::follow_reference(double t) {

@@ -13,15 +13,6 @@ double minimum_jerk(double tau) {
   return tau * tau * tau * (10.0 - 15.0 * tau + 6.0 * tau * tau);
 }
 
-ParameterSpec blend_spec() {
-  return {.name = "blend_s",
-          .unit = "s",
-          .help = "after a switch, the torque applied before blends into this law's",
-          .default_value = {0.1},
-          .min = 1e-3,
-          .max = 10.0};
-}
-
 ParameterSpec gain_scale_spec() {
   return {.name = "gain_scale",
           .help = "multiplies K_p and K_d",
@@ -62,7 +53,6 @@ std::vector<ParameterSpec> PdGravityController::parameters() const {
        .default_value = {0.0},
        .min = 0.0,
        .max = 600.0},
-      blend_spec(),
   };
 }
 
@@ -83,17 +73,8 @@ void PdGravityController::size_for(WholeBodyInterface& robot) {
   from_.setZero(n);
   goal_.setZero(n);
   reference_.setZero(n);
-  command_.setZero(n);
-  blend_.setZero(n);
 }
 
-void PdGravityController::start_blend(std::span<const double> applied) {
-  blend_pending_ = static_cast<Eigen::Index>(applied.size()) == blend_.size();
-  blending_ = false;
-  if (blend_pending_) {
-    blend_ = Eigen::Map<const Eigen::VectorXd>(applied.data(), blend_.size());
-  }
-}
 
 void PdGravityController::gains_from_inertia(const Eigen::VectorXd& posture,
                                              const Transform& world_H_base, double bandwidth_hz) {
@@ -115,8 +96,7 @@ void PdGravityController::configure(WholeBodyInterface& robot, const ParameterTa
   size_for(robot);
   index_ = {parameters.index("target"),     parameters.index("bandwidth_hz"),
             parameters.index("kp"),         parameters.index("kd"),
-            parameters.index("gain_scale"), parameters.index("transition_s"),
-            parameters.index("blend_s")};
+            parameters.index("gain_scale"), parameters.index("transition_s")};
   if (parameters.is_set(index_.kp) != parameters.is_set(index_.kd)) {
     throw Error(parameters.owner() + ": give both kp and kd, or neither (gains from bandwidth_hz)");
   }
@@ -138,7 +118,6 @@ void PdGravityController::configure(WholeBodyInterface& robot, const ParameterTa
 void PdGravityController::parameters_changed(const ParameterTable& parameters) {
   apply_gain_scale(parameters.value(index_.scale));
   transition_s_ = parameters.value(index_.transition);
-  blend_s_ = parameters.value(index_.blend);
   const auto target = parameters.values(index_.target);
   if (!std::equal(target.begin(), target.end(), goal_.data())) {
     from_ = reference_;  // a new target: the reference moves on from where it is
@@ -147,16 +126,16 @@ void PdGravityController::parameters_changed(const ParameterTable& parameters) {
   }
 }
 
-void PdGravityController::activate(const RobotState& measured, std::span<const double> applied) {
+void PdGravityController::activate(const RobotState& measured) {
   robot_->set_control_mode(ControlMode::torque);
-  start_blend(applied);
+
   from_ = measured.q;
   reference_ = transition_s_ > 0.0 ? from_ : goal_;
   transition_start_s_ = -1.0;
 }
 
 // The paper's loop (PdGravity::update) about a reference that reaches the target.
-void PdGravityController::update(double time_s, double /*period_s*/) {
+bool PdGravityController::update(double time_s, double /*period_s*/) {
   last_time_s_ = time_s;
   if (transition_start_s_ < 0.0) {
     transition_start_s_ = time_s;
@@ -169,19 +148,9 @@ void PdGravityController::update(double time_s, double /*period_s*/) {
   }
   law_->set_reference(reference_);
   law_->compute(ReadMode::latest);
-  if (blend_pending_) {  // the first tick: what was applied, less this law's torque
-    blend_ -= law_->torques();
-    blend_pending_ = false;
-    blending_ = true;
-    blend_start_s_ = time_s;
-  }
-  command_ = law_->torques();
-  if (blending_) {
-    command_ += std::exp(-(time_s - blend_start_s_) / blend_s_) * blend_;
-  }
-  robot_->actuators().set_control_reference(command_);
   signals_[0] = law_->max_error();
   signals_[1] = (reference_ - goal_).cwiseAbs().maxCoeff();
+  return true;
 }
 
 void PdGravityController::progress(char* line, std::size_t size) const {
@@ -201,27 +170,24 @@ std::vector<ParameterSpec> HoldController::parameters() const {
            .default_value = {2.0},
            .min = 1e-3,
            .max = 200.0},
-          gain_scale_spec(),
-          blend_spec()};
+          gain_scale_spec()};
 }
 
 void HoldController::configure(WholeBodyInterface& robot, const ParameterTable& parameters) {
   size_for(robot);
   bandwidth_index_ = parameters.index("bandwidth_hz");
   scale_index_ = parameters.index("gain_scale");
-  blend_index_ = parameters.index("blend_s");
   parameters_changed(parameters);
 }
 
 void HoldController::parameters_changed(const ParameterTable& parameters) {
   bandwidth_hz_ = parameters.value(bandwidth_index_);  // used at the next activation
   apply_gain_scale(parameters.value(scale_index_));
-  blend_s_ = parameters.value(blend_index_);
 }
 
-void HoldController::activate(const RobotState& measured, std::span<const double> applied) {
+void HoldController::activate(const RobotState& measured) {
   robot_->set_control_mode(ControlMode::torque);
-  start_blend(applied);
+
   gains_from_inertia(measured.q, measured.world_H_base, bandwidth_hz_);
   apply_gain_scale(gain_scale_);
   goal_ = measured.q;

@@ -8,11 +8,13 @@
 //               parameters. May allocate, may throw wbi::Error (the host then
 //               refuses to run it, naming why).
 //   activate    INACTIVE → ACTIVE, at a tick boundary, on the loop thread:
-//               `measured` is the state of that tick, `applied` the command
-//               the robot was given until now (the previous controller's
-//               last; empty at the first start). The first command continues
-//               from them (bumpless): no jump in the torque sent.
-//   update      ACTIVE, once per tick: read, compute, send. Real-time: no
+//               `measured` is the state of that tick; sets its control mode.
+//   update      ACTIVE, once per tick: reads the state and computes
+//               command(); returns false when there is nothing new to send
+//               (e.g. that state was answered already). The host sends the
+//               command: after a switch it adds the difference between the
+//               last command sent and this controller's first, decaying, so
+//               that no controller jumps (bumpless). Real-time: no
 //               allocation, no blocking. A StaleDataError skips the tick (no
 //               command; the robot's watchdog guards); any other exception
 //               makes the host fall back to `hold` and say why.
@@ -47,9 +49,9 @@ class Controller {
   virtual std::vector<std::string> signal_names() const { return {}; }
 
   virtual void configure(WholeBodyInterface& robot, const ParameterTable& parameters) = 0;
-  virtual void activate(const RobotState& measured, std::span<const double> applied) = 0;
-  // time_s: since the host started its loop; period_s: the nominal period.
-  virtual void update(double time_s, double period_s) = 0;
+  virtual void activate(const RobotState& measured) = 0;
+  // time_s: the robot's time since the host's first tick; period_s: the nominal period.
+  virtual bool update(double time_s, double period_s) = 0;
   virtual void deactivate() {}
   virtual void parameters_changed(const ParameterTable& /*parameters*/) {}
   // A new estimator took over the state stream: its world frame need not be
@@ -59,7 +61,7 @@ class Controller {
   // length): the host then ends its process.
   virtual bool finished() const { return false; }
 
-  // The joint torques (or references) of the last update().
+  // The joint torques (or references, in the mode activate() set) of the last update().
   virtual const Eigen::VectorXd& command() const = 0;
   // Values of signal_names() at the last update(), and the source stamp of the
   // state they come from (the host publishes them once per new stamp).

@@ -8,6 +8,12 @@
 // once (a refusal changes nothing and says why in one line) and hand an
 // accepted one to the loop, which applies it between two ticks, whole.
 //
+// Sending. The host sends the active controller's command(). After a switch
+// or a fallback it adds the difference between the last command sent and the
+// new controller's first, decaying with the time constant `blend_s`: the
+// first command continues the last, and the new law takes over smoothly
+// (bumpless transfer), whatever the controller.
+//
 // Fallback. The built-in `hold` controller (gravity compensation and joint
 // damping about the measured posture) takes over when the active controller
 // throws in update() or overruns its period `overrun_limit` ticks in a row.
@@ -49,6 +55,7 @@ class ControllerHost {
  public:
   struct Options {
     int overrun_limit = 10;  // consecutive overrunning ticks before the fallback
+    double blend_s = 0.1;    // after a switch, the old command's part decays so (0: none)
     std::chrono::milliseconds switch_timeout{2000};  // request_switch waits this long for the loop
   };
 
@@ -70,9 +77,19 @@ class ControllerHost {
   void set_initial(const std::string& name);
 
   // Loop thread, once per tick: applies a pending switch and parameter
-  // changes, then runs the active controller. Allocates nothing (a switch
-  // or fallback runs activate(), which may).
+  // changes, then runs the active controller and sends its command.
+  // time_s: the robot's time (the host's component uses the state's stamps,
+  // so that a lockstep run does not depend on the wall clock). Allocates
+  // nothing (a switch or fallback runs activate(), which may).
   void tick(double time_s, double period_s);
+  // Loop thread: stages a switch to `activate` (from the active controller)
+  // for this tick, without waiting. "" when staged, else the refusal.
+  std::string schedule_switch(const std::string& activate);
+  // Loop thread: the result of the last switch that ended, and how many have.
+  const SwitchResult& last_switch() const { return last_switch_; }
+  std::uint64_t switches_ended() const { return switches_done_; }
+  // The command sent at the last tick.
+  const Eigen::VectorXd& last_command() const { return last_command_; }
   // The active controller's name, "" before the first tick.
   const std::string& active() const;
   Controller* active_controller();
@@ -102,6 +119,8 @@ class ControllerHost {
   void finish_switch();
   void fall_back(const std::string& reason, double time_s);
   void run_active(double time_s, double period_s);
+  void send(double time_s);
+  SwitchResult check_switch(Hosted* to, Hosted* from) const;  // result.text: the refusal
 
   WholeBodyInterface& robot_;
   runtime::StatusReport& report_;
@@ -110,7 +129,12 @@ class ControllerHost {
   Hosted* active_ = nullptr;
   Hosted* initial_ = nullptr;
   RobotState measured_;           // read at an activation
-  Eigen::VectorXd last_command_;  // the active controller's, before this tick
+  Eigen::VectorXd last_command_;   // the last command sent
+  Eigen::VectorXd before_switch_;  // last_command_ when a switch began
+  Eigen::VectorXd blend_;          // the old command's part, at blend_start_s_
+  bool blend_pending_ = false, blending_ = false;
+  double blend_start_s_ = 0.0;
+  SwitchResult last_switch_;
   int overruns_in_a_row_ = 0;
   std::atomic<bool> state_source_changed_{false};
   runtime::StatusCounter *switches_, *refused_, *fallbacks_, *stale_, *overruns_, *changes_;

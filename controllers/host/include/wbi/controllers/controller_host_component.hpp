@@ -8,6 +8,12 @@
 //                      <its declared parameters>}; `hold` is always hosted
 //   active             the controller active from the first tick (default: hold)
 //   overrun_limit      ticks in a row over the period before the fallback (default 10)
+//   blend_s            after a switch, the last command's part decays with this
+//                      time constant (default 0.1 s; 0: none)
+//   switch_at_s, switch_to  scheduled switches: at each time (robot time since
+//                      the first tick, increasing) the controller to activate
+//                      in place of the active one, e.g. [2, 12] and [balance, hold]
+//   exit_after_s       end the process at this robot time (default 0: never)
 //   wait_for_state     false (default): cycles on the clock at rate_hz, each with
 //                      the newest estimate; true: a cycle starts when a new
 //                      estimate arrives (waiting at most state_timeout_s,
@@ -16,8 +22,10 @@
 //   progress_period_s  a progress line every so often (default 1 s; 0: none)
 // type pd_gravity (and every other controller type): the same host with one
 // controller of that type, active, whose parameters sit beside the host's.
-// At shutdown the host prints "stale cycles: N" and the active controller's
-// summary (pd_gravity: "final max joint error: X rad").
+// Times are the robot's: the source stamps of the state (the simulation's
+// time in lockstep). Each switch is printed ("switch: pd → hold at t = …;
+// torque step …"). At shutdown the host prints "stale cycles: N" and the
+// active controller's summary (pd_gravity: "final max joint error: X rad").
 #pragma once
 
 #include "wbi/runtime/registry.hpp"

@@ -60,6 +60,8 @@ class MomentumBalance {
   Stamp read_state(ReadMode mode = ReadMode::latest);
   // … then evaluates the model, solves the QP and sends τ.
   void control();
+  // The same without sending τ (torques()), for a caller that sends it.
+  void compute();
 
   // The fields used per tick (com_kp, com_kd, angular_momentum_kd,
   // torque_weight, wrench_weight, foot_moment_weight) from `parameters`; the

@@ -30,8 +30,8 @@ class MomentumBalanceController final : public Controller {
   std::vector<ParameterSpec> parameters() const override;
   std::vector<std::string> signal_names() const override;
   void configure(WholeBodyInterface& robot, const ParameterTable& parameters) override;
-  void activate(const RobotState& measured, std::span<const double> applied) override;
-  void update(double time_s, double period_s) override;
+  void activate(const RobotState& measured) override;
+  bool update(double time_s, double period_s) override;
   void parameters_changed(const ParameterTable& parameters) override;
   void state_source_changed() override;
   bool finished() const override { return finished_; }

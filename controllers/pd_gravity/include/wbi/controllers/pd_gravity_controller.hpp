@@ -12,11 +12,8 @@
 //                 activation) or from the last reference (at a change of
 //                 target) to the target in this time, minimum jerk
 //                 (default 0: a step, as the paper's controller)      live
-//   blend_s       after a switch, the difference between the torque applied
-//                 before and this law's decays with this time constant, so
-//                 that the first command continues the last (default 0.1) live
 // hold's: bandwidth_hz (default 2, gains from M at the held posture, taken
-// at each activation), gain_scale and blend_s.
+// at each activation) and gain_scale.
 #pragma once
 
 #include <array>
@@ -32,10 +29,10 @@ class PdGravityController : public Controller {
   std::vector<ParameterSpec> parameters() const override;
   std::vector<std::string> signal_names() const override;
   void configure(WholeBodyInterface& robot, const ParameterTable& parameters) override;
-  void activate(const RobotState& measured, std::span<const double> applied) override;
-  void update(double time_s, double period_s) override;
+  void activate(const RobotState& measured) override;
+  bool update(double time_s, double period_s) override;
   void parameters_changed(const ParameterTable& parameters) override;
-  const Eigen::VectorXd& command() const override { return command_; }
+  const Eigen::VectorXd& command() const override { return law_->torques(); }
   std::span<const double> signals() const override { return signals_; }
   std::int64_t signals_stamp_ns() const override { return law_->state().stamp.source_ns; }
   void progress(char* line, std::size_t size) const override;
@@ -50,15 +47,11 @@ class PdGravityController : public Controller {
   void size_for(WholeBodyInterface& robot);
   // K = gain_scale × the unscaled gains (no allocation).
   void apply_gain_scale(double scale);
-  // Keeps `applied` for the first update's blend (none when empty).
-  void start_blend(std::span<const double> applied);
 
   WholeBodyInterface* robot_ = nullptr;
   std::optional<PdGravity> law_;
   Eigen::MatrixXd mass_matrix_, unscaled_kp_, unscaled_kd_, kp_, kd_;
-  Eigen::VectorXd from_, goal_, reference_, command_, blend_;
-  bool blend_pending_ = false, blending_ = false;
-  double blend_s_ = 0.1, blend_start_s_ = 0.0;
+  Eigen::VectorXd from_, goal_, reference_;
   double gain_scale_ = 1.0;
   double transition_s_ = 0.0;
   double transition_start_s_ = -1.0;  // < 0: at the next update
@@ -67,7 +60,7 @@ class PdGravityController : public Controller {
 
  private:
   struct Indices {
-    std::size_t target, bandwidth, kp, kd, scale, transition, blend;
+    std::size_t target, bandwidth, kp, kd, scale, transition;
   };
   Indices index_{};
 };
@@ -76,12 +69,12 @@ class HoldController final : public PdGravityController {
  public:
   std::vector<ParameterSpec> parameters() const override;
   void configure(WholeBodyInterface& robot, const ParameterTable& parameters) override;
-  void activate(const RobotState& measured, std::span<const double> applied) override;
+  void activate(const RobotState& measured) override;
   void parameters_changed(const ParameterTable& parameters) override;
   std::string summary() const override { return {}; }
 
  private:
-  std::size_t bandwidth_index_ = 0, scale_index_ = 0, blend_index_ = 0;
+  std::size_t bandwidth_index_ = 0, scale_index_ = 0;
   double bandwidth_hz_ = 2.0;
 };
 
