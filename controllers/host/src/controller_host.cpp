@@ -11,6 +11,7 @@ struct ControllerHost::Hosted {
   std::unique_ptr<Controller> controller;
   std::unique_ptr<ParameterTable> parameters;
   bool configured = false;
+  bool ran = false;  // was active at least once: its summary is printed
   std::string configure_error = "not configured";
 };
 
@@ -115,6 +116,7 @@ bool ControllerHost::activate(Hosted& hosted, bool first_start) {
   blending_ = false;
   std::lock_guard lock(switch_mutex_);
   active_ = &hosted;
+  hosted.ran = true;
   overruns_in_a_row_ = 0;
   return true;
 }
@@ -188,6 +190,8 @@ bool ControllerHost::apply_switch(double time_s) {
   }
   lock.lock();
   switch_.result.time_s = time_s;
+  switch_.result.from = from ? from->name : std::string("none");
+  switch_.result.to = to ? to->name : std::string("none");
   if (activated) {
     switch_.result.done = true;
     switch_.result.text = (from ? from->name : std::string("none")) + " → " +
@@ -254,10 +258,20 @@ void ControllerHost::send(double time_s) {
     blending_ = true;
     blend_start_s_ = time_s;
   }
+  double weight = 0.0;
   if (blending_) {
-    const double weight = std::exp(-(time_s - blend_start_s_) / options_.blend_s);
-    last_command_ = command + weight * blend_;
+    weight = std::exp(-(time_s - blend_start_s_) / options_.blend_s);
     blending_ = weight > 1e-9;
+  }
+  // How smooth the commands are: the change since the last tick.
+  const double change = (command + weight * blend_ - last_command_).norm();
+  if (settle_until_s_ >= 0.0) {
+    settling_.largest_change = std::max(settling_.largest_change, change);
+  } else {
+    largest_change_ = std::max(largest_change_, change);
+  }
+  if (weight > 0.0) {
+    last_command_ = command + weight * blend_;
   } else {
     last_command_ = command;
   }
@@ -293,6 +307,14 @@ void ControllerHost::tick(double time_s, double period_s) {
   if (switching) {
     finish_switch();
   }
+  if (settle_until_s_ >= 0.0 && time_s >= settle_until_s_) {
+    settle_until_s_ = -1.0;
+    if (settling_.torque_before > 0.0) {
+      settling_.largest_change /= settling_.torque_before;
+    }
+    settling_.settled_after_s = time_s - settling_.time_s;
+    ++switches_settled_;
+  }
 }
 
 // After the switch tick's command: its step, then the requester is answered.
@@ -310,6 +332,12 @@ void ControllerHost::finish_switch() {
     std::snprintf(step, sizeof step, "; torque step %.2f %% of the %.3g N m applied",
                   100.0 * switch_.result.torque_step, before);
     switch_.result.text += step;
+    switch_.result.torque_before = before;
+    switch_.result.largest_change_before = before > 0.0 ? largest_change_ / before : 0.0;
+    largest_change_ = 0.0;
+    settling_ = switch_.result;
+    settling_.largest_change = 0.0;
+    settle_until_s_ = switch_.result.time_s + std::max(5.0 * options_.blend_s, 0.05);
   }
   switch_.pending = false;
   switch_requested_.store(false, std::memory_order_release);
@@ -326,16 +354,17 @@ SwitchResult ControllerHost::check_switch(Hosted* to, Hosted* from) const {
   } else if (to && !to->configured) {
     refused.text = "'" + to->name + "' cannot be activated: " + to->configure_error;
   } else if (from && from != active_) {
-    refused.text = "'" + from->name + "' is not active (active: " +
-                   (active_ ? active_->name : std::string("none")) + ")";
+    refused.text = "'" + from->name +
+                   "' is not active (active: " + (active_ ? active_->name : std::string("none")) +
+                   ")";
   } else if (to && to == active_ && from != to) {
     refused.text = "'" + to->name + "' is already active";
   } else if (to && active_ && !from) {
     refused.text = "'" + active_->name + "' is active on the same joints: deactivate it in the " +
                    "same switch (--deactivate " + active_->name + ")";
   } else if (!to) {
-    refused.text = std::string("nothing would command the joints: activate '") +
-                   kHoldController + "' to hold the posture";
+    refused.text = std::string("nothing would command the joints: activate '") + kHoldController +
+                   "' to hold the posture";
   }
   return refused;
 }
@@ -349,8 +378,9 @@ SwitchResult ControllerHost::request_switch(const std::vector<std::string>& acti
     return refused;
   };
   if (activate.size() > 1 || deactivate.size() > 1) {
-    return refuse("the host runs one controller at a time on its joints: name at most one to "
-                  "activate and one to deactivate");
+    return refuse(
+        "the host runs one controller at a time on its joints: name at most one to "
+        "activate and one to deactivate");
   }
   Hosted* to = nullptr;
   Hosted* from = nullptr;
@@ -432,7 +462,14 @@ std::vector<ControllerInfo> ControllerHost::list() const {
 
 std::string ControllerHost::summary() const {
   std::lock_guard lock(switch_mutex_);
-  return active_ ? active_->controller->summary() : std::string();
+  std::string text;
+  for (const auto& hosted : hosted_) {
+    if (const std::string own = hosted->ran ? hosted->controller->summary() : ""; !own.empty()) {
+      text += text.empty() ? "" : "\n";
+      text += own;
+    }
+  }
+  return text;
 }
 
 }  // namespace wbi::controllers

@@ -181,6 +181,16 @@ class ControllerHostComponent final : public runtime::Component {
       std::printf("switch: %s\n", host_->last_switch().text.c_str());
       std::fflush(stdout);
     }
+    if (host_->switches_settled() != switches_settled_) {
+      switches_settled_ = host_->switches_settled();
+      const SwitchResult& settled = host_->last_settled();
+      std::printf(
+          "switch %s → %s settled: largest change between two commands %.2f %% of the "
+          "%.3g N m applied over %.2f s (before the switch: %.2f %%)\n",
+          settled.from.c_str(), settled.to.c_str(), 100.0 * settled.largest_change,
+          settled.torque_before, settled.settled_after_s, 100.0 * settled.largest_change_before);
+      std::fflush(stdout);
+    }
     if (exit_after_s_ > 0.0 && t >= exit_after_s_ && !exit_requested_) {
       exit_requested_ = true;
       runtime::request_process_exit(0);
@@ -301,7 +311,7 @@ class ControllerHostComponent final : public runtime::Component {
   std::optional<HostService> service_;  // after host_: destroyed first
   double progress_period_s_ = 1.0;
   bool wait_for_state_ = false;
-  Eigen::VectorXd newest_q_;  // wait_for_event's read (the tick reads the same sample again)
+  Eigen::VectorXd newest_q_;    // wait_for_event's read (the tick reads the same sample again)
   std::int64_t start_ns_ = -1;  // source stamp of the first state
   double last_time_s_ = 0.0, next_progress_s_ = 0.0;
   Transform base_pose_ = Transform::Identity();
@@ -309,6 +319,7 @@ class ControllerHostComponent final : public runtime::Component {
   std::vector<double> switch_at_s_;
   std::vector<std::string> switch_to_;
   std::size_t next_switch_ = 0;
+  std::uint64_t switches_settled_ = 0;
   std::uint64_t event_timeouts_ = 0;
   std::array<char, 160> progress_line_{};
   bool exit_requested_ = false;  // by the host's exit_after_s or a finished controller

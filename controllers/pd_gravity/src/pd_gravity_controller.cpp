@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include <Eigen/Cholesky>
+
 namespace wbi::controllers {
 
 namespace {
@@ -73,8 +75,8 @@ void PdGravityController::size_for(WholeBodyInterface& robot) {
   from_.setZero(n);
   goal_.setZero(n);
   reference_.setZero(n);
+  command_.setZero(n);
 }
-
 
 void PdGravityController::gains_from_inertia(const Eigen::VectorXd& posture,
                                              const Transform& world_H_base, double bandwidth_hz) {
@@ -148,6 +150,7 @@ bool PdGravityController::update(double time_s, double /*period_s*/) {
   }
   law_->set_reference(reference_);
   law_->compute(ReadMode::latest);
+  command_ = law_->torques();
   signals_[0] = law_->max_error();
   signals_[1] = (reference_ - goal_).cwiseAbs().maxCoeff();
   return true;
@@ -170,7 +173,11 @@ std::vector<ParameterSpec> HoldController::parameters() const {
            .default_value = {2.0},
            .min = 1e-3,
            .max = 200.0},
-          gain_scale_spec()};
+          gain_scale_spec(),
+          {.name = "contacts",
+           .help = "frames it stands on, comma-separated (e.g. l_sole,r_sole)",
+           .live = false,
+           .text = true}};
 }
 
 void HoldController::configure(WholeBodyInterface& robot, const ParameterTable& parameters) {
@@ -178,6 +185,45 @@ void HoldController::configure(WholeBodyInterface& robot, const ParameterTable& 
   bandwidth_index_ = parameters.index("bandwidth_hz");
   scale_index_ = parameters.index("gain_scale");
   parameters_changed(parameters);
+  const std::string contacts = parameters.text(parameters.index("contacts"));
+  contacts_.clear();
+  for (std::size_t start = 0; start < contacts.size();) {
+    const std::size_t end = std::min(contacts.find(',', start), contacts.size());
+    if (end > start) {
+      contacts_.push_back(robot.frame_index(contacts.substr(start, end - start)));
+    }
+    start = end + 1;
+  }
+  const int n = robot.dofs();
+  const auto k = static_cast<Eigen::Index>(contacts_.size());
+  jacobian_.setZero(6, n + 6);
+  base_map_.setZero(6, 6 * k);
+  gravity_.setZero(n + 6);
+  wrenches_.setZero(6 * k);
+  offset_.setZero(n);
+}
+
+void HoldController::weight_on_contacts(const RobotState& measured) {
+  offset_.setZero();
+  if (contacts_.empty()) {
+    return;
+  }
+  const int n = robot_->dofs();
+  const Eigen::Vector3d gravity(0.0, 0.0, -9.81);
+  robot_->gravity_forces(measured.q, measured.world_H_base, gravity, gravity_);
+  // G_b = Σ J_c,bᵀ f: the base rows; the wrenches of least norm that satisfy them.
+  for (std::size_t c = 0; c < contacts_.size(); ++c) {
+    robot_->jacobian(measured.q, measured.world_H_base, contacts_[c], jacobian_);
+    base_map_.middleCols(6 * static_cast<Eigen::Index>(c), 6) = jacobian_.leftCols(6).transpose();
+  }
+  const Eigen::Matrix<double, 6, 6> gram = base_map_ * base_map_.transpose();
+  wrenches_ = base_map_.transpose() * gram.ldlt().solve(gravity_.head<6>());
+  // τ = G_j − Σ J_c,jᵀ f: the joint rows.
+  for (std::size_t c = 0; c < contacts_.size(); ++c) {
+    robot_->jacobian(measured.q, measured.world_H_base, contacts_[c], jacobian_);
+    offset_.noalias() -=
+        jacobian_.rightCols(n).transpose() * wrenches_.segment<6>(6 * static_cast<Eigen::Index>(c));
+  }
 }
 
 void HoldController::parameters_changed(const ParameterTable& parameters) {
@@ -189,11 +235,18 @@ void HoldController::activate(const RobotState& measured) {
   robot_->set_control_mode(ControlMode::torque);
 
   gains_from_inertia(measured.q, measured.world_H_base, bandwidth_hz_);
+  weight_on_contacts(measured);
   apply_gain_scale(gain_scale_);
   goal_ = measured.q;
   reference_ = goal_;
   transition_s_ = 0.0;
   transition_start_s_ = -1.0;
+}
+
+bool HoldController::update(double time_s, double period_s) {
+  PdGravityController::update(time_s, period_s);
+  command_ += offset_;
+  return true;
 }
 
 void register_pd_gravity(ControllerRegistry& registry) {

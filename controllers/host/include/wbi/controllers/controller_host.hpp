@@ -46,9 +46,19 @@ struct ControllerInfo {
 
 struct SwitchResult {
   bool done = false;
-  std::string text;          // the refusal, or what happened ("pd → hold at t = 2.000 s …")
-  double torque_step = 0.0;  // ‖τ_after − τ_before‖ / ‖τ_before‖ at the switch tick
-  double time_s = 0.0;       // when it took effect
+  std::string from, to;        // the controllers deactivated and activated ("none")
+  std::string text;            // the refusal, or what happened ("pd → hold at t = 2.000 s …")
+  double torque_step = 0.0;    // ‖τ_after − τ_before‖ / ‖τ_before‖ at the switch tick
+  double time_s = 0.0;         // when it took effect
+  double torque_before = 0.0;  // ‖τ‖ of the last command before the switch [N m]
+  // Once the blend is over (5 blend_s after the switch): the largest change
+  // between two consecutive commands in that time, / torque_before. The
+  // torque step above is 0 by construction; this says how smooth the take-over was.
+  double largest_change = 0.0;
+  // The same from the previous switch (or the start) to this one: the
+  // controllers' own tick-to-tick change, which the take-over is compared with.
+  double largest_change_before = 0.0;
+  double settled_after_s = 0.0;
 };
 
 class ControllerHost {
@@ -85,9 +95,12 @@ class ControllerHost {
   // Loop thread: stages a switch to `activate` (from the active controller)
   // for this tick, without waiting. "" when staged, else the refusal.
   std::string schedule_switch(const std::string& activate);
-  // Loop thread: the result of the last switch that ended, and how many have.
+  // Loop thread: the result of the last switch that ended, and how many have;
+  // the same once its blend is over (largest_change), and how many have.
   const SwitchResult& last_switch() const { return last_switch_; }
   std::uint64_t switches_ended() const { return switches_done_; }
+  const SwitchResult& last_settled() const { return settling_; }
+  std::uint64_t switches_settled() const { return switches_settled_; }
   // The command sent at the last tick.
   const Eigen::VectorXd& last_command() const { return last_command_; }
   // The active controller's name, "" before the first tick.
@@ -106,7 +119,7 @@ class ControllerHost {
   const ParameterTable& parameters(const std::string& controller) const;
   std::vector<ControllerInfo> list() const;
 
-  // Summaries of the active controller and the host's counters, for shutdown.
+  // The summaries of every controller that ran, for shutdown.
   std::string summary() const;
 
  private:
@@ -128,13 +141,17 @@ class ControllerHost {
   std::vector<std::unique_ptr<Hosted>> hosted_;
   Hosted* active_ = nullptr;
   Hosted* initial_ = nullptr;
-  RobotState measured_;           // read at an activation
+  RobotState measured_;            // read at an activation
   Eigen::VectorXd last_command_;   // the last command sent
   Eigen::VectorXd before_switch_;  // last_command_ when a switch began
   Eigen::VectorXd blend_;          // the old command's part, at blend_start_s_
   bool blend_pending_ = false, blending_ = false;
   double blend_start_s_ = 0.0;
   SwitchResult last_switch_;
+  SwitchResult settling_;         // the last switch, while its blend is watched
+  double settle_until_s_ = -1.0;  // < 0: not watching
+  double largest_change_ = 0.0;   // between two commands sent, since the last switch [N m]
+  std::uint64_t switches_settled_ = 0;
   int overruns_in_a_row_ = 0;
   std::atomic<bool> state_source_changed_{false};
   runtime::StatusCounter *switches_, *refused_, *fallbacks_, *stale_, *overruns_, *changes_;

@@ -13,7 +13,12 @@
 //                 target) to the target in this time, minimum jerk
 //                 (default 0: a step, as the paper's controller)      live
 // hold's: bandwidth_hz (default 2, gains from M at the held posture, taken
-// at each activation) and gain_scale.
+// at each activation), gain_scale, and contacts: the frames a floating-base
+// robot stands on, e.g. "l_sole,r_sole" (text; default none). With contacts,
+// hold adds the torques that carry the robot's weight on them at the held
+// posture (G = Sᵀτ + Σ J_cᵀ f, the wrenches of least norm that balance the
+// base's rows of G): without them a standing humanoid sags under the joint
+// gravity of a floating base, which is the weight hanging from the base.
 #pragma once
 
 #include <array>
@@ -32,7 +37,7 @@ class PdGravityController : public Controller {
   void activate(const RobotState& measured) override;
   bool update(double time_s, double period_s) override;
   void parameters_changed(const ParameterTable& parameters) override;
-  const Eigen::VectorXd& command() const override { return law_->torques(); }
+  const Eigen::VectorXd& command() const override { return command_; }
   std::span<const double> signals() const override { return signals_; }
   std::int64_t signals_stamp_ns() const override { return law_->state().stamp.source_ns; }
   void progress(char* line, std::size_t size) const override;
@@ -51,7 +56,7 @@ class PdGravityController : public Controller {
   WholeBodyInterface* robot_ = nullptr;
   std::optional<PdGravity> law_;
   Eigen::MatrixXd mass_matrix_, unscaled_kp_, unscaled_kd_, kp_, kd_;
-  Eigen::VectorXd from_, goal_, reference_;
+  Eigen::VectorXd from_, goal_, reference_, command_;
   double gain_scale_ = 1.0;
   double transition_s_ = 0.0;
   double transition_start_s_ = -1.0;  // < 0: at the next update
@@ -70,12 +75,19 @@ class HoldController final : public PdGravityController {
   std::vector<ParameterSpec> parameters() const override;
   void configure(WholeBodyInterface& robot, const ParameterTable& parameters) override;
   void activate(const RobotState& measured) override;
+  bool update(double time_s, double period_s) override;
   void parameters_changed(const ParameterTable& parameters) override;
   std::string summary() const override { return {}; }
 
  private:
+  // The joint torques that carry the weight on the contacts at `measured`.
+  void weight_on_contacts(const RobotState& measured);
+
   std::size_t bandwidth_index_ = 0, scale_index_ = 0;
   double bandwidth_hz_ = 2.0;
+  std::vector<int> contacts_;                    // frame indices
+  Eigen::MatrixXd jacobian_, base_map_;          // 6 × (6 + n); 6 × 6k: G_b = base_map f
+  Eigen::VectorXd gravity_, wrenches_, offset_;  // 6 + n; 6k; n
 };
 
 void register_pd_gravity(ControllerRegistry& registry);
