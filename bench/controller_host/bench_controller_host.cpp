@@ -18,6 +18,8 @@
 #include <wbi/dds_interface.hpp>
 #include <wbi/sim_rig/in_process_robot.hpp>
 
+#include "../common/humanoid_joints.hpp"
+
 namespace {
 
 using namespace std::chrono_literals;
@@ -40,14 +42,6 @@ class FixedTorque final : public wbi::controllers::Controller {
   Eigen::VectorXd tau_;
 };
 
-const std::vector<std::string> kJoints = {
-    "l_hip_pitch",      "l_hip_roll",       "l_hip_yaw",       "l_knee",         "l_ankle_pitch",
-    "l_ankle_roll",     "r_hip_pitch",      "r_hip_roll",      "r_hip_yaw",      "r_knee",
-    "r_ankle_pitch",    "r_ankle_roll",     "torso_pitch",     "torso_roll",     "torso_yaw",
-    "l_shoulder_pitch", "l_shoulder_roll",  "l_shoulder_yaw",  "l_elbow",        "l_wrist_yaw",
-    "l_wrist_pitch",    "r_shoulder_pitch", "r_shoulder_roll", "r_shoulder_yaw", "r_elbow",
-    "r_wrist_yaw",      "r_wrist_pitch",    "neck_pitch",      "neck_roll",      "neck_yaw"};
-
 struct Humanoid {
   explicit Humanoid(const std::string& robot)
       : rig(robot,
@@ -60,7 +54,7 @@ struct Humanoid {
     options.urdf = std::string(WBI_SOURCE_DIR) + "/models/humanoid.urdf";
     options.max_age_s = 1e9;  // the simulation is not stepped while timing
     interface = wbi::make_dds_interface(options);
-    interface->add_joints(kJoints);
+    interface->add_joints(wbi::bench::humanoid_joints());
     rig.start_simulation();
     interface->init(20s);
   }

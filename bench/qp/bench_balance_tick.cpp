@@ -22,6 +22,8 @@
 #include <wbi/runtime/runner.hpp>
 #include <wbi/sim_rig/in_process_robot.hpp>
 
+#include "../common/humanoid_joints.hpp"
+
 namespace {
 
 using namespace std::chrono_literals;
@@ -39,13 +41,7 @@ BalancedRobot humanoid() {
   BalancedRobot r;
   r.sim_parameters = "config: " + source + "/deploy/robots/humanoid.yaml\n";
   r.urdf = source + "/models/humanoid.urdf";
-  r.joints = {
-      "l_hip_pitch",      "l_hip_roll",       "l_hip_yaw",       "l_knee",         "l_ankle_pitch",
-      "l_ankle_roll",     "r_hip_pitch",      "r_hip_roll",      "r_hip_yaw",      "r_knee",
-      "r_ankle_pitch",    "r_ankle_roll",     "torso_pitch",     "torso_roll",     "torso_yaw",
-      "l_shoulder_pitch", "l_shoulder_roll",  "l_shoulder_yaw",  "l_elbow",        "l_wrist_yaw",
-      "l_wrist_pitch",    "r_shoulder_pitch", "r_shoulder_roll", "r_shoulder_yaw", "r_elbow",
-      "r_wrist_yaw",      "r_wrist_pitch",    "neck_pitch",      "neck_roll",      "neck_yaw"};
+  r.joints = wbi::bench::humanoid_joints();
   return r;
 }
 

@@ -76,6 +76,48 @@ class PythonInterface {
   std::unique_ptr<WholeBodyInterface> robot_;
 };
 
+}  // namespace
+
+// Joins as every wbi tool does (dds/README.md, "Joining a deployment"):
+// defaults < the deploy file < WBI_* environment < these keyword arguments.
+dds::ParticipantOptions join_from_keywords(
+    const std::string& participant_name, const std::optional<std::string>& deploy,
+    std::optional<int> domain_id, const std::optional<std::string>& discovery,
+    const std::optional<std::vector<std::string>>& peers,
+    const std::optional<std::vector<std::string>>& interfaces,
+    const std::optional<std::string>& discovery_server, const std::optional<std::string>& qos_file,
+    const std::optional<std::string>& security, const std::optional<std::string>& identity) {
+  dds::ParticipantOptions join;
+  join.name = participant_name;
+  try {
+    if (deploy) {
+      deploy::read_join_options(*deploy, identity.value_or(""), join);
+    }
+    dds::apply_environment(join);
+    dds::JoinOverrides keywords;
+    keywords.domain_id = domain_id;
+    if (discovery) {
+      keywords.discovery = dds::discovery_named(*discovery, "discovery");
+    }
+    keywords.peers = peers;
+    keywords.interfaces = interfaces;
+    keywords.discovery_server = discovery_server;
+    keywords.qos_file = qos_file;
+    keywords.security_directory = security;
+    keywords.identity = identity;
+    dds::apply(keywords, join);
+  } catch (const std::exception& error) {
+    throw py::value_error(error.what());
+  }
+  if (join.security.enabled() && join.security.identity.empty()) {
+    throw py::value_error("the deployment is secured (" + join.security.directory +
+                          "): give identity=NAME, an identity of that directory");
+  }
+  return join;
+}
+
+namespace {
+
 PythonInterface make_interface(
     const std::string& robot, const std::string& urdf,
     const std::optional<std::vector<std::string>>& joints, const std::string& controller,
@@ -103,34 +145,9 @@ PythonInterface make_interface(
   options.max_age_s = max_age_s;
   options.blocking_read_timeout = milliseconds(blocking_read_timeout_s);
   options.model_timeout = milliseconds(model_timeout_s);
-  // Joins as every wbi tool does (dds/README.md, "Joining a deployment"):
-  // defaults < the deploy file < WBI_* environment < these keyword arguments.
-  dds::ParticipantOptions& join = options.participant;
-  join.name = participant_name;
-  try {
-    if (deploy) {
-      deploy::read_join_options(*deploy, identity.value_or(""), join);
-    }
-    dds::apply_environment(join);
-    dds::JoinOverrides keywords;
-    keywords.domain_id = domain_id;
-    if (discovery) {
-      keywords.discovery = dds::discovery_named(*discovery, "discovery");
-    }
-    keywords.peers = peers;
-    keywords.interfaces = interfaces;
-    keywords.discovery_server = discovery_server;
-    keywords.qos_file = qos_file;
-    keywords.security_directory = security;
-    keywords.identity = identity;
-    dds::apply(keywords, join);
-  } catch (const std::exception& error) {
-    throw py::value_error(error.what());
-  }
-  if (join.security.enabled() && join.security.identity.empty()) {
-    throw py::value_error("the deployment is secured (" + join.security.directory +
-                          "): give identity=NAME, an identity of that directory");
-  }
+  options.participant =
+      join_from_keywords(participant_name, deploy, domain_id, discovery, peers, interfaces,
+                         discovery_server, qos_file, security, identity);
   PythonInterface result(options);
   if (joints) {
     result.robot().add_joints(*joints);

@@ -7,7 +7,9 @@
 PYBIND11_MODULE(_wbi, module) {
   module.doc() =
       "wbi native bindings: the model library (Model) and the whole-body interface over DDS "
-      "(DdsInterface). Import the package wbi instead.";
+      "(DdsInterface), a client of a robot's controller host (ControllerHost). Import the package "
+      "wbi instead.";
   wbi::python::bind_model(module);
   wbi::python::bind_interface(module);
+  wbi::python::bind_controller_host(module);
 }

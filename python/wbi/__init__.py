@@ -6,15 +6,16 @@ periodic loop for controllers, and wbi recordings as numpy arrays.
     robot = wbi.DdsInterface(robot="arm", urdf="models/arm7.urdf", joints=[...])
     loop = wbi.PeriodicLoop(1000)
     rec = wbi.Recording("run.mcap")
+    host = wbi.ControllerHost("arm")      # switch controllers, set their parameters
 
 See python/README.md.
 """
 
-from ._wbi import (ControlMode, ControlParameter, DdsInterface, Error, EstimateKind, Model,
-                   ReadMode, SensorKind, StaleDataError, Stamp, TimeoutError)
+from ._wbi import (ControlMode, ControlParameter, ControllerHost, DdsInterface, Error,
+                   EstimateKind, Model, ReadMode, SensorKind, StaleDataError, Stamp, TimeoutError)
 from .loop import LoopStatistics, PeriodicLoop
 from .recording import Recording, RecordingError, TopicData
 
-__all__ = ["ControlMode", "ControlParameter", "DdsInterface", "Error", "EstimateKind", "Model",
+__all__ = ["ControlMode", "ControlParameter", "ControllerHost", "DdsInterface", "Error", "EstimateKind", "Model",
            "ReadMode", "SensorKind", "StaleDataError", "Stamp", "TimeoutError", "LoopStatistics",
            "PeriodicLoop", "Recording", "RecordingError", "TopicData"]

@@ -178,6 +178,11 @@ const msg::OperationResult& RemoteModel::call(msg::ModelOperation operation, int
   } catch (const dds::TimeoutError& e) {
     throw TimeoutError(std::string("remote model ") + what + ": " + e.what());
   } catch (const dds::CallError& e) {
+    if (e.status() == dds::CallStatus::not_connected) {
+      // No server within the deadline (the model service is restarting, say):
+      // late, as a missing reply is; a caller may try again at its next tick.
+      throw TimeoutError(std::string("remote model ") + what + ": " + e.what());
+    }
     throw Error(std::string("remote model ") + what + ": " + e.what());
   }
   if (reply_.error().size() != 0) {

@@ -16,6 +16,7 @@
 #include <wbi/mcap/reader.hpp>
 
 #include "../options.hpp"
+#include "../subcommands.hpp"
 #include "recording_file.hpp"
 #include "verbs.hpp"
 
@@ -233,17 +234,10 @@ int run_info(Args args) {
 }  // namespace
 
 int run_bag(Args args) {
-  const std::string usage =
-      "usage: wbi bag {info} [--help]\n\n"
-      "  info   print what an MCAP recording holds\n";
-  if (args.empty() || args[0] == "--help" || args[0] == "-h") {
-    std::cout << usage;
-    return args.empty() ? kExitError : kExitOk;
-  }
-  if (args[0] == "info") {
-    return run_info(args.subspan(1));
-  }
-  throw UsageError("unknown sub-command '" + args[0] + "'");
+  return run_subcommand("bag", args,
+                        {
+                            {"info", "print what an MCAP recording holds", run_info},
+                        });
 }
 
 }  // namespace wbi::cli

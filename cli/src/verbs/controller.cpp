@@ -3,25 +3,16 @@
 #include <iostream>
 #include <string>
 
+#include <wbi/types.hpp>
+
 #include "../options.hpp"
+#include "../subcommands.hpp"
 #include "controller_client.hpp"
 #include "verbs.hpp"
 
 namespace wbi::cli {
 
 namespace {
-
-void print_controllers(const msg::ControllerReply& reply) {
-  for (const auto& controller : reply.controllers()) {
-    std::cout << (controller.active() ? "* " : "  ") << controller.name().to_string() << "  ["
-              << controller.type().to_string() << "]"
-              << (controller.active() ? "  active" : "  inactive");
-    if (!controller.configure_error().to_string().empty()) {
-      std::cout << "  (cannot run: " << controller.configure_error().to_string() << ")";
-    }
-    std::cout << "\n";
-  }
-}
 
 int run_list(Args args) {
   Options options("wbi controller list --robot NAME [options]",
@@ -30,14 +21,15 @@ int run_list(Args args) {
   if (!options.parse(args)) {
     return kExitOk;
   }
-  msg::ControllerRequest request;
-  request.action(msg::ControllerAction::LIST_CONTROLLERS);
-  const auto reply = call_controller_host(options, request, "wbi controller");
-  if (!reply.error().to_string().empty()) {
-    std::cerr << "wbi controller list: " << reply.error().to_string() << "\n";
-    return kExitError;
+  HostConnection host(options, "wbi controller");
+  for (const auto& controller : host.client->list()) {
+    std::cout << (controller.active ? "* " : "  ") << controller.name << "  [" << controller.type
+              << "]" << (controller.active ? "  active" : "  inactive");
+    if (!controller.configure_error.empty()) {
+      std::cout << "  (cannot run: " << controller.configure_error << ")";
+    }
+    std::cout << "\n";
   }
-  print_controllers(reply);
   return kExitOk;
 }
 
@@ -53,44 +45,30 @@ int run_switch(Args args) {
   if (!options.parse(args)) {
     return kExitOk;
   }
-  msg::ControllerRequest request;
-  request.action(msg::ControllerAction::SWITCH_CONTROLLERS);
-  if (const auto name = options.get_optional("activate")) {
-    request.activate().push_back(*name);
-  }
-  if (const auto name = options.get_optional("deactivate")) {
-    request.deactivate().push_back(*name);
-  }
-  if (request.activate().empty() && request.deactivate().empty()) {
+  const std::string activate = options.get_optional("activate").value_or("");
+  const std::string deactivate = options.get_optional("deactivate").value_or("");
+  if (activate.empty() && deactivate.empty()) {
     throw UsageError("give --activate NAME and/or --deactivate NAME");
   }
-  const auto reply = call_controller_host(options, request, "wbi controller");
-  if (!reply.error().to_string().empty()) {
-    std::cerr << "wbi controller switch: refused: " << reply.error().to_string() << "\n";
+  HostConnection host(options, "wbi controller");
+  try {
+    std::cout << "switched " << host.client->switch_controllers(activate, deactivate) << "\n";
+  } catch (const Error& refusal) {
+    std::cerr << "wbi controller switch: refused: " << refusal.what() << "\n";
     return kExitError;
   }
-  std::cout << "switched " << reply.text().to_string() << "\n";
   return kExitOk;
 }
 
 }  // namespace
 
 int run_controller(Args args) {
-  const std::string usage =
-      "usage: wbi controller {list,switch} [--help]\n\n"
-      "  list     the controllers of a robot's controller host\n"
-      "  switch   activate one and deactivate another at one tick boundary\n";
-  if (args.empty() || args[0] == "--help" || args[0] == "-h") {
-    std::cout << usage;
-    return args.empty() ? kExitError : kExitOk;
-  }
-  if (args[0] == "list") {
-    return run_list(args.subspan(1));
-  }
-  if (args[0] == "switch") {
-    return run_switch(args.subspan(1));
-  }
-  throw UsageError("unknown sub-command '" + args[0] + "' (list, switch)");
+  return run_subcommand(
+      "controller", args,
+      {
+          {"list", "the controllers of a robot's controller host", run_list},
+          {"switch", "activate one and deactivate another at one tick boundary", run_switch},
+      });
 }
 
 }  // namespace wbi::cli

@@ -2,9 +2,6 @@
 
 #include <chrono>
 
-#include <wbi/dds/client.hpp>
-#include <wbi/dds/topics.hpp>
-
 #include "../join_options.hpp"
 
 namespace wbi::cli {
@@ -16,21 +13,14 @@ void add_controller_host_options(Options& options) {
   add_join_options(options);
 }
 
-msg::ControllerReply call_controller_host(const Options& options, msg::ControllerRequest request,
-                                          const std::string& verb) {
+HostConnection::HostConnection(const Options& options, const std::string& verb) {
   if (!options.has("robot")) {
     throw UsageError("--robot NAME is required: the robot whose controller host to ask");
   }
-  const std::string robot = options.get("robot");
   const auto timeout = std::chrono::duration_cast<std::chrono::nanoseconds>(
       std::chrono::duration<double>(options.get_double("timeout")));
-  dds::Participant participant(join_options(options, verb, ""));
-  dds::Client<msg::ControllerRequest, msg::ControllerReply> client(
-      participant, dds::topics::controller_service(robot));
-  request.robot(robot);
-  msg::ControllerReply reply;
-  client.call(request, reply, timeout);
-  return reply;
+  participant = std::make_unique<dds::Participant>(join_options(options, verb, ""));
+  client = std::make_unique<controllers::HostClient>(*participant, options.get("robot"), timeout);
 }
 
 }  // namespace wbi::cli

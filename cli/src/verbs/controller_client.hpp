@@ -1,10 +1,12 @@
 // What `wbi controller` and `wbi param` share: the robot's controller host,
-// reached over its service wbi/<robot>/controllers (idl/controllers.idl).
+// reached through controllers::HostClient.
 #pragma once
 
+#include <memory>
 #include <string>
 
-#include <wbi/msg/controllers.h>
+#include <wbi/controllers/host_client.hpp>
+#include <wbi/dds/participant.hpp>
 
 #include "../options.hpp"
 
@@ -12,9 +14,12 @@ namespace wbi::cli {
 
 // Declares --robot and --timeout, and the join options.
 void add_controller_host_options(Options& options);
-// One call to the host. Throws std::runtime_error naming the service when no
-// host answers; a refusal comes back in reply.error().
-msg::ControllerReply call_controller_host(const Options& options, msg::ControllerRequest request,
-                                          const std::string& verb);
+
+// The participant and the client of the robot named by --robot.
+struct HostConnection {
+  HostConnection(const Options& options, const std::string& verb);
+  std::unique_ptr<dds::Participant> participant;
+  std::unique_ptr<controllers::HostClient> client;
+};
 
 }  // namespace wbi::cli

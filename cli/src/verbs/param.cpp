@@ -4,8 +4,10 @@
 #include <string>
 
 #include <wbi/controllers/parameter_table.hpp>
+#include <wbi/types.hpp>
 
 #include "../options.hpp"
+#include "../subcommands.hpp"
 #include "controller_client.hpp"
 #include "verbs.hpp"
 
@@ -13,40 +15,32 @@ namespace wbi::cli {
 
 namespace {
 
-std::string range(const msg::ControllerParameter& parameter) {
+std::string range(const controllers::ParameterInfo& parameter) {
   std::string text = "[";
-  text += controllers::format_values(std::vector<double>{parameter.min()});
+  text += controllers::format_values(std::vector<double>{parameter.min});
   text += ", ";
-  text += controllers::format_values(std::vector<double>{parameter.max()});
+  text += controllers::format_values(std::vector<double>{parameter.max});
   text += "]";
   return text;
 }
 
-void print_parameter(const msg::ControllerParameter& parameter, bool details) {
-  std::cout << parameter.name().to_string() << " = "
-            << (parameter.is_text()          ? parameter.text().to_string()
-                : parameter.values().empty() ? std::string("(unset)")
-                                             : controllers::format_values(parameter.values()));
-  if (!parameter.unit().to_string().empty()) {
-    std::cout << " " << parameter.unit().to_string();
+void print_parameter(const controllers::ParameterInfo& parameter, bool details) {
+  std::cout << parameter.name << " = "
+            << (parameter.is_text          ? parameter.text
+                : parameter.values.empty() ? std::string("(unset)")
+                                           : controllers::format_values(parameter.values));
+  if (!parameter.unit.empty()) {
+    std::cout << " " << parameter.unit;
   }
   if (details) {
-    std::cout << "  " << (parameter.is_text() ? std::string("text") : range(parameter))
-              << (parameter.live() ? "  live" : "  while inactive") << "  "
-              << parameter.help().to_string();
+    std::cout << "  " << (parameter.is_text ? std::string("text") : range(parameter))
+              << (parameter.live ? "  live" : "  while inactive") << "  " << parameter.help;
   }
   std::cout << "\n";
 }
 
-msg::ControllerReply list_parameters(const Options& options) {
-  msg::ControllerRequest request;
-  request.action(msg::ControllerAction::LIST_PARAMETERS);
-  request.controller(options.get("CONTROLLER"));
-  return call_controller_host(options, request, "wbi param");
-}
-
-int fail(const char* what, const std::string& error) {
-  std::cerr << "wbi param " << what << ": " << error << "\n";
+int refused(const char* what, const Error& refusal) {
+  std::cerr << "wbi param " << what << ": " << refusal.what() << "\n";
   return kExitError;
 }
 
@@ -59,12 +53,13 @@ int run_list(Args args) {
   if (!options.parse(args)) {
     return kExitOk;
   }
-  const auto reply = list_parameters(options);
-  if (!reply.error().to_string().empty()) {
-    return fail("list", reply.error().to_string());
-  }
-  for (const auto& parameter : reply.parameters()) {
-    print_parameter(parameter, true);
+  HostConnection host(options, "wbi param");
+  try {
+    for (const auto& parameter : host.client->parameters(options.get("CONTROLLER"))) {
+      print_parameter(parameter, true);
+    }
+  } catch (const Error& refusal) {
+    return refused("list", refusal);
   }
   return kExitOk;
 }
@@ -78,25 +73,22 @@ int run_get(Args args) {
   if (!options.parse(args)) {
     return kExitOk;
   }
-  const auto reply = list_parameters(options);
-  if (!reply.error().to_string().empty()) {
-    return fail("get", reply.error().to_string());
-  }
-  for (const auto& parameter : reply.parameters()) {
-    if (parameter.name().to_string() == options.get("NAME")) {
-      print_parameter(parameter, false);
-      return kExitOk;
-    }
-  }
+  HostConnection host(options, "wbi param");
   std::string known;
-  for (const auto& parameter : reply.parameters()) {
-    if (!known.empty()) {
-      known += ", ";
+  try {
+    for (const auto& parameter : host.client->parameters(options.get("CONTROLLER"))) {
+      if (parameter.name == options.get("NAME")) {
+        print_parameter(parameter, false);
+        return kExitOk;
+      }
+      known += known.empty() ? "" : ", ";
+      known += parameter.name;
     }
-    known += parameter.name().to_string();
+  } catch (const Error& refusal) {
+    return refused("get", refusal);
   }
-  return fail("get", options.get("CONTROLLER") + ": no parameter '" + options.get("NAME") +
-                         "' (declared: " + known + ")");
+  return refused("get", Error(options.get("CONTROLLER") + ": no parameter '" + options.get("NAME") +
+                              "' (declared: " + known + ")"));
 }
 
 int run_set(Args args) {
@@ -111,62 +103,43 @@ int run_set(Args args) {
   if (!options.parse(args)) {
     return kExitOk;
   }
-  msg::ControllerRequest request;
-  request.action(msg::ControllerAction::SET_PARAMETER);
-  request.controller(options.get("CONTROLLER"));
-  request.parameter(options.get("NAME"));
   if (options.rest_values().empty()) {
     throw UsageError("give the value after the parameter's name");
   }
+  std::vector<double> values;
   for (const auto& text : options.rest_values()) {
     std::size_t used = 0;
-    double value = 0.0;
     try {
-      value = std::stod(text, &used);
+      values.push_back(std::stod(text, &used));
     } catch (const std::exception&) {
       used = 0;
     }
     if (used != text.size()) {
-      // Not a number: the value of a text parameter (a frame name), when alone.
-      if (options.rest_values().size() != 1) {
-        throw UsageError("value '" + text + "' is not a number");
-      }
-      request.text(text);
-      request.values().clear();
-      break;
+      throw UsageError("value '" + text + "' is not a number");
     }
-    request.values().push_back(value);
   }
-  const auto reply = call_controller_host(options, request, "wbi param");
-  if (!reply.error().to_string().empty()) {
-    return fail("set", "refused: " + reply.error().to_string());
+  HostConnection host(options, "wbi param");
+  try {
+    std::cout << host.client->set_parameter(options.get("CONTROLLER"), options.get("NAME"), values)
+              << "\n";
+  } catch (const Error& refusal) {
+    std::cerr << "wbi param set: refused: " << refusal.what() << "\n";
+    return kExitError;
   }
-  std::cout << reply.text().to_string() << "\n";
   return kExitOk;
 }
 
 }  // namespace
 
 int run_param(Args args) {
-  const std::string usage =
-      "usage: wbi param {list,get,set} CONTROLLER [NAME [VALUE...]] --robot NAME [--help]\n\n"
-      "  list   a controller's parameters, with unit, range and whether they are live\n"
-      "  get    one parameter's value\n"
-      "  set    change a parameter while the controller runs\n";
-  if (args.empty() || args[0] == "--help" || args[0] == "-h") {
-    std::cout << usage;
-    return args.empty() ? kExitError : kExitOk;
-  }
-  if (args[0] == "list") {
-    return run_list(args.subspan(1));
-  }
-  if (args[0] == "get") {
-    return run_get(args.subspan(1));
-  }
-  if (args[0] == "set") {
-    return run_set(args.subspan(1));
-  }
-  throw UsageError("unknown sub-command '" + args[0] + "' (list, get, set)");
+  return run_subcommand(
+      "param", args,
+      {
+          {"list", "a controller's parameters, with unit, range and whether they are live",
+           run_list},
+          {"get", "one parameter's value", run_get},
+          {"set", "change a parameter while the controller runs", run_set},
+      });
 }
 
 }  // namespace wbi::cli

@@ -15,6 +15,7 @@
 
 #include "../join_options.hpp"
 #include "../options.hpp"
+#include "../subcommands.hpp"
 #include "verbs.hpp"
 
 namespace wbi::cli {
@@ -181,25 +182,12 @@ int run_hz(Args args) {
 }  // namespace
 
 int run_topic(Args args) {
-  const std::string usage =
-      "usage: wbi topic {list,echo,hz} [--help]\n\n"
-      "  list   list the topics on the domain\n"
-      "  echo   print the samples of a topic\n"
-      "  hz     measure the rate of a topic\n";
-  if (args.empty() || args[0] == "--help" || args[0] == "-h") {
-    std::cout << usage;
-    return args.empty() ? kExitError : kExitOk;
-  }
-  if (args[0] == "list") {
-    return run_list(args.subspan(1));
-  }
-  if (args[0] == "echo") {
-    return run_echo(args.subspan(1));
-  }
-  if (args[0] == "hz") {
-    return run_hz(args.subspan(1));
-  }
-  throw UsageError("unknown sub-command '" + args[0] + "'");
+  return run_subcommand("topic", args,
+                        {
+                            {"list", "list the topics on the domain", run_list},
+                            {"echo", "print the samples of a topic", run_echo},
+                            {"hz", "measure the rate of a topic", run_hz},
+                        });
 }
 
 }  // namespace wbi::cli

@@ -36,6 +36,7 @@ ControllerHost::ControllerHost(WholeBodyInterface& robot, runtime::StatusReport&
       refused_(&report.counter("refused_switches")),
       fallbacks_(&report.counter("fallbacks")),
       stale_(&report.counter("stale_cycles")),
+      late_(&report.counter("late_services")),
       overruns_(&report.counter("overruns")),
       changes_(&report.counter("parameter_changes")) {}
 
@@ -155,6 +156,9 @@ void ControllerHost::fall_back(const std::string& reason, double time_s) {
       if (!activate(*hold, false)) {
         initial_ = hold;  // activated at the first tick with a fresh state
       }
+    } catch (const TimeoutError& e) {
+      line += std::string("; hold did not activate yet (tried again each tick): ") + e.what();
+      initial_ = hold;
     } catch (const std::exception& e) {
       line += std::string("; hold did not activate: ") + e.what();
     }
@@ -224,6 +228,11 @@ void ControllerHost::run_active(double time_s, double period_s) {
   } catch (const StaleDataError&) {
     stale_->add();  // no fresh state this tick: no command; the robot's watchdog guards
     return;
+  } catch (const TimeoutError&) {
+    // A service it needs is late (a remote model restarting): the controller
+    // is not at fault, and hold would need the same service. Tried again next tick.
+    late_->add();
+    return;
   } catch (const std::exception& e) {
     fall_back(std::string("threw in update (") + e.what() + ")", time_s);
     if (active_ && active_ != &hosted_active) {
@@ -280,11 +289,12 @@ void ControllerHost::send(double time_s) {
 
 void ControllerHost::tick(double time_s, double period_s) {
   if (initial_ && !active_) {
-    Hosted* first = initial_;
     try {
-      if (activate(*first, true)) {
+      if (activate(*initial_, true)) {
         initial_ = nullptr;
       }
+    } catch (const TimeoutError&) {
+      late_->add();  // a service it needs is late: tried again at the next tick
     } catch (const std::exception& e) {
       initial_ = nullptr;
       fall_back(std::string("threw in activate (") + e.what() + ")", time_s);

@@ -81,7 +81,9 @@ void MomentumBalanceController::configure(WholeBodyInterface& robot,
                                           const ParameterTable& parameters) {
   robot_ = &robot;
   const auto value = [&](const char* name) { return parameters.value(parameters.index(name)); };
-  MomentumBalanceParameters p;
+  // The configure-time fields here, the live ones by parameters_changed() below.
+  MomentumBalanceParameters& p = tracking_;
+  p = MomentumBalanceParameters{};
   p.left_sole = parameters.text(parameters.index("left_sole"));
   p.right_sole = parameters.text(parameters.index("right_sole"));
   p.foot_x_min = value("foot_x_min");
@@ -92,7 +94,6 @@ void MomentumBalanceController::configure(WholeBodyInterface& robot,
   p.torsional_friction = value("torsional_friction");
   p.min_normal_force = value("min_normal_force");
   p.posture_bandwidth_hz = value("posture_bandwidth_hz");
-  tracking_ = p;
   const int n = robot.dofs();
   Eigen::VectorXd posture(n);
   if (const std::size_t i = parameters.index("posture"); parameters.is_set(i)) {
@@ -110,12 +111,9 @@ void MomentumBalanceController::configure(WholeBodyInterface& robot,
   reference_.frequency_hz = value("com_frequency_hz");
   reference_.settle_s = value("settle_s");
   exit_after_s_ = value("exit_after_s");
-  parameters_changed(parameters);  // the live gains into p
-  p.com_kp = tracking_.com_kp, p.com_kd = tracking_.com_kd;
-  p.angular_momentum_kd = tracking_.angular_momentum_kd;
-  p.torque_weight = tracking_.torque_weight, p.wrench_weight = tracking_.wrench_weight;
-  p.foot_moment_weight = tracking_.foot_moment_weight;
-  balance_.emplace(robot, p, posture);
+  balance_.reset();
+  parameters_changed(parameters);  // the live gains into tracking_
+  balance_.emplace(robot, tracking_, posture);
 }
 
 void MomentumBalanceController::parameters_changed(const ParameterTable& parameters) {

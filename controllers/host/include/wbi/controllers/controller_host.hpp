@@ -17,6 +17,9 @@
 // Fallback. The built-in `hold` controller (gravity compensation and joint
 // damping about the measured posture) takes over when the active controller
 // throws in update() or overruns its period `overrun_limit` ticks in a row.
+// Not on a StaleDataError (no fresh state: the tick is skipped, counter
+// "stale_cycles") nor on a TimeoutError (a service it needs, e.g. a remote
+// model, is late: skipped, counter "late_services"): hold would lack the same.
 // Each fallback is counted (status counter "fallbacks"), becomes the status's
 // last error with its reason, and is printed on stderr: never a silent stop.
 #pragma once
@@ -154,7 +157,7 @@ class ControllerHost {
   std::uint64_t switches_settled_ = 0;
   int overruns_in_a_row_ = 0;
   std::atomic<bool> state_source_changed_{false};
-  runtime::StatusCounter *switches_, *refused_, *fallbacks_, *stale_, *overruns_, *changes_;
+  runtime::StatusCounter *switches_, *refused_, *fallbacks_, *stale_, *late_, *overruns_, *changes_;
 
   // A switch handed from request_switch() to the loop.
   mutable std::mutex switch_mutex_;
