@@ -244,7 +244,7 @@ void ControllerHost::run_active(double time_s, double period_s) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (took_s > period_s) {
     overruns_->add();
-    if (++overruns_in_a_row_ >= options_.overrun_limit) {
+    if (++overruns_in_a_row_ >= options_.overrun_limit && options_.overrun_limit > 0) {
       char reason[128];
       std::snprintf(reason, sizeof reason,
                     "overran its %.3f ms period %d ticks in a row (last %.3f ms)", 1e3 * period_s,

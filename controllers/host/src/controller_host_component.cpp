@@ -66,6 +66,11 @@ class ControllerHostComponent final : public runtime::Component {
     progress_period_s_ = parameters.get<double>("progress_period_s", 1.0);
     ControllerHost::Options host_options;
     host_options.overrun_limit = parameters.get<int>("overrun_limit", host_options.overrun_limit);
+    if (host_options.overrun_limit < 0) {
+      throw runtime::ParameterError(
+          parameters.where("overrun_limit") +
+          ": overrun_limit must be >= 0 (0: never fall back on overruns)");
+    }
     host_options.blend_s = parameters.get<double>("blend_s", host_options.blend_s);
     if (!(host_options.blend_s >= 0.0)) {
       throw runtime::ParameterError(parameters.where("blend_s") + ": blend_s must be >= 0 s");

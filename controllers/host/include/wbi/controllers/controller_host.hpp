@@ -67,8 +67,12 @@ struct SwitchResult {
 class ControllerHost {
  public:
   struct Options {
-    int overrun_limit = 10;  // consecutive overrunning ticks before the fallback
-    double blend_s = 0.1;    // after a switch, the old command's part decays so (0: none)
+    // Consecutive ticks whose update() took longer than the period before the
+    // fallback; 0: never. Off by default: in lockstep a tick's wall time is not
+    // its deadline, and a remote model's call may take longer than a period
+    // by design. A real-time deploy sets it (e.g. 10).
+    int overrun_limit = 0;
+    double blend_s = 0.1;  // after a switch, the old command's part decays so (0: none)
     std::chrono::milliseconds switch_timeout{2000};  // request_switch waits this long for the loop
   };
 

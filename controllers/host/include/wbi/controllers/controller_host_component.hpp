@@ -7,7 +7,8 @@
 //   controllers        map: name → {type: <controller type> (default: the name),
 //                      <its declared parameters>}; `hold` is always hosted
 //   active             the controller active from the first tick (default: hold)
-//   overrun_limit      ticks in a row over the period before the fallback (default 10)
+//   overrun_limit      ticks in a row over the period before the fallback (default 0:
+//                      never; for real-time deploys, e.g. 10)
 //   blend_s            after a switch, the last command's part decays with this
 //                      time constant (default 0.1 s; 0: none)
 //   switch_at_s, switch_to  scheduled switches: at each time (robot time since
