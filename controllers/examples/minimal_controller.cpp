@@ -24,9 +24,7 @@ class MinimalPd final : public Controller {
     q_d_ = Eigen::Map<const Eigen::VectorXd>(p.values(0).data(), robot_->dofs());
     kp_ = p.value(1), kd_ = p.value(2);
   }
-  void activate(const RobotState&) override {
-    robot_->set_control_mode(ControlMode::torque);
-  }
+  void activate(const RobotState&) override { robot_->set_control_mode(ControlMode::torque); }
   bool update(double /*time_s*/, double /*period_s*/) override {  // no allocation
     robot_->state().read_robot_state(state_, ReadMode::latest);
     robot_->model().gravity_forces(state_.q, state_.world_H_base, {0, 0, -9.81}, g_);
