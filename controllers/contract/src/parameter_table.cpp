@@ -85,8 +85,6 @@ void ParameterTable::size_for(int joints) {
   generation_.fetch_add(1, std::memory_order_acq_rel);
 }
 
-int ParameterTable::value_count(std::size_t index) const { return entries_.at(index).count; }
-
 std::optional<std::size_t> ParameterTable::find(std::string_view name) const {
   for (std::size_t i = 0; i < entries_.size(); ++i) {
     if (entries_[i].spec.name == name) {

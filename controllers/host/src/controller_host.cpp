@@ -404,8 +404,7 @@ SwitchResult ControllerHost::request_switch(const std::vector<std::string>& acti
   if (const SwitchResult problem = check_switch(to, from); !problem.text.empty()) {
     return refuse(problem.text);
   }
-  switch_ = PendingSwitch{
-      .pending = true, .activate = to, .deactivate = from, .result = {}, .id = switches_done_};
+  switch_ = PendingSwitch{.pending = true, .activate = to, .deactivate = from, .result = {}};
   switch_requested_.store(true, std::memory_order_release);
   const std::uint64_t id = switches_done_;
   const bool applied =
@@ -438,8 +437,7 @@ std::string ControllerHost::schedule_switch(const std::string& activate) {
     refused_->add();
     return problem.text;
   }
-  switch_ = PendingSwitch{
-      .pending = true, .activate = to, .deactivate = active_, .result = {}, .id = switches_done_};
+  switch_ = PendingSwitch{.pending = true, .activate = to, .deactivate = active_, .result = {}};
   switch_requested_.store(true, std::memory_order_release);
   switches_->add();  // applied by the next tick
   return "";

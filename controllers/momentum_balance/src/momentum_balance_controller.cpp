@@ -112,18 +112,23 @@ void MomentumBalanceController::configure(WholeBodyInterface& robot,
   reference_.settle_s = value("settle_s");
   exit_after_s_ = value("exit_after_s");
   balance_.reset();
+  live_ = {parameters.index("com_kp"),
+           parameters.index("com_kd"),
+           parameters.index("angular_momentum_kd"),
+           parameters.index("torque_weight"),
+           parameters.index("wrench_weight"),
+           parameters.index("foot_moment_weight")};
   parameters_changed(parameters);  // the live gains into tracking_
   balance_.emplace(robot, tracking_, posture);
 }
 
 void MomentumBalanceController::parameters_changed(const ParameterTable& parameters) {
-  const auto value = [&](const char* name) { return parameters.value(parameters.index(name)); };
-  tracking_.com_kp = value("com_kp");
-  tracking_.com_kd = value("com_kd");
-  tracking_.angular_momentum_kd = value("angular_momentum_kd");
-  tracking_.torque_weight = value("torque_weight");
-  tracking_.wrench_weight = value("wrench_weight");
-  tracking_.foot_moment_weight = value("foot_moment_weight");
+  tracking_.com_kp = parameters.value(live_[0]);
+  tracking_.com_kd = parameters.value(live_[1]);
+  tracking_.angular_momentum_kd = parameters.value(live_[2]);
+  tracking_.torque_weight = parameters.value(live_[3]);
+  tracking_.wrench_weight = parameters.value(live_[4]);
+  tracking_.foot_moment_weight = parameters.value(live_[5]);
   if (balance_) {
     balance_->set_tracking(tracking_);
   }

@@ -138,7 +138,6 @@ void PdGravityController::activate(const RobotState& measured) {
 
 // The paper's loop (PdGravity::update) about a reference that reaches the target.
 bool PdGravityController::update(double time_s, double /*period_s*/) {
-  last_time_s_ = time_s;
   if (transition_start_s_ < 0.0) {
     transition_start_s_ = time_s;
   }

@@ -55,7 +55,6 @@ class ParameterTable {
   const std::string& owner() const { return owner_; }
   std::size_t size() const { return entries_.size(); }
   const ParameterSpec& spec(std::size_t index) const { return entries_.at(index).spec; }
-  int value_count(std::size_t index) const;  // the size after size_for()
   std::optional<std::size_t> find(std::string_view name) const;
   // Throws wbi::Error naming the parameter and the declared ones.
   std::size_t index(std::string_view name) const;

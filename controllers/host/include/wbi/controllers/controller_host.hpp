@@ -171,7 +171,6 @@ class ControllerHost {
     Hosted* activate = nullptr;    // null: none
     Hosted* deactivate = nullptr;  // null: none
     SwitchResult result;
-    std::uint64_t id = 0;
   } switch_;
   std::atomic<bool> switch_requested_{
       false};  // switch_.pending, for the loop's check without the lock

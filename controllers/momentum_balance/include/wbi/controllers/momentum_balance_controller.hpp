@@ -58,6 +58,9 @@ class MomentumBalanceController final : public Controller {
   double squared_error_ = 0.0, max_error_ = 0.0;
   std::uint64_t samples_ = 0, new_estimators_ = 0;
   std::array<double, 9> signals_{};
+  // Indices of com_kp, com_kd, angular_momentum_kd, torque_weight, wrench_weight,
+  // foot_moment_weight: looked up once, at configure.
+  std::array<std::size_t, 6> live_{};
 };
 
 void register_momentum_balance(ControllerRegistry& registry);

@@ -46,7 +46,6 @@ class PdGravity {
   // New gains of the same size (no allocation). Throws wbi::Error naming a wrong size.
   void set_gains(const Eigen::MatrixXd& kp, const Eigen::MatrixXd& kd);
   const PdGravityGains& gains() const { return gains_; }
-  const Eigen::VectorXd& reference() const { return q_desired_; }
   const RobotState& state() const { return state_; }  // of the last update
   const Eigen::VectorXd& torques() const { return tau_; }
   // max |q − q_d| at the last update [rad]

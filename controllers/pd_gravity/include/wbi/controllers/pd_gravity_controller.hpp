@@ -60,8 +60,7 @@ class PdGravityController : public Controller {
   double gain_scale_ = 1.0;
   double transition_s_ = 0.0;
   double transition_start_s_ = -1.0;  // < 0: at the next update
-  double last_time_s_ = 0.0;
-  std::array<double, 2> signals_{};  // max joint error, reference's distance to the target
+  std::array<double, 2> signals_{};   // max joint error, reference's distance to the target
 
  private:
   struct Indices {
