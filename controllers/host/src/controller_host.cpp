@@ -10,6 +10,10 @@ struct ControllerHost::Hosted {
   std::string name, type;
   std::unique_ptr<Controller> controller;
   std::unique_ptr<ParameterTable> parameters;
+  std::vector<std::unique_ptr<ReferenceInput>> inputs;  // one per declared reference
+  std::vector<std::uint64_t> stale_said;                // per input: episodes printed
+  std::vector<std::uint64_t> stale_counted;             // per input: ticks in the status
+  std::vector<std::uint64_t> late_counted;              // per input: late points in the status
   bool configured = false;
   bool ran = false;  // was active at least once: its summary is printed
   std::string configure_error = "not configured";
@@ -38,7 +42,9 @@ ControllerHost::ControllerHost(WholeBodyInterface& robot, runtime::StatusReport&
       stale_(&report.counter("stale_cycles")),
       late_(&report.counter("late_services")),
       overruns_(&report.counter("overruns")),
-      changes_(&report.counter("parameter_changes")) {}
+      changes_(&report.counter("parameter_changes")),
+      late_references_(&report.counter("late_references")),
+      stale_references_(&report.counter("stale_reference_ticks")) {}
 
 ControllerHost::~ControllerHost() = default;
 
@@ -68,6 +74,16 @@ ParameterTable& ControllerHost::add(const std::string& name, const std::string& 
   hosted->type = type;
   hosted->parameters = std::make_unique<ParameterTable>(name, controller->parameters());
   hosted->parameters->size_for(robot_.dofs());
+  std::vector<ReferenceInput*> inputs;
+  for (auto& spec : controller->references()) {
+    const std::string owner = name + "/" + spec.name;
+    hosted->inputs.push_back(std::make_unique<ReferenceInput>(owner, std::move(spec)));
+    inputs.push_back(hosted->inputs.back().get());
+  }
+  hosted->stale_said.assign(inputs.size(), 0);
+  hosted->stale_counted.assign(inputs.size(), 0);
+  hosted->late_counted.assign(inputs.size(), 0);
+  controller->bind_references(inputs);
   hosted->controller = std::move(controller);
   hosted_.push_back(std::move(hosted));
   return *hosted_.back()->parameters;
@@ -110,6 +126,9 @@ bool ControllerHost::activate(Hosted& hosted, bool first_start) {
   } catch (const StaleDataError&) {
     stale_->add();
     return false;  // no state to continue from: tried again at the next tick
+  }
+  for (auto& input : hosted.inputs) {
+    input->reset_episode();
   }
   hosted.controller->activate(measured_);
   // At a switch, the new controller's commands start from the last one sent.
@@ -242,6 +261,7 @@ void ControllerHost::run_active(double time_s, double period_s) {
   }
   const double took_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  count_stale_references(hosted_active, time_s);
   if (took_s > period_s) {
     overruns_->add();
     if (++overruns_in_a_row_ >= options_.overrun_limit && options_.overrun_limit > 0) {
@@ -468,13 +488,82 @@ std::vector<ControllerInfo> ControllerHost::list() const {
   return out;
 }
 
+// A stale reference is the controller's to handle (its declared rule); the
+// host counts the ticks and says once per episode that the rule applies.
+void ControllerHost::count_stale_references(Hosted& hosted, double time_s) {
+  for (std::size_t i = 0; i < hosted.inputs.size(); ++i) {
+    const ReferenceInput& input = *hosted.inputs[i];
+    stale_references_->add(input.stale_ticks() - hosted.stale_counted[i]);
+    hosted.stale_counted[i] = input.stale_ticks();
+    late_references_->add(input.late() - hosted.late_counted[i]);
+    hosted.late_counted[i] = input.late();
+    if (input.stale_episodes() != hosted.stale_said[i]) {
+      hosted.stale_said[i] = input.stale_episodes();
+      std::fprintf(stderr, "t = %.3f s: reference %s stale (older than %.3f s): rule %s\n", time_s,
+                   input.owner().c_str(), input.spec().max_age_s, to_string(input.spec().rule));
+    }
+  }
+}
+
+std::vector<ReferenceInput*> ControllerHost::references(const std::string& controller) const {
+  std::vector<ReferenceInput*> inputs;
+  for (const auto& input : find(controller).inputs) {
+    inputs.push_back(input.get());
+  }
+  return inputs;
+}
+
+void ControllerHost::set_reference_wait(std::int64_t wait_ns) {
+  reference_wait_ns_ = wait_ns;
+  for (auto& hosted : hosted_) {
+    for (auto& input : hosted->inputs) {
+      input->set_wait(wait_ns);
+    }
+  }
+}
+
+bool ControllerHost::wait_for_first_references(std::int64_t time_ns) {
+  bool all = true;
+  for (auto& hosted : hosted_) {
+    for (auto& input : hosted->inputs) {
+      if (!input->wait_for(time_ns, reference_wait_ns_)) {
+        late_references_->add();
+        all = false;
+      }
+    }
+  }
+  return all;
+}
+
 std::string ControllerHost::summary() const {
   std::lock_guard lock(switch_mutex_);
   std::string text;
+  const auto line = [&](const std::string& own) {
+    text += text.empty() ? "" : "\n";
+    text += own;
+  };
   for (const auto& hosted : hosted_) {
     if (const std::string own = hosted->ran ? hosted->controller->summary() : ""; !own.empty()) {
-      text += text.empty() ? "" : "\n";
-      text += own;
+      line(own);
+    }
+    for (const auto& input : hosted->inputs) {
+      char counts[320];
+      std::snprintf(counts, sizeof counts,
+                    "reference %s: %llu points (%llu malformed, %llu overwritten unused, %llu "
+                    "restarts); ticks: %llu carried from an "
+                    "earlier point, %llu stale in %llu episodes (rule %s), %llu before the first "
+                    "point; %llu points late",
+                    input->owner().c_str(), static_cast<unsigned long long>(input->received()),
+                    static_cast<unsigned long long>(input->malformed()),
+                    static_cast<unsigned long long>(input->overwritten()),
+                    static_cast<unsigned long long>(input->restarts()),
+                    static_cast<unsigned long long>(input->carried_ticks()),
+                    static_cast<unsigned long long>(input->stale_ticks()),
+                    static_cast<unsigned long long>(input->stale_episodes()),
+                    to_string(input->spec().rule),
+                    static_cast<unsigned long long>(input->missing_ticks()),
+                    static_cast<unsigned long long>(input->late()));
+      line(counts);
     }
   }
   return text;

@@ -9,6 +9,7 @@
 #include <wbi/controllers/controller_types.hpp>
 #include <wbi/controllers/interface_options.hpp>
 #include <wbi/dds/publisher.hpp>
+#include <wbi/dds/subscriber.hpp>
 #include <wbi/dds/topics.hpp>
 #include <wbi/dds_interface.hpp>
 #include <wbi/runtime/process_exit.hpp>
@@ -113,8 +114,10 @@ class ControllerHostComponent final : public runtime::Component {
 
     std::string active = kHoldController;
     if (!single_.empty()) {
-      add(single_, single_, parameters);
-      active = single_;
+      // Named after the component: its signals, references and parameters
+      // are the instance's (wbi/<robot>/references/<instance>/…).
+      add(context.instance, single_, parameters);
+      active = context.instance;
     } else {
       const runtime::Parameters controllers = parameters.child("controllers", "controllers");
       for (const auto& name : controllers.keys()) {
@@ -148,6 +151,14 @@ class ControllerHostComponent final : public runtime::Component {
       signals_.names().reserve(msg::MAX_SIGNALS);
       signals_.values().reserve(msg::MAX_SIGNALS);
     }
+    subscribe_references(*context.participant, options.robot);
+    reference_wait_ns_ =
+        static_cast<std::int64_t>(parameters.get<double>("reference_wait_s", 0.0) * 1e9);
+    if (reference_wait_ns_ < 0) {
+      throw runtime::ParameterError(parameters.where("reference_wait_s") +
+                                    ": reference_wait_s must be >= 0 s (0: never wait)");
+    }
+    host_->set_reference_wait(reference_wait_ns_);
     service_.emplace(*context.participant, options.robot, context.instance, *host_);
     service_->publish_parameters();
   }
@@ -179,6 +190,10 @@ class ControllerHostComponent final : public runtime::Component {
         std::printf("switch at t = %.3f s refused: %s\n", t, refused.c_str());
       }
       ++next_switch_;
+    }
+    if (reference_wait_ns_ > 0 && start_ns_ >= 0 && !references_started_) {
+      references_started_ = true;
+      host_->wait_for_first_references(state_stamp_ns_);
     }
     const std::uint64_t switches_before = host_->switches_ended();
     host_->tick(t, period_s);
@@ -228,6 +243,7 @@ class ControllerHostComponent final : public runtime::Component {
       std::fflush(stdout);
     }
     service_.reset();
+    reference_readers_.clear();
     signals_publisher_.reset();
     host_.reset();
     if (robot_) {
@@ -246,6 +262,7 @@ class ControllerHostComponent final : public runtime::Component {
       if (start_ns_ < 0) {
         start_ns_ = stamp.source_ns;
       }
+      state_stamp_ns_ = stamp.source_ns;
       last_time_s_ = 1e-9 * static_cast<double>(stamp.source_ns - start_ns_);
     } catch (const StaleDataError&) {
       last_time_s_ += period_s;
@@ -292,6 +309,38 @@ class ControllerHostComponent final : public runtime::Component {
     }
   }
 
+  // One reader per declared reference input of every hosted controller,
+  // feeding the host's input as points arrive (on the reader's thread).
+  void subscribe_references(dds::Participant& participant, const std::string& robot) {
+    for (const auto& info : host_->list()) {
+      for (ReferenceInput* input : host_->references(info.name)) {
+        const std::string topic = dds::topics::reference(robot, info.name, input->spec().name);
+        reference_readers_.push_back(std::make_unique<dds::Subscriber<msg::TrajectoryPoint>>(
+            participant, topic, dds::qos::kCommand,
+            [input](const msg::TrajectoryPoint& sample, const dds::detail::SampleInfo&) {
+              input->push(to_point(sample));
+            }));
+      }
+    }
+  }
+
+  static TrajectoryPoint to_point(const msg::TrajectoryPoint& sample) {
+    TrajectoryPoint point;
+    point.stamp_ns = sample.header().stamp_ns();
+    point.seq = sample.header().seq();
+    const auto& x = sample.position();
+    point.size = static_cast<int>(x.size());
+    const auto copy = [&](const std::vector<double>& from, auto& to) {
+      if (from.size() == x.size()) {  // else empty (zero) or malformed: zero
+        std::copy(from.begin(), from.end(), to.begin());
+      }
+    };
+    copy(x, point.position);
+    copy(sample.velocity(), point.velocity);
+    copy(sample.acceleration(), point.acceleration);
+    return point;
+  }
+
   bool has(const std::string& name) const {
     for (const auto& info : host_->list()) {
       if (info.name == name) {
@@ -330,6 +379,10 @@ class ControllerHostComponent final : public runtime::Component {
   bool exit_requested_ = false;  // by the host's exit_after_s or a finished controller
   runtime::StatusCounter* new_estimators_ = nullptr;
   std::unique_ptr<dds::Publisher<msg::Signals>> signals_publisher_;
+  std::vector<std::unique_ptr<dds::Subscriber<msg::TrajectoryPoint>>> reference_readers_;
+  std::int64_t reference_wait_ns_ = 0;  // lockstep: wait this long for a reference's point
+  std::int64_t state_stamp_ns_ = 0;     // source stamp of the newest state
+  bool references_started_ = false;     // the first tick waited for the generators
   msg::Signals signals_;
   const Controller* signals_of_ = nullptr;  // whose names signals_ carries
   std::uint64_t signals_seq_ = 0;

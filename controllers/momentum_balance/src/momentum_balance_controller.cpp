@@ -60,16 +60,20 @@ std::vector<ParameterSpec> MomentumBalanceController::parameters() const {
        .size = kPerJoint,
        .live = false,
        .optional = true},
-      number("com_amplitude", "m", 0.05, 0.0, 1.0, false, "CoM sinusoid's amplitude"),
-      number("com_frequency_hz", "Hz", 0.2, 0.0, 10.0, false, "CoM sinusoid's frequency"),
-      {.name = "com_direction",
-       .help = "CoM sinusoid's direction (not all zero)",
-       .default_value = {0.0, 1.0, 0.0},
-       .size = 3,
-       .live = false},
-      number("settle_s", "s", 0.5, 0.0, inf, false, "hold the measured CoM this long first"),
+      number("settle_s", "s", 0.5, 0.0, inf, false,
+             "CoM error figures count from this long after activation"),
       number("exit_after_s", "s", 0.0, 0.0, inf, false, "end the run after this long (0: never)"),
   };
+}
+
+std::vector<ReferenceSpec> MomentumBalanceController::references() const {
+  return {{.name = "com",
+           .unit = "m",
+           .help = "CoM position, velocity, acceleration (world frame)",
+           .size = 3,
+           .max_age_s = 0.05,
+           .rule = StaleRule::decay_to_state,
+           .decay_s = 0.5}};
 }
 
 std::vector<std::string> MomentumBalanceController::signal_names() const {
@@ -101,15 +105,7 @@ void MomentumBalanceController::configure(WholeBodyInterface& robot,
   } else {
     robot.read_estimates(EstimateKind::joint_position, posture);
   }
-  const auto direction = parameters.values(parameters.index("com_direction"));
-  const Eigen::Vector3d d(direction[0], direction[1], direction[2]);
-  if (d.norm() == 0.0) {
-    throw Error(parameters.owner() + ": com_direction must not be all zero");
-  }
-  reference_.direction = d.normalized();
-  reference_.amplitude = value("com_amplitude");
-  reference_.frequency_hz = value("com_frequency_hz");
-  reference_.settle_s = value("settle_s");
+  settle_s_ = value("settle_s");
   exit_after_s_ = value("exit_after_s");
   balance_.reset();
   live_ = {parameters.index("com_kp"),
@@ -153,7 +149,7 @@ bool MomentumBalanceController::update(double /*time_s*/, double /*period_s*/) {
     // moves with the CoM's estimate, so that the robot does not (it moved
     // 5 cm to the shifted reference before).
     const Eigen::Vector3d shift = balance_->com_of_state() - balance_->com();
-    reference_.origin += shift;
+    frame_shift_ += shift;
     ++new_estimators_;
     std::printf("new estimator: CoM reference moved with its frame by (%.4f, %.4f, %.4f) m\n",
                 shift.x(), shift.y(), shift.z());
@@ -167,11 +163,11 @@ bool MomentumBalanceController::update(double /*time_s*/, double /*period_s*/) {
     start_ns_ = stamp.source_ns;
   }
   const double t = 1e-9 * static_cast<double>(stamp.source_ns - start_ns_);
-  follow_reference(t);
+  follow_reference(stamp.source_ns);
   balance_->compute();
   // The run's figures end at exit_after_s: the ticks answered while the
   // process shuts down are not counted (how many depends on timing).
-  if (t >= reference_.settle_s && !finished_) {
+  if (t >= settle_s_ && !finished_) {
     const double error = (balance_->com() - balance_->com_reference()).norm();
     squared_error_ += error * error;
     max_error_ = std::max(max_error_, error);
@@ -182,13 +178,10 @@ bool MomentumBalanceController::update(double /*time_s*/, double /*period_s*/) {
   return true;
 }
 
-void MomentumBalanceController::follow_reference(double t) {
-  reference_.follow(
-      t, [&] { return balance_->com_of_state(); },
-      [&] { return balance_->feet_center_of_state(); });
-  Eigen::Vector3d x, v, a;
-  reference_.at(t, x, v, a);
-  balance_->set_com_reference(x, v, a);
+void MomentumBalanceController::follow_reference(std::int64_t stamp_ns) {
+  ReferenceInput& com = *com_input_;
+  com.at(stamp_ns, [&] { return Eigen::Vector3d(balance_->com_of_state() - frame_shift_); });
+  balance_->set_com_reference(com.position() + frame_shift_, com.velocity(), com.acceleration());
 }
 
 void MomentumBalanceController::publish_signals() {
@@ -216,7 +209,8 @@ std::string MomentumBalanceController::summary() const {
 
 void register_momentum_balance(ControllerRegistry& registry) {
   registry.add<MomentumBalanceController>(
-      "momentum_balance", "momentum-based balancing on two feet, with a CoM sinusoid reference");
+      "momentum_balance",
+      "momentum-based balancing on two feet, following a CoM reference input (com)");
 }
 
 }  // namespace wbi::controllers

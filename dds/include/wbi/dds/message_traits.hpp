@@ -10,6 +10,7 @@
 #include <wbi/msg/descriptionPubSubTypes.h>
 #include <wbi/msg/modelPubSubTypes.h>
 #include <wbi/msg/playbackPubSubTypes.h>
+#include <wbi/msg/referencesPubSubTypes.h>
 #include <wbi/msg/sensorsPubSubTypes.h>
 #include <wbi/msg/signalsPubSubTypes.h>
 #include <wbi/msg/statePubSubTypes.h>
@@ -40,6 +41,7 @@ WBI_DDS_MESSAGE(ComponentStatus)
 WBI_DDS_MESSAGE(SimulationClock)
 WBI_DDS_MESSAGE(PlaybackCommand)
 WBI_DDS_MESSAGE(Signals)
+WBI_DDS_MESSAGE(TrajectoryPoint)
 WBI_DDS_MESSAGE(JointClaimRequest)
 WBI_DDS_MESSAGE(JointClaimReply)
 WBI_DDS_MESSAGE(JointOwners)

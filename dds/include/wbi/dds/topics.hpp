@@ -62,6 +62,13 @@ inline std::string signals(const std::string& robot, const std::string& controll
   return "wbi/" + robot + "/signals/" + controller;
 }
 
+// A controller's reference input (wbi::msg::TrajectoryPoint):
+// wbi/<robot>/references/<controller>/<input>.
+inline std::string reference(const std::string& robot, const std::string& controller,
+                             const std::string& input) {
+  return "wbi/" + robot + "/references/" + controller + "/" + input;
+}
+
 // The streams of which a robot has one producer: its description, sensors and
 // ground truth, its estimator's state, its model service's description.
 // Readers of them take one writer's samples (producers.hpp).

@@ -3,7 +3,8 @@
 // interface, and its parameters only through its ParameterTable.
 //
 // Lifecycle (as ros2_control's controllers; the host drives it):
-//   declared    parameters() and signal_names(): what it takes and shows.
+//   declared    parameters(), references() and signal_names(): what it
+//               takes and shows.
 //   configure   INACTIVE: sizes its buffers for robot.dofs(), reads its
 //               parameters. May allocate, may throw wbi::Error (the host then
 //               refuses to run it, naming why).
@@ -34,6 +35,7 @@
 #include <wbi/registry.hpp>
 
 #include "wbi/controllers/parameter_table.hpp"
+#include "wbi/controllers/reference_input.hpp"
 #include "wbi/whole_body_interface.hpp"
 
 namespace wbi::controllers {
@@ -47,6 +49,12 @@ class Controller {
   virtual std::vector<ParameterSpec> parameters() const = 0;
   // What signals() carries, in order (published on wbi/<robot>/signals/<host>).
   virtual std::vector<std::string> signal_names() const { return {}; }
+  // Its reference inputs (reference_input.hpp), each a topic
+  // wbi/<robot>/references/<controller>/<input>.
+  virtual std::vector<ReferenceSpec> references() const { return {}; }
+  // Before configure: the host's inputs, one per references() entry, in
+  // order. They live as long as the controller.
+  virtual void bind_references(std::span<ReferenceInput* const> /*inputs*/) {}
 
   virtual void configure(WholeBodyInterface& robot, const ParameterTable& parameters) = 0;
   virtual void activate(const RobotState& measured) = 0;

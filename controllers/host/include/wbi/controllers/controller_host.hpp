@@ -126,7 +126,19 @@ class ControllerHost {
   const ParameterTable& parameters(const std::string& controller) const;
   std::vector<ControllerInfo> list() const;
 
-  // The summaries of every controller that ran, for shutdown.
+  // Setup: a controller's reference inputs (to feed from their topics).
+  std::vector<ReferenceInput*> references(const std::string& controller) const;
+  // Lockstep runs whose references come from generators in step with the
+  // robot: each reference input waits at most wait_ns for its point
+  // (ReferenceInput::set_wait; late points counted, "late_references").
+  // Setup, before the loop.
+  void set_reference_wait(std::int64_t wait_ns);
+  // Loop thread, before the first tick: waits for every hosted controller's
+  // inputs' first point for time_ns (the state's source stamp), so that the
+  // generators start at the host's first state. False when one was late.
+  bool wait_for_first_references(std::int64_t time_ns);
+
+  // The summaries of every controller that ran, and its references' counts, for shutdown.
   std::string summary() const;
 
  private:
@@ -140,6 +152,7 @@ class ControllerHost {
   void fall_back(const std::string& reason, double time_s);
   void run_active(double time_s, double period_s);
   void send(double time_s);
+  void count_stale_references(Hosted& hosted, double time_s);
   SwitchResult check_switch(Hosted* to, Hosted* from) const;  // result.text: the refusal
 
   WholeBodyInterface& robot_;
@@ -160,8 +173,10 @@ class ControllerHost {
   double largest_change_ = 0.0;   // between two commands sent, since the last switch [N m]
   std::uint64_t switches_settled_ = 0;
   int overruns_in_a_row_ = 0;
+  std::int64_t reference_wait_ns_ = 0;
   std::atomic<bool> state_source_changed_{false};
-  runtime::StatusCounter *switches_, *refused_, *fallbacks_, *stale_, *late_, *overruns_, *changes_;
+  runtime::StatusCounter *switches_, *refused_, *fallbacks_, *stale_, *late_, *overruns_, *changes_,
+      *late_references_, *stale_references_;
 
   // A switch handed from request_switch() to the loop.
   mutable std::mutex switch_mutex_;

@@ -1,6 +1,11 @@
 // Momentum-based balancing (momentum_balance.hpp) under the controller
-// contract, with the balancing demo's CoM sinusoid (com_sinusoid.hpp) as its
-// reference.
+// contract. Its CoM reference is an input (reference_input.hpp): `com`, on
+// wbi/<robot>/references/<controller>/com, from a planner or the com_sinusoid
+// generator (controllers/references). Without points it holds the measured
+// CoM; when they stop it decays to the measured CoM (decay_to_state, 0.5 s).
+// References are in the state's world frame when the controller started: a
+// new estimator's frame (a legged base restarts at x = y = 0) moves them by
+// the CoM's jump, so that the robot does not follow the frame.
 //
 // Parameters (MomentumBalanceParameters's, by the same names):
 //   left_sole, right_sole (text), foot_x_min/max, foot_y_min/max, friction,
@@ -9,8 +14,8 @@
 //   foot_moment_weight: live.
 //   posture        the postural task's joint reference (default: the posture
 //                  measured at configure)
-//   com_amplitude, com_frequency_hz, com_direction (3 numbers), settle_s: the
-//                  sinusoid, at configure
+//   settle_s       the CoM error figures count from this long after activation
+//                  (the generator's settling)
 //   exit_after_s   the run ends (finished()) this long after the first state (0: never)
 // Time is the state's source time since the first state it answered, so that
 // a lockstep run's figures do not depend on the host's clock.
@@ -19,7 +24,6 @@
 #include <array>
 #include <optional>
 
-#include "wbi/controllers/com_sinusoid.hpp"
 #include "wbi/controllers/controller.hpp"
 #include "wbi/controllers/momentum_balance.hpp"
 
@@ -34,6 +38,8 @@ class MomentumBalanceController final : public Controller {
   bool update(double time_s, double period_s) override;
   void parameters_changed(const ParameterTable& parameters) override;
   void state_source_changed() override;
+  std::vector<ReferenceSpec> references() const override;
+  void bind_references(std::span<ReferenceInput* const> inputs) override { com_input_ = inputs[0]; }
   bool finished() const override { return finished_; }
   const Eigen::VectorXd& command() const override { return balance_->torques(); }
   std::span<const double> signals() const override { return signals_; }
@@ -42,14 +48,15 @@ class MomentumBalanceController final : public Controller {
   std::string summary() const override;
 
  private:
-  void follow_reference(double t);
+  void follow_reference(std::int64_t stamp_ns);
   void publish_signals();
 
   WholeBodyInterface* robot_ = nullptr;
   std::optional<MomentumBalance> balance_;
   MomentumBalanceParameters tracking_;
-  ComSinusoid reference_;
-  double exit_after_s_ = 0.0;
+  ReferenceInput* com_input_ = nullptr;
+  Eigen::Vector3d frame_shift_ = Eigen::Vector3d::Zero();  // new estimators' frames, summed
+  double settle_s_ = 0.0, exit_after_s_ = 0.0;
   bool finished_ = false;
   bool new_estimator_ = false;
   std::int64_t start_ns_ = -1, stamp_ns_ = 0;
