@@ -14,6 +14,8 @@
 //   at 1 kHz (the same robot and host, two fixed-torque controllers and hold):
 //   ticks from the request to the new controller's first update (counters
 //   ticks_to_switch_mean / _max; target ≤ 1), and the request's wall time.
+// BM_ParameterRoundTrip (bench_parameter_round_trip.cpp): `wbi param set`
+//   against a real host at 1 kHz.
 //
 // Runs on WBI_DOMAIN_ID, default 230 here (no test or other benchmark uses it).
 //   build/bin/wbi_bench_controller_host --benchmark_format=json
