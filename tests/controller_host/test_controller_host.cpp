@@ -231,6 +231,31 @@ TEST(ControllerHost, ARefusedParameterChangesNothing) {
   EXPECT_EQ(pd.snapshot(pd.index("bandwidth_hz"))[0], 5.0);
 }
 
+// A waiter on a staged change sleeps until the tick that applies it wakes it
+// (the host's service answers `wbi param set` so), active or inactive
+// controller alike; without a tick it gives up at its timeout.
+TEST(ControllerHost, AParameterWaiterWakesAtTheTickThatAppliesTheChange) {
+  HostedArm arm("host_param_wait");
+  arm.run(10);
+  for (const char* name : {"pd", "hold"}) {
+    const std::uint64_t before = arm.host().parameters(name).generation();
+    arm.host().set_parameter(name, "gain_scale", {0.9});
+    EXPECT_FALSE(arm.host().wait_for_parameters(name, before, 20ms)) << name << ": no tick yet";
+    auto waiter = std::async(std::launch::async,
+                             [&] { return arm.host().wait_for_parameters(name, before, 10s); });
+    EXPECT_EQ(waiter.wait_for(20ms), std::future_status::timeout) << name;
+    arm.run(1);
+    // One tick applies it; a waiter caught between its check and its wait is
+    // woken at the next one.
+    if (waiter.wait_for(100ms) != std::future_status::ready) {
+      arm.run(1);
+    }
+    ASSERT_EQ(waiter.wait_for(1s), std::future_status::ready) << name;
+    EXPECT_TRUE(waiter.get()) << name;
+    EXPECT_NE(arm.host().parameters(name).generation(), before) << name;
+  }
+}
+
 // Half the gains from the first tick, in one run, and halved live at the same
 // tick in another: the same motion, and slower than with the full gains.
 TEST(ControllerHost, ALiveGainChangeChangesTheMotion) {

@@ -239,6 +239,7 @@ void ControllerHost::run_active(double time_s, double period_s) {
   if (parameters.apply_staged()) {
     controller.parameters_changed(parameters);
     changes_->add();
+    parameters_applied_ = true;
   }
   const auto start = std::chrono::steady_clock::now();
   bool fresh = false;
@@ -326,6 +327,7 @@ void ControllerHost::tick(double time_s, double period_s) {
     if (hosted.get() != active_ && hosted->configured && hosted->parameters->apply_staged()) {
       hosted->controller->parameters_changed(*hosted->parameters);
       changes_->add();
+      parameters_applied_ = true;
     }
   }
   if (switching) {
@@ -337,6 +339,9 @@ void ControllerHost::tick(double time_s, double period_s) {
   if (switching) {
     finish_switch();
   }
+  if (parameters_applied_) {
+    wake_parameter_waiters();
+  }
   if (settle_until_s_ >= 0.0 && time_s >= settle_until_s_) {
     settle_until_s_ = -1.0;
     if (settling_.torque_before > 0.0) {
@@ -345,6 +350,21 @@ void ControllerHost::tick(double time_s, double period_s) {
     settling_.settled_after_s = time_s - settling_.time_s;
     ++switches_settled_;
   }
+}
+
+// Loop thread: wakes wait_for_parameters(), never blocking. The generation
+// changed before this, so a waiter that checks it after we took the lock sees
+// the change, and one that checked it before is asleep by then (it held the
+// lock from its check to its wait). Lock taken by a waiter right now: tried
+// again at the next tick.
+void ControllerHost::wake_parameter_waiters() {
+  std::unique_lock lock(applied_mutex_, std::try_to_lock);
+  if (!lock.owns_lock()) {
+    return;
+  }
+  lock.unlock();
+  applied_.notify_all();  // no allocation; a futex wake only when someone waits
+  parameters_applied_ = false;
 }
 
 // After the switch tick's command: its step, then the requester is answered.
@@ -473,6 +493,13 @@ void ControllerHost::set_parameter(const std::string& controller, const std::str
     active = active_ == &hosted;
   }
   hosted.parameters->stage(index, values, active);
+}
+
+bool ControllerHost::wait_for_parameters(const std::string& controller, std::uint64_t generation,
+                                         std::chrono::nanoseconds timeout) const {
+  const ParameterTable& table = *find(controller).parameters;
+  std::unique_lock lock(applied_mutex_);
+  return applied_.wait_for(lock, timeout, [&] { return table.generation() != generation; });
 }
 
 const ParameterTable& ControllerHost::parameters(const std::string& controller) const {

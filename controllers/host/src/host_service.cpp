@@ -1,7 +1,6 @@
 #include "host_service.hpp"
 
 #include <chrono>
-#include <thread>
 
 #include <wbi/dds/topics.hpp>
 
@@ -129,11 +128,7 @@ void HostService::set_parameter(const msg::ControllerRequest& request,
   host_.set_parameter(controller, parameter,
                       std::vector<double>(request.values().begin(), request.values().end()));
   // Applied between two ticks: answer (and publish) once it is.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(2);
-  while (table.generation() == before && std::chrono::steady_clock::now() < deadline) {
-    std::this_thread::sleep_for(std::chrono::microseconds(200));
-  }
-  if (table.generation() == before) {
+  if (!host_.wait_for_parameters(controller, before, std::chrono::seconds(2))) {
     reply.error(controller + "." + parameter +
                 ": accepted but not applied within 2 s: is the host's loop running?");
     return;

@@ -123,6 +123,11 @@ class ControllerHost {
   // Throws wbi::Error with one line naming the controller, parameter, value and range.
   void set_parameter(const std::string& controller, const std::string& parameter,
                      const std::vector<double>& values);
+  // Waits until the loop applied a staged change of `controller`'s parameters:
+  // its table's generation() is past `generation` (read before staging), at
+  // most `timeout`. True when it is. Woken by the tick that applies it.
+  bool wait_for_parameters(const std::string& controller, std::uint64_t generation,
+                           std::chrono::nanoseconds timeout) const;
   const ParameterTable& parameters(const std::string& controller) const;
   std::vector<ControllerInfo> list() const;
 
@@ -149,6 +154,7 @@ class ControllerHost {
   void deactivate(Hosted& hosted);
   bool apply_switch(double time_s);  // false: not this tick
   void finish_switch();
+  void wake_parameter_waiters();
   void fall_back(const std::string& reason, double time_s);
   void run_active(double time_s, double period_s);
   void send(double time_s);
@@ -175,6 +181,9 @@ class ControllerHost {
   int overruns_in_a_row_ = 0;
   std::int64_t reference_wait_ns_ = 0;
   std::atomic<bool> state_source_changed_{false};
+  // Parameter changes applied this tick (or a wake-up deferred from an earlier
+  // tick): the waiters of wait_for_parameters() are woken.
+  bool parameters_applied_ = false;
   runtime::StatusCounter *switches_, *refused_, *fallbacks_, *stale_, *late_, *overruns_, *changes_,
       *late_references_, *stale_references_;
 
@@ -190,6 +199,12 @@ class ControllerHost {
   std::atomic<bool> switch_requested_{
       false};  // switch_.pending, for the loop's check without the lock
   std::uint64_t switches_done_ = 0;
+
+  // wait_for_parameters() sleeps on this; the loop only tries the lock and
+  // notifies (a waiter between its check and its wait holds the lock: woken
+  // at the next tick instead).
+  mutable std::mutex applied_mutex_;
+  mutable std::condition_variable applied_;
 };
 
 }  // namespace wbi::controllers
