@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <optional>
@@ -20,6 +21,7 @@
 #include <wbi/model/com.hpp>
 #include <wbi/sim_rig/in_process_robot.hpp>
 
+#include "allocation_counter.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -61,11 +63,14 @@ struct HoldRun {
   double min_normal_force = 1e9;  // smallest normal force on a foot [N]
   double max_foot_slip = 0.0;     // horizontal sole displacement [m]
   std::string active;             // the host's active controller at the end
+  long allocations = 0;           // of hold's ticks, over the last 100
 };
 
-// `seconds` in hold from the first tick; bandwidth_hz < 0: hold's default.
+// `seconds` of lockstep: hold from the first tick, or the balancer (its
+// lateral sinusoid, 5 cm at 0.2 Hz) switched to hold at `balance_s`.
+// Measured from kLanded after hold took over. bandwidth_hz < 0: hold's default.
 HoldRun run_hold(const std::string& robot, double seconds, const std::string& engine,
-                 double bandwidth_hz = -1.0) {
+                 double balance_s = 0.0, double bandwidth_hz = -1.0) {
   const auto urdf = wbi::test::project_model("humanoid.urdf").string();
   const std::string config = sim_config(robot);
   wbi::sim_rig::InProcessRobot rig(
@@ -97,7 +102,15 @@ HoldRun run_hold(const std::string& robot, double seconds, const std::string& en
   bandwidth_hz = hold.snapshot(hold.index("bandwidth_hz"))[0];
   hold.set_text(hold.index("contacts"), "l_sole,r_sole");
   host.configure("hold");
-  host.set_initial("hold");
+  if (balance_s > 0.0) {
+    host.add("balance", "momentum_balance",
+             wbi::controllers::controller_types().create("momentum_balance"));
+    host.configure("balance");
+    host.set_initial("balance");
+  } else {
+    host.set_initial("hold");
+  }
+  const int switch_tick = static_cast<int>(std::lround(balance_s / kPeriod));
 
   const auto model = wbi::model::load_urdf_file(urdf);
   wbi::model::Data data(model);
@@ -114,10 +127,23 @@ HoldRun run_hold(const std::string& robot, double seconds, const std::string& en
     // The first tick answers the estimate init() read; each later one the next.
     humanoid->state().read_robot_state(state,
                                        k == 0 ? wbi::ReadMode::latest : wbi::ReadMode::blocking);
+    if (balance_s > 0.0 && k == switch_tick) {
+      EXPECT_EQ(host.schedule_switch("hold"), "");
+    }
+    const long before = wbi::test::thread_allocation_count();
     host.tick(k * kPeriod, kPeriod);
     const Eigen::VectorXd& tau = host.last_command();
-    const bool landed = k * kPeriod >= kLanded;
-    if (k == 0) {
+    if (k >= ticks - 100) {
+      // The last 100 ticks' allocations, less those of as many bare writes of
+      // the same command (Fast DDS allocates in a reliable write; see
+      // test_controller_host): hold's own.
+      const long after_tick = wbi::test::thread_allocation_count();
+      humanoid->set_control_reference(tau);
+      run.allocations +=
+          (after_tick - before) - (wbi::test::thread_allocation_count() - after_tick);
+    }
+    const bool landed = (k - switch_tick) * kPeriod >= kLanded;
+    if (k == switch_tick) {
       q_start = state.q;  // the posture hold took over
     }
     if (landed) {
@@ -162,10 +188,12 @@ HoldRun run_hold(const std::string& robot, double seconds, const std::string& en
   rig.sim().shutdown();
   rig.estimator().shutdown();
   std::printf(
-      "%s, %g Hz: CoM drift %.2f mm, sink %.2f mm; joint error %.4f rad; torque: largest %.1f N m, "
+      "%s, %g Hz%s: CoM drift %.2f mm, sink %.2f mm; joint error %.4f rad; torque: largest %.1f N "
+      "m, "
       "largest tick-to-tick change %.2f N m; min foot f_z %.1f N; slip %.2f mm (from t = %.1f s)\n",
-      engine.c_str(), bandwidth_hz, 1e3 * run.com_drift, 1e3 * run.com_sink, run.max_joint_error,
-      run.max_torque, run.max_torque_step, run.min_normal_force, 1e3 * run.max_foot_slip, kLanded);
+      engine.c_str(), bandwidth_hz, balance_s > 0.0 ? ", after the balancer" : "",
+      1e3 * run.com_drift, 1e3 * run.com_sink, run.max_joint_error, run.max_torque,
+      run.max_torque_step, run.min_normal_force, 1e3 * run.max_foot_slip, kLanded);
   return run;
 }
 
@@ -174,7 +202,7 @@ HoldRun run_hold(const std::string& robot, double seconds, const std::string& en
 // each foot carrying at least 124 N (2026-11-27, both engines). Before, hold
 // (gains from the joint block of M) let it fall at every bandwidth: the CoM
 // 0.9 m away, both feet off the ground, with 20–540 N m between two commands.
-void expect_standing(const HoldRun& run) {
+void expect_standing(const HoldRun& run, double min_foot_force = 50.0) {
   EXPECT_EQ(run.active, "hold");
   // The sole is 8 cm wide: 5 mm is an eighth of its half width, far from an
   // edge; the balancer tracks its CoM within 1 cm.
@@ -184,9 +212,10 @@ void expect_standing(const HoldRun& run) {
   // Chattering hold reached 100–770 N m between two ticks; 10 N m is a sixth
   // of the knees' and hips' 60 N m effort limit.
   EXPECT_LT(run.max_torque_step, 10.0) << "N m";
-  // 33 kg on two feet: 162 N each; each keeps at least a third of it.
-  EXPECT_GT(run.min_normal_force, 50.0) << "N";
+  // 33.75 kg on two feet: 165 N each; each keeps at least a third of it.
+  EXPECT_GT(run.min_normal_force, min_foot_force) << "N";
   EXPECT_LT(run.max_foot_slip, 0.001) << "m";
+  EXPECT_EQ(run.allocations, 0) << "heap allocations in hold's ticks";
 }
 
 // 6 s at hold's default bandwidth (2 Hz), 5.5 s of it measured.
@@ -197,6 +226,14 @@ TEST(HoldStand, TheHumanoidStandsInHoldInMujoco) {
   GTEST_SKIP() << "built without MuJoCo (libmujoco-dev)";
 #endif
   expect_standing(run_hold("hold_stand_mujoco", 6.0, "mujoco"));
+}
+
+// The fallback's case: hold takes over from the balancer at t = 2 s, 1.5 s
+// into its sinusoid, the CoM 4.75 cm towards the left foot.
+TEST(HoldStand, TheHumanoidStandsInHoldAfterTheBalancer) {
+  // The balancer hands over with 279 N and 55 N on the feet (the CoM 4.75 cm
+  // towards the left one); the lighter foot keeps at least half of its 55 N.
+  expect_standing(run_hold("hold_after_balance", 8.0, "wbi", 2.0), 25.0);
 }
 
 }  // namespace

@@ -15,10 +15,12 @@
 // hold's: bandwidth_hz (default 2, gains from M at the held posture, taken
 // at each activation), gain_scale, and contacts: the frames a floating-base
 // robot stands on, e.g. "l_sole,r_sole" (text; default none). With contacts,
-// hold adds the torques that carry the robot's weight on them at the held
-// posture (G = Sᵀτ + Σ J_cᵀ f, the wrenches of least norm that balance the
-// base's rows of G): without them a standing humanoid sags under the joint
-// gravity of a floating base, which is the weight hanging from the base. Its
+// hold adds the torques that carry the robot's weight on them at each tick's
+// posture (G = Sᵀτ + Σ J_cᵀ f, the wrenches that balance the base's rows of
+// G with the least Σ |force|² + |moment / 1 cm|²: the feet's forces carry
+// the CoM by the lever rule): without them a standing humanoid sags under the
+// joint gravity of a floating base, which is the weight hanging from the base.
+// Its
 // gains are then those of the robot standing: K_p = ω² × the inertia the
 // joints see with the contacts held (an ankle carries the body, not its
 // foot), K_d per joint, capped at M_jj,ii / loop_delay_s (default 0.004 s)
@@ -87,7 +89,8 @@ class HoldController final : public PdGravityController {
   std::string summary() const override { return {}; }
 
  private:
-  // The joint torques that carry the weight on the contacts at `measured`.
+  // The joint torques that carry the weight on the contacts at `measured`
+  // (offset_); at activation and at every tick, without allocating.
   void weight_on_contacts(const RobotState& measured);
   // With contacts, the unscaled gains: K_p from the inertia the joints see
   // with the contacts held, K_d per joint within what the loop's delay allows.
