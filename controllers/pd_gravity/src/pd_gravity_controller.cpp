@@ -253,9 +253,9 @@ void HoldController::weight_on_contacts(const RobotState& measured) {
   }
   // τ = G_j − Σ J_c,jᵀ f: the joint rows.
   for (std::size_t c = 0; c < contacts_.size(); ++c) {
-    robot_->jacobian(measured.q, measured.world_H_base, contacts_[c], jacobian_);
+    const auto at = 6 * static_cast<Eigen::Index>(c);
     offset_.noalias() -=
-        jacobian_.rightCols(n).transpose() * wrenches_.segment<6>(6 * static_cast<Eigen::Index>(c));
+        contact_jacobian_.middleRows(at, 6).rightCols(n).transpose() * wrenches_.segment<6>(at);
   }
 }
 
