@@ -10,6 +10,7 @@
 
 #include <pybind11/stl.h>
 #include <wbi/controllers/host_client.hpp>
+#include <wbi/controllers/reference_writer.hpp>
 #include <wbi/dds/rpc.hpp>
 #include <wbi/types.hpp>
 
@@ -62,6 +63,37 @@ std::unique_ptr<PythonHost> make_host(
       robot, timeout_s);
 }
 
+// A planner's writer of one reference input (wbi.ReferenceWriter).
+class PythonReferenceWriter {
+ public:
+  PythonReferenceWriter(const dds::ParticipantOptions& join, const std::string& robot,
+                        const std::string& controller, const std::string& input,
+                        const std::string& source)
+      : participant_(std::make_unique<dds::Participant>(join)),
+        writer_(std::make_unique<controllers::ReferenceWriter>(*participant_, robot, controller,
+                                                               input, source)) {}
+
+  controllers::ReferenceWriter& writer() { return *writer_; }
+
+ private:
+  std::unique_ptr<dds::Participant> participant_;
+  std::unique_ptr<controllers::ReferenceWriter> writer_;
+};
+
+std::unique_ptr<PythonReferenceWriter> make_reference_writer(
+    const std::string& robot, const std::string& controller, const std::string& input,
+    const std::string& source, const std::optional<std::string>& deploy,
+    std::optional<int> domain_id, const std::optional<std::string>& discovery,
+    const std::optional<std::vector<std::string>>& peers,
+    const std::optional<std::vector<std::string>>& interfaces,
+    const std::optional<std::string>& discovery_server, const std::optional<std::string>& qos_file,
+    const std::optional<std::string>& security, const std::optional<std::string>& identity) {
+  return std::make_unique<PythonReferenceWriter>(
+      join_from_keywords("wbi_python_reference", deploy, domain_id, discovery, peers, interfaces,
+                         discovery_server, qos_file, security, identity),
+      robot, controller, input, source);
+}
+
 py::dict as_dict(const controllers::ParameterInfo& p) {
   py::dict out;
   out["controller"] = p.controller;
@@ -87,6 +119,38 @@ py::dict as_dict(const controllers::ParameterInfo& p) {
 
 void bind_controller_host(py::module_& module) {
   using py::arg;
+  py::class_<PythonReferenceWriter>(
+      module, "ReferenceWriter",
+      "Publishes a controller's reference input, wbi/<robot>/references/<controller>/<input>: "
+      "trajectory points for a robot time (controllers/README.md, 'References'), as a planner "
+      "does. Joining keywords as DdsInterface.")
+      .def(py::init(&make_reference_writer), arg("robot"), arg("controller"), arg("input"),
+           arg("source") = "python", arg("deploy") = py::none(), arg("domain_id") = py::none(),
+           arg("discovery") = py::none(), arg("peers") = py::none(), arg("interfaces") = py::none(),
+           arg("discovery_server") = py::none(), arg("qos_file") = py::none(),
+           arg("security") = py::none(), arg("identity") = py::none())
+      .def(
+          "write",
+          [](PythonReferenceWriter& self, std::int64_t stamp_ns,
+             const std::vector<double>& position,
+             const std::optional<std::vector<double>>& velocity,
+             const std::optional<std::vector<double>>& acceleration) {
+            const std::vector<double> none;
+            try {
+              self.writer().write(stamp_ns, position, velocity.value_or(none),
+                                  acceleration.value_or(none));
+            } catch (const std::invalid_argument& e) {
+              throw py::value_error(e.what());
+            }
+          },
+          arg("stamp_ns"), arg("position"), arg("velocity") = py::none(),
+          arg("acceleration") = py::none(),
+          "the point for robot time stamp_ns (the state's stamp.source_ns); velocity and "
+          "acceleration as many values as position, or None (zero)")
+      .def_property_readonly("topic",
+                             [](PythonReferenceWriter& self) { return self.writer().topic(); })
+      .def_property_readonly("written",
+                             [](PythonReferenceWriter& self) { return self.writer().written(); });
   py::class_<PythonHost>(
       module, "ControllerHost",
       "A client of robot `robot`'s controller host (wbi/<robot>/controllers): list, switch and "

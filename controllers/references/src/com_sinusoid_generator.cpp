@@ -16,8 +16,7 @@
 #include <wbi/controllers/com_sinusoid.hpp>
 #include <wbi/controllers/interface_options.hpp>
 #include <wbi/controllers/reference_generators.hpp>
-#include <wbi/dds/publisher.hpp>
-#include <wbi/dds/topics.hpp>
+#include <wbi/controllers/reference_writer.hpp>
 #include <wbi/dds_interface.hpp>
 
 namespace wbi::controllers {
@@ -48,11 +47,7 @@ class ComSinusoidGenerator final : public runtime::Component {
       throw runtime::ParameterError(parameters.where() + ": " + e.what());
     }
     state_ = RobotState(robot_->dofs());
-    point_.header().robot(options.robot);
-    point_.source(context.instance);
-    publisher_ = std::make_unique<dds::Publisher<msg::TrajectoryPoint>>(
-        *context.participant, dds::topics::reference(options.robot, controller, input),
-        dds::qos::kCommand);
+    writer_.emplace(*context.participant, options.robot, controller, input, context.instance);
   }
 
   bool event_driven() const override { return true; }
@@ -110,7 +105,7 @@ class ComSinusoidGenerator final : public runtime::Component {
   }
 
   void on_shutdown() override {
-    publisher_.reset();
+    writer_.reset();
     if (robot_) {
       robot_->close();
     }
@@ -152,12 +147,7 @@ class ComSinusoidGenerator final : public runtime::Component {
   void send(std::int64_t stamp_ns, double t) {
     Eigen::Vector3d x, v, a;
     sinusoid_.at(t, x, v, a);
-    point_.header().stamp_ns(stamp_ns);
-    point_.header().seq(seq_++);
-    point_.position().assign(x.data(), x.data() + 3);
-    point_.velocity().assign(v.data(), v.data() + 3);
-    point_.acceleration().assign(a.data(), a.data() + 3);
-    publisher_->publish(point_);
+    writer_->write(stamp_ns, {x.data(), 3}, {v.data(), 3}, {a.data(), 3});
     last_sent_ns_ = stamp_ns;
   }
 
@@ -167,9 +157,7 @@ class ComSinusoidGenerator final : public runtime::Component {
   int left_ = -1, right_ = -1;
   Transform sole_pose_ = Transform::Identity();
   std::int64_t start_ns_ = -1, last_state_ns_ = -1, last_sent_ns_ = -1, step_ns_ = 0;
-  std::uint64_t seq_ = 0;
-  msg::TrajectoryPoint point_;
-  std::unique_ptr<dds::Publisher<msg::TrajectoryPoint>> publisher_;
+  std::optional<ReferenceWriter> writer_;
 };
 
 }  // namespace
