@@ -133,6 +133,17 @@ void BM_UpdateDirectly(benchmark::State& state) {
   state.counters["joints"] = static_cast<double>(robot.interface->dofs());
 }
 
+// The two controllers of the overhead benchmarks: FixedTorque active, hold
+// configured beside it; the first tick activates.
+void host_fixed_and_hold(ControllerHost& host) {
+  host.add("fixed", "fixed", std::make_unique<FixedTorque>());
+  host.configure("fixed");
+  host.add("hold", "hold", wbi::controllers::controller_types().create("hold"));
+  host.configure("hold");
+  host.set_initial("fixed");
+  host.tick(0.0, 0.001);
+}
+
 void BM_HostTick(benchmark::State& state) {
   if (!have_icub3(state)) {
     return;
@@ -140,12 +151,7 @@ void BM_HostTick(benchmark::State& state) {
   Icub3 robot("bench_host_tick");
   wbi::runtime::StatusReport report;
   ControllerHost host(*robot.interface, report, {});
-  host.add("fixed", "fixed", std::make_unique<FixedTorque>());
-  host.configure("fixed");
-  host.add("hold", "hold", wbi::controllers::controller_types().create("hold"));
-  host.configure("hold");
-  host.set_initial("fixed");
-  host.tick(0.0, 0.001);  // activates
+  host_fixed_and_hold(host);
   double t = 0.0;
   for (auto _ : state) {
     host.tick(t, 0.001);
@@ -171,12 +177,7 @@ void BM_HostOverheadPaired(benchmark::State& state) {
   direct.configure(*robot.interface, parameters);
   wbi::runtime::StatusReport report;
   ControllerHost host(*robot.interface, report, {});
-  host.add("fixed", "fixed", std::make_unique<FixedTorque>());
-  host.configure("fixed");
-  host.add("hold", "hold", wbi::controllers::controller_types().create("hold"));
-  host.configure("hold");
-  host.set_initial("fixed");
-  host.tick(0.0, 0.001);  // activates
+  host_fixed_and_hold(host);
   std::vector<double> direct_ns, host_ns;
   direct_ns.reserve(static_cast<std::size_t>(state.max_iterations));
   host_ns.reserve(static_cast<std::size_t>(state.max_iterations));

@@ -22,7 +22,7 @@
 #include <wbi/runtime/runner.hpp>
 #include <wbi/sim_rig/in_process_robot.hpp>
 
-#include "../common/humanoid_joints.hpp"
+#include <wbi/sim_rig/humanoid_joints.hpp>
 
 namespace {
 
@@ -41,7 +41,7 @@ BalancedRobot humanoid() {
   BalancedRobot r;
   r.sim_parameters = "config: " + source + "/deploy/robots/humanoid.yaml\n";
   r.urdf = source + "/models/humanoid.urdf";
-  r.joints = wbi::bench::humanoid_joints();
+  r.joints = wbi::sim_rig::humanoid_joints();
   return r;
 }
 

@@ -19,6 +19,7 @@
 #include <wbi/dds_interface.hpp>
 #include <wbi/model/algorithms.hpp>
 #include <wbi/model/com.hpp>
+#include <wbi/sim_rig/humanoid_joints.hpp>
 #include <wbi/sim_rig/in_process_robot.hpp>
 
 #include "allocation_counter.hpp"
@@ -29,13 +30,7 @@ namespace {
 using namespace std::chrono_literals;
 using wbi::controllers::ControllerHost;
 
-const std::vector<std::string> kJoints{
-    "l_hip_pitch",      "l_hip_roll",       "l_hip_yaw",       "l_knee",         "l_ankle_pitch",
-    "l_ankle_roll",     "r_hip_pitch",      "r_hip_roll",      "r_hip_yaw",      "r_knee",
-    "r_ankle_pitch",    "r_ankle_roll",     "torso_pitch",     "torso_roll",     "torso_yaw",
-    "l_shoulder_pitch", "l_shoulder_roll",  "l_shoulder_yaw",  "l_elbow",        "l_wrist_yaw",
-    "l_wrist_pitch",    "r_shoulder_pitch", "r_shoulder_roll", "r_shoulder_yaw", "r_elbow",
-    "r_wrist_yaw",      "r_wrist_pitch",    "neck_pitch",      "neck_roll",      "neck_yaw"};
+const std::vector<std::string> kJoints = wbi::sim_rig::humanoid_joints();
 constexpr double kPeriod = 0.001;  // the simulation's tick
 // The robot is placed on the ground at t = 0 and lands in its contact springs
 // (1.4 mm) within the first tenths of a second; measured from then on.

@@ -1,11 +1,11 @@
 // Every joint of the project's humanoid (models/humanoid.urdf), in the order
-// the balancing deploy files list them: the benchmarks that control it whole.
+// the balancing deploy files list them: the tests and benchmarks that control it whole.
 #pragma once
 
 #include <string>
 #include <vector>
 
-namespace wbi::bench {
+namespace wbi::sim_rig {
 
 inline std::vector<std::string> humanoid_joints() {
   return {
@@ -17,4 +17,4 @@ inline std::vector<std::string> humanoid_joints() {
       "r_wrist_yaw",      "r_wrist_pitch",    "neck_pitch",      "neck_roll",      "neck_yaw"};
 }
 
-}  // namespace wbi::bench
+}  // namespace wbi::sim_rig
