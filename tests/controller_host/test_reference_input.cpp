@@ -1,7 +1,7 @@
 // A controller's reference input (reference_input.hpp) without DDS: points
 // used at their stamp bit for bit, carried between points, waiting when ahead;
-// the stale rules; what is refused, restarted, overwritten and counted; a
-// wait for a point; and no allocation per tick.
+// the stale rules; what is refused, restarted, overwritten and counted; the
+// lockstep waits; and no allocation per tick.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -234,6 +234,45 @@ TEST(ReferenceInput, WaitForAPointFromAnotherThread) {
   const auto start = std::chrono::steady_clock::now();
   EXPECT_FALSE(in.input.wait_for(1001 * kMs, 100 * kMs)) << "no point for 1.001 s";
   EXPECT_GE(seconds_since(start), 0.1);
+}
+
+// Lockstep (set_wait): a tick waits for its point; once a wait timed out (the
+// generator died), the next ticks do not wait until a point comes again: a
+// dead generator costs one timeout, not one per tick.
+TEST(ReferenceInput, LockstepWaitsOnceForADeadGenerator) {
+  Input in(StaleRule::decay_to_state);
+  constexpr std::int64_t kWait = 400 * kMs;
+  in.input.set_wait(kWait);
+  in.input.push(point(1000 * kMs, Eigen::Vector3d(0, 0, 0.8)));
+  ASSERT_EQ(in.at(1000 * kMs), ReferenceStatus::fresh);
+  // A point that comes while the tick waits is this tick's.
+  std::thread generator([&] { in.input.push(point(1001 * kMs, Eigen::Vector3d(0, 0.001, 0.8))); });
+  ASSERT_EQ(in.at(1001 * kMs), ReferenceStatus::fresh);
+  generator.join();
+  EXPECT_EQ(in.input.position().y(), 0.001);
+  EXPECT_EQ(in.input.carried_ticks(), 0u);
+  EXPECT_EQ(in.input.late(), 0u);
+
+  auto start = std::chrono::steady_clock::now();
+  in.at(1002 * kMs);
+  EXPECT_GE(seconds_since(start), 0.4) << "the first tick without a point waits";
+  EXPECT_EQ(in.input.late(), 1u);
+  start = std::chrono::steady_clock::now();
+  for (std::int64_t t = 1003; t <= 1010; ++t) {
+    in.at(t * kMs);
+  }
+  in.at(1100 * kMs);
+  EXPECT_LT(seconds_since(start), 0.2) << "9 ticks after a timeout: none waits";
+  EXPECT_EQ(in.input.late(), 1u) << "the dead generator is late once";
+  EXPECT_EQ(in.input.stale_ticks(), 1u) << "1.100 s: stale";
+
+  // It comes back: the ticks wait for it again.
+  in.input.push(point(1200 * kMs, Eigen::Vector3d(0, 0, 0.8)));
+  ASSERT_EQ(in.at(1200 * kMs), ReferenceStatus::fresh);
+  start = std::chrono::steady_clock::now();
+  in.at(1201 * kMs);
+  EXPECT_GE(seconds_since(start), 0.4) << "a fed input waits again";
+  EXPECT_EQ(in.input.late(), 2u);
 }
 
 TEST(ReferenceInput, AtAllocatesNothing) {
