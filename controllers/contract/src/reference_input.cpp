@@ -59,6 +59,7 @@ bool ReferenceInput::push(const TrajectoryPoint& point) {
     queue_[(head_ + count_) % kCapacity] = point;
     ++count_;
     ++received_;
+    wait_timed_out_ = false;  // it is fed again: the ticks wait for it
     newest_stamp_ns_ = std::max(newest_stamp_ns_, point.stamp_ns);
   }
   arrived_.notify_all();
@@ -73,12 +74,15 @@ bool ReferenceInput::wait_for(std::int64_t time_ns, std::int64_t timeout_ns) {
 
 void ReferenceInput::wait_if_fed(std::int64_t time_ns) {
   std::unique_lock lock(mutex_);
-  if (received_ == 0) {
-    return;  // nobody feeds it (yet): nothing to wait for
+  if (received_ == 0 || wait_timed_out_) {
+    return;  // nobody feeds it (yet), or no more since a wait timed out
   }
   if (!arrived_.wait_for(lock, std::chrono::nanoseconds(wait_ns_),
                          [&] { return newest_stamp_ns_ >= time_ns; })) {
+    // Its generator is late, or dead: then waiting every tick would slow the
+    // run to one tick per wait_ns. The next point ends this.
     ++late_;
+    wait_timed_out_ = true;
   }
 }
 

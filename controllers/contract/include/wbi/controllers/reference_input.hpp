@@ -101,6 +101,8 @@ class ReferenceInput {
   // Lockstep runs, whose references come from a generator in step with the
   // robot: at() first waits (at most wait_ns) for a point for its time or
   // later, once the input has had a point (a late one is counted: late()).
+  // After a wait timed out, no tick waits until the next point comes: a
+  // generator that died costs one wait, not one per tick.
   // 0 (default): never waits. Set before the loop starts.
   void set_wait(std::int64_t wait_ns) { wait_ns_ = wait_ns; }
   // Loop thread: waits (at most timeout_ns) until a point for time_ns or later
@@ -136,7 +138,8 @@ class ReferenceInput {
   std::size_t head_ = 0, count_ = 0;
   std::int64_t newest_stamp_ns_ = 0;
   std::uint64_t received_ = 0, malformed_ = 0, overwritten_ = 0, late_ = 0, restarts_ = 0;
-  bool restarted_ = false;  // for the loop thread: drop the held point
+  bool restarted_ = false;       // for the loop thread: drop the held point
+  bool wait_timed_out_ = false;  // no waiting until the next point (set_wait)
   std::int64_t wait_ns_ = 0;
 
   // Loop thread only.
