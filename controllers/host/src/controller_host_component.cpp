@@ -158,6 +158,14 @@ class ControllerHostComponent final : public runtime::Component {
       throw runtime::ParameterError(parameters.where("reference_wait_s") +
                                     ": reference_wait_s must be >= 0 s (0: never wait)");
     }
+    if (1e-9 * static_cast<double>(reference_wait_ns_) >= options.max_age_s) {
+      // The state a tick answers ages while it waits: waited for that long,
+      // it is refused as stale, and a lockstep robot waits for that tick forever.
+      throw runtime::ParameterError(parameters.where("reference_wait_s") +
+                                    ": reference_wait_s must be shorter than max_age_s (" +
+                                    std::to_string(options.max_age_s) +
+                                    " s): a state waited for that long is too old to answer");
+    }
     host_->set_reference_wait(reference_wait_ns_);
     service_.emplace(*context.participant, options.robot, context.instance, *host_);
     service_->publish_parameters();
