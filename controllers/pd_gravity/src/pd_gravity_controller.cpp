@@ -208,9 +208,14 @@ void HoldController::configure(WholeBodyInterface& robot, const ParameterTable& 
   contact_jacobian_.setZero(6 * k, n + 6);
   selection_.setZero(n, n + 6);
   selection_.rightCols(n).setIdentity();
-  inertia_ = Eigen::LDLT<Eigen::MatrixXd>(n + 6);
-  operational_ = Eigen::LDLT<Eigen::MatrixXd>(6 * k);
-  modes_ = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(n);
+  // Sized once here (a factorisation of the same size then allocates nothing);
+  // computed on identities rather than move-assigned from sized temporaries,
+  // which GCC 12 at -O1 (the sanitizer build) flags as maybe-uninitialized.
+  inertia_.compute(Eigen::MatrixXd::Identity(n + 6, n + 6));
+  if (k > 0) {
+    operational_.compute(Eigen::MatrixXd::Identity(6 * k, 6 * k));
+  }
+  modes_.compute(Eigen::MatrixXd::Identity(n, n));
   m_inv_s_.setZero(n + 6, n);
   m_inv_jt_.setZero(n + 6, 6 * k);
   j_m_inv_s_.setZero(6 * k, n);
