@@ -68,8 +68,12 @@ bool ReferenceInput::push(const TrajectoryPoint& point) {
 
 bool ReferenceInput::wait_for(std::int64_t time_ns, std::int64_t timeout_ns) {
   std::unique_lock lock(mutex_);
-  return arrived_.wait_for(lock, std::chrono::nanoseconds(timeout_ns),
-                           [&] { return received_ > 0 && newest_stamp_ns_ >= time_ns; });
+  if (arrived_.wait_for(lock, std::chrono::nanoseconds(timeout_ns),
+                        [&] { return received_ > 0 && newest_stamp_ns_ >= time_ns; })) {
+    return true;
+  }
+  ++late_;
+  return false;
 }
 
 void ReferenceInput::wait_if_fed(std::int64_t time_ns) {
@@ -109,6 +113,23 @@ std::uint64_t ReferenceInput::malformed() const {
 std::uint64_t ReferenceInput::overwritten() const {
   std::lock_guard lock(mutex_);
   return overwritten_;
+}
+
+std::string ReferenceInput::summary() const {
+  char text[320];
+  std::lock_guard lock(mutex_);
+  std::snprintf(
+      text, sizeof text,
+      "reference %s: %llu points (%llu malformed, %llu overwritten unused, %llu "
+      "restarts); ticks: %llu carried from an earlier point, %llu stale in %llu "
+      "episodes (rule %s), %llu before the first point; %llu points late",
+      owner_.c_str(), static_cast<unsigned long long>(received_),
+      static_cast<unsigned long long>(malformed_), static_cast<unsigned long long>(overwritten_),
+      static_cast<unsigned long long>(restarts_), static_cast<unsigned long long>(carried_ticks_),
+      static_cast<unsigned long long>(stale_ticks_),
+      static_cast<unsigned long long>(stale_episodes_), to_string(spec_.rule),
+      static_cast<unsigned long long>(missing_ticks_), static_cast<unsigned long long>(late_));
+  return text;
 }
 
 void ReferenceInput::take_due(std::int64_t time_ns) {

@@ -12,8 +12,6 @@ struct ControllerHost::Hosted {
   std::unique_ptr<ParameterTable> parameters;
   std::vector<std::unique_ptr<ReferenceInput>> inputs;  // one per declared reference
   std::vector<std::uint64_t> stale_said;                // per input: episodes printed
-  std::vector<std::uint64_t> stale_counted;             // per input: ticks in the status
-  std::vector<std::uint64_t> late_counted;              // per input: late points in the status
   bool configured = false;
   bool ran = false;  // was active at least once: its summary is printed
   std::string configure_error = "not configured";
@@ -81,8 +79,6 @@ ParameterTable& ControllerHost::add(const std::string& name, const std::string& 
     inputs.push_back(hosted->inputs.back().get());
   }
   hosted->stale_said.assign(inputs.size(), 0);
-  hosted->stale_counted.assign(inputs.size(), 0);
-  hosted->late_counted.assign(inputs.size(), 0);
   controller->bind_references(inputs);
   hosted->controller = std::move(controller);
   hosted_.push_back(std::move(hosted));
@@ -262,7 +258,7 @@ void ControllerHost::run_active(double time_s, double period_s) {
   }
   const double took_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  count_stale_references(hosted_active, time_s);
+  report_references(hosted_active, time_s);
   if (took_s > period_s) {
     overruns_->add();
     if (++overruns_in_a_row_ >= options_.overrun_limit && options_.overrun_limit > 0) {
@@ -516,16 +512,22 @@ std::vector<ControllerInfo> ControllerHost::list() const {
 }
 
 // A stale reference is the controller's to handle (its declared rule); the
-// host counts the ticks and says once per episode that the rule applies.
-void ControllerHost::count_stale_references(Hosted& hosted, double time_s) {
-  for (std::size_t i = 0; i < hosted.inputs.size(); ++i) {
-    const ReferenceInput& input = *hosted.inputs[i];
-    stale_references_->add(input.stale_ticks() - hosted.stale_counted[i]);
-    hosted.stale_counted[i] = input.stale_ticks();
-    late_references_->add(input.late() - hosted.late_counted[i]);
-    hosted.late_counted[i] = input.late();
-    if (input.stale_episodes() != hosted.stale_said[i]) {
-      hosted.stale_said[i] = input.stale_episodes();
+// host keeps the status counters at the inputs' totals and says once per
+// episode that the rule applies.
+void ControllerHost::report_references(Hosted& active, double time_s) {
+  std::uint64_t stale = 0, late = 0;
+  for (const auto& hosted : hosted_) {
+    for (const auto& input : hosted->inputs) {
+      stale += input->stale_ticks();
+      late += input->late();
+    }
+  }
+  stale_references_->set(stale);
+  late_references_->set(late);
+  for (std::size_t i = 0; i < active.inputs.size(); ++i) {
+    const ReferenceInput& input = *active.inputs[i];
+    if (input.stale_episodes() != active.stale_said[i]) {
+      active.stale_said[i] = input.stale_episodes();
       std::fprintf(stderr, "t = %.3f s: reference %s stale (older than %.3f s): rule %s\n", time_s,
                    input.owner().c_str(), input.spec().max_age_s, to_string(input.spec().rule));
     }
@@ -553,10 +555,7 @@ bool ControllerHost::wait_for_first_references(std::int64_t time_ns) {
   bool all = true;
   for (auto& hosted : hosted_) {
     for (auto& input : hosted->inputs) {
-      if (!input->wait_for(time_ns, reference_wait_ns_)) {
-        late_references_->add();
-        all = false;
-      }
+      all = input->wait_for(time_ns, reference_wait_ns_) && all;
     }
   }
   return all;
@@ -574,23 +573,7 @@ std::string ControllerHost::summary() const {
       line(own);
     }
     for (const auto& input : hosted->inputs) {
-      char counts[320];
-      std::snprintf(counts, sizeof counts,
-                    "reference %s: %llu points (%llu malformed, %llu overwritten unused, %llu "
-                    "restarts); ticks: %llu carried from an "
-                    "earlier point, %llu stale in %llu episodes (rule %s), %llu before the first "
-                    "point; %llu points late",
-                    input->owner().c_str(), static_cast<unsigned long long>(input->received()),
-                    static_cast<unsigned long long>(input->malformed()),
-                    static_cast<unsigned long long>(input->overwritten()),
-                    static_cast<unsigned long long>(input->restarts()),
-                    static_cast<unsigned long long>(input->carried_ticks()),
-                    static_cast<unsigned long long>(input->stale_ticks()),
-                    static_cast<unsigned long long>(input->stale_episodes()),
-                    to_string(input->spec().rule),
-                    static_cast<unsigned long long>(input->missing_ticks()),
-                    static_cast<unsigned long long>(input->late()));
-      line(counts);
+      line(input->summary());
     }
   }
   return text;

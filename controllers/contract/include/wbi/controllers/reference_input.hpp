@@ -107,6 +107,7 @@ class ReferenceInput {
   void set_wait(std::int64_t wait_ns) { wait_ns_ = wait_ns; }
   // Loop thread: waits (at most timeout_ns) until a point for time_ns or later
   // has come; true when it has (the host's first tick: a generator's start).
+  // A timeout is counted in late().
   bool wait_for(std::int64_t time_ns, std::int64_t timeout_ns);
 
   // A new activation: the held point and the counts of this run are kept, the
@@ -116,12 +117,15 @@ class ReferenceInput {
   std::uint64_t received() const;
   std::uint64_t malformed() const;    // refused: the wrong size
   std::uint64_t overwritten() const;  // the oldest waiting point, when full
-  std::uint64_t late() const;         // set_wait's waits that timed out
+  std::uint64_t late() const;         // waits that timed out
   std::uint64_t restarts() const;     // points that went back in time
   std::uint64_t carried_ticks() const { return carried_ticks_; }    // fresh, between points
   std::uint64_t stale_ticks() const { return stale_ticks_; }        // after a point
   std::uint64_t missing_ticks() const { return missing_ticks_; }    // before the first
   std::uint64_t stale_episodes() const { return stale_episodes_; }  // fresh → stale
+  // Every count above in one line, "reference <owner>: N points (…); ticks: …",
+  // for the host's shutdown.
+  std::string summary() const;
 
  private:
   void take_due(std::int64_t time_ns);  // moves the points due at time_ns into current_

@@ -158,7 +158,7 @@ class ControllerHost {
   void fall_back(const std::string& reason, double time_s);
   void run_active(double time_s, double period_s);
   void send(double time_s);
-  void count_stale_references(Hosted& hosted, double time_s);
+  void report_references(Hosted& active, double time_s);
   SwitchResult check_switch(Hosted* to, Hosted* from) const;  // result.text: the refusal
 
   WholeBodyInterface& robot_;
