@@ -22,7 +22,7 @@
 #                    0.3-1.3 rad). Bound: the first start's error.   8 s
 #   estimator, model_service, controller stall or restart: the robot's
 #                    watchdog holds the arm (0.1 s without commands) until the
-#                    controller's commands return.        0.05 rad (stall,
+#                    controller's commands return.        0.08 rad (stall,
 #                    1 s), 0.1 rad (restart, term: the outage is the new
 #                    process's start, longer under load), 5 s
 #   process_faults.sh BINARY_DIR SOURCE_DIR robot|estimator|model_service|controller stall|restart|term
@@ -84,6 +84,10 @@ bound=0.05 recovery=5
 # over 2 s with the suite at ctest -j4 on 2 cores (0.058 rad seen after a
 # controller's term). The watchdog's hold sags for as long: 0.1 rad.
 [[ $target == robot || $fault == stall ]] || bound=0.1
+# A stall of the estimator, model service or controller: the hold sags 0.011-0.022 rad
+# here, but CI saw 0.0523 rad once after a model service's stall (the loop on
+# a loaded machine adds its own spikes, above): 0.08.
+[[ $target == robot || $fault != stall ]] || bound=0.08
 [[ "$target $fault" != "robot restart" && "$target $fault" != "robot term" ]] || { bound=$(awk -v i="$initial" 'BEGIN { print i + 0.01 }'); recovery=8; }
 
 start=$(date +%s.%N)
