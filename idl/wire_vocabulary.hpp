@@ -11,8 +11,10 @@
 
 #include <wbi/msg/commands.h>
 #include <wbi/msg/description.h>
+#include <wbi/msg/events.h>
 #include <wbi/msg/status.h>
 #include <wbi/vocabulary/control_mode.hpp>
+#include <wbi/vocabulary/event.hpp>
 #include <wbi/vocabulary/lifecycle_state.hpp>
 #include <wbi/vocabulary/sensor_kind.hpp>
 
@@ -27,6 +29,12 @@ static_assert(FINALIZED == static_cast<int>(wbi::LifecycleState::finalized) &&
 static_assert(GYROSCOPE == static_cast<int>(wbi::SensorKind::gyroscope) &&
                   enum_count<wbi::SensorKind>() == GYROSCOPE + 1,
               "idl/description.idl's SensorKind must follow wbi::SensorKind");
+static_assert(FATAL == static_cast<int>(wbi::EventSeverity::fatal) &&
+                  enum_count<wbi::EventSeverity>() == FATAL + 1,
+              "idl/events.idl's EventSeverity must follow wbi::EventSeverity");
+static_assert(REFERENCE_STALE == static_cast<int>(wbi::EventKind::reference_stale) &&
+                  enum_count<wbi::EventKind>() == REFERENCE_STALE + 1,
+              "idl/events.idl's EventKind must follow wbi::EventKind");
 
 // ActuatorCommand.tick of a command that answers no lockstep tick: one sent
 // before the controller computed any reference from a sample (its start-up mode
@@ -39,6 +47,10 @@ constexpr LifecycleState to_wire(wbi::LifecycleState state) {
   return static_cast<LifecycleState>(state);
 }
 constexpr SensorKind to_wire(wbi::SensorKind kind) { return static_cast<SensorKind>(kind); }
+constexpr EventSeverity to_wire(wbi::EventSeverity severity) {
+  return static_cast<EventSeverity>(severity);
+}
+constexpr EventKind to_wire(wbi::EventKind kind) { return static_cast<EventKind>(kind); }
 
 constexpr std::optional<wbi::ControlMode> from_wire(ControlMode mode) {
   return enum_from_value<wbi::ControlMode>(mode);
@@ -48,6 +60,12 @@ constexpr std::optional<wbi::LifecycleState> from_wire(LifecycleState state) {
 }
 constexpr std::optional<wbi::SensorKind> from_wire(SensorKind kind) {
   return enum_from_value<wbi::SensorKind>(kind);
+}
+constexpr std::optional<wbi::EventSeverity> from_wire(EventSeverity severity) {
+  return enum_from_value<wbi::EventSeverity>(severity);
+}
+constexpr std::optional<wbi::EventKind> from_wire(EventKind kind) {
+  return enum_from_value<wbi::EventKind>(kind);
 }
 
 }  // namespace wbi::msg

@@ -60,6 +60,8 @@ ComponentRunner::ComponentRunner(std::unique_ptr<Component> component, Component
   status_->sample.type(context_.type);
   status_->sample.rate_hz(options_.rate_hz);
   status_->thread = std::thread([this] { run_heartbeat(); });
+  events_ =
+      std::make_unique<EventPump>(*context_.participant, component_->events(), context_.instance);
 }
 
 ComponentRunner::~ComponentRunner() {
@@ -76,6 +78,7 @@ ComponentRunner::~ComponentRunner() {
   }
   status_->kicked.notify_all();
   status_->thread.join();
+  events_.reset();  // sends the events still queued
 }
 
 void ComponentRunner::require(LifecycleState from, const char* transition) const {
@@ -89,13 +92,19 @@ void ComponentRunner::fail(const char* transition, const std::exception& error) 
   const std::string text = "component '" + context_.instance + "' (" + context_.type +
                            "): " + transition + " failed: " + error.what();
   component_->report().set_error(error.what());
+  lifecycle_event(EventSeverity::error, std::string(transition) + " failed: " + error.what());
   publish_status();
   throw TransitionError(text);
 }
 
 void ComponentRunner::set_state(LifecycleState state) {
-  state_ = state;
+  const LifecycleState from = state_.exchange(state);
+  lifecycle_event(EventSeverity::info, std::string(to_string(from)) + " -> " + to_string(state));
   publish_status();
+}
+
+void ComponentRunner::lifecycle_event(EventSeverity severity, const std::string& text) {
+  component_->events().emit(severity, EventKind::lifecycle, text);
 }
 
 void ComponentRunner::configure(const Parameters& parameters) {
@@ -103,6 +112,9 @@ void ComponentRunner::configure(const Parameters& parameters) {
   try {
     component_->on_configure(parameters, context_);
     parameters.reject_unknown();
+    if (parameters.has("robot")) {
+      component_->events().set_default_robot(parameters.get<std::string>("robot", ""));
+    }
   } catch (const std::exception& error) {
     if (dynamic_cast<const ParameterError*>(&error) != nullptr) {
       try {
@@ -131,6 +143,7 @@ void ComponentRunner::activate() {
     loop_stop_ = false;
     loop_ = std::thread([this] { run_loop(); });
   }
+  lifecycle_event(EventSeverity::info, "INACTIVE -> ACTIVE");
   publish_status();
 }
 

@@ -25,6 +25,8 @@ TEST(Vocabulary, EveryNameParsesBackToItsEnumerator) {
   expect_names_round_trip<wbi::SensorKind>();
   expect_names_round_trip<wbi::Integrator>();
   expect_names_round_trip<wbi::ContactShape>();
+  expect_names_round_trip<wbi::EventSeverity>();
+  expect_names_round_trip<wbi::EventKind>();
 }
 
 TEST(Vocabulary, NamesAreTheWiresAndTheConfigFiles) {

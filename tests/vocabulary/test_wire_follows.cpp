@@ -70,6 +70,12 @@ TEST(WireFollowsVocabulary, SensorKind) {
             vocabulary_names<wbi::SensorKind>());
 }
 
+TEST(WireFollowsVocabulary, EventSeverityAndKind) {
+  const std::string text = wbi::msg::idl_text_for("wbi::msg::Event");
+  EXPECT_EQ(idl_enumerators(text, "EventSeverity"), vocabulary_names<wbi::EventSeverity>());
+  EXPECT_EQ(idl_enumerators(text, "EventKind"), vocabulary_names<wbi::EventKind>());
+}
+
 TEST(WireFollowsVocabulary, ConversionsAreValueForValueAndRangeChecked) {
   EXPECT_EQ(wbi::msg::to_wire(wbi::ControlMode::torque), wbi::msg::TORQUE);
   EXPECT_EQ(wbi::msg::to_wire(wbi::SensorKind::imu), wbi::msg::IMU);

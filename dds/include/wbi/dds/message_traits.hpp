@@ -8,6 +8,7 @@
 #include <wbi/msg/commandsPubSubTypes.h>
 #include <wbi/msg/controllersPubSubTypes.h>
 #include <wbi/msg/descriptionPubSubTypes.h>
+#include <wbi/msg/eventsPubSubTypes.h>
 #include <wbi/msg/modelPubSubTypes.h>
 #include <wbi/msg/playbackPubSubTypes.h>
 #include <wbi/msg/referencesPubSubTypes.h>
@@ -48,6 +49,7 @@ WBI_DDS_MESSAGE(JointOwners)
 WBI_DDS_MESSAGE(ControllerRequest)
 WBI_DDS_MESSAGE(ControllerReply)
 WBI_DDS_MESSAGE(ControllerParameters)
+WBI_DDS_MESSAGE(Event)
 
 #undef WBI_DDS_MESSAGE
 

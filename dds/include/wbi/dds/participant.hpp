@@ -41,6 +41,7 @@ inline constexpr const char* kCommand = "wbi.command";             // actuator c
 inline constexpr const char* kLatched = "wbi.latched";             // robot descriptions
 inline constexpr const char* kRequestReply = "wbi.request_reply";  // services
 inline constexpr const char* kStatus = "wbi.status";               // heartbeats
+inline constexpr const char* kEvents = "wbi.events";               // wbi/events
 }  // namespace qos
 
 // WBI_DOMAIN_ID from the environment, 0 when unset. Throws std::invalid_argument

@@ -87,5 +87,7 @@ inline bool is_single_producer_stream(const std::string& topic) {
 
 inline const char* kStatus = "wbi/status";
 inline const char* kClock = "wbi/clock";
+// What happened in a run, one topic per domain (idl/events.idl, docs/events.md).
+inline const char* kEvents = "wbi/events";
 
 }  // namespace wbi::dds::topics

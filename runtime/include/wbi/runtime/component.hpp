@@ -27,6 +27,7 @@
 #include <wbi/vocabulary/lifecycle_state.hpp>
 
 #include "wbi/runtime/clock.hpp"
+#include "wbi/runtime/event_log.hpp"
 #include "wbi/runtime/parameters.hpp"
 #include "wbi/runtime/status_report.hpp"
 
@@ -84,11 +85,18 @@ class Component {
   StatusReport& report() { return report_; }
   const StatusReport& report() const { return report_; }
 
+  // Faults and state changes, published by the runner on wbi/events with the
+  // instance as their source (event_log.hpp; any thread, never blocks). The
+  // runner adds the lifecycle's own; the robot named by the `robot`
+  // parameter is the default robot.
+  EventLog& events() { return events_; }
+
  protected:
   Component() = default;
 
  private:
   StatusReport report_;
+  EventLog events_;
 };
 
 }  // namespace wbi::runtime

@@ -2,7 +2,8 @@
 // cycle on a loop thread at a given rate on a Clock, measures the loop's timing
 // and publishes the component's status on wbi/status (from its own thread,
 // so the cycle never waits on DDS), with the counters and last error of the
-// component's StatusReport (status_report.hpp).
+// component's StatusReport (status_report.hpp), and its events on wbi/events
+// (event_log.hpp), with one of its own at each transition and failure.
 #pragma once
 
 #include <atomic>
@@ -15,6 +16,7 @@
 #include <thread>
 
 #include "wbi/runtime/component.hpp"
+#include "wbi/runtime/event_pump.hpp"
 
 namespace wbi::runtime {
 
@@ -74,6 +76,7 @@ class ComponentRunner {
   void require(LifecycleState from, const char* transition) const;
   void fail(const char* transition, const std::exception& error);
   void set_state(LifecycleState state);
+  void lifecycle_event(EventSeverity severity, const std::string& text);
   void run_loop();
   // An event-driven component's wait, bounded so that a stop request is seen.
   bool wait_for_event(std::int64_t period_ns);
@@ -93,6 +96,7 @@ class ComponentRunner {
 
   struct Status;
   std::unique_ptr<Status> status_;  // publisher and heartbeat thread
+  std::unique_ptr<EventPump> events_;
 };
 
 }  // namespace wbi::runtime
