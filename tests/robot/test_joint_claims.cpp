@@ -175,8 +175,9 @@ struct Controller {
 struct Robot {
   wbi::dds::Participant participant{"robot"};
   wbi::runtime::StatusReport report;
-  wbi::robot::ActuatorSide side{
-      participant, kRobot, wbi::test::two_joint_description(kRobot), {}, report};
+  wbi::runtime::EventLog events;
+  wbi::robot::ActuatorSide side{participant, kRobot, wbi::test::two_joint_description(kRobot),
+                                {},          report, events};
   wbi::dds::Subscriber<wbi::msg::JointOwners> owners{
       participant, wbi::dds::topics::joint_owners(kRobot), wbi::dds::qos::kLatched};
   wbi::actuation::SensorReadings readings;
