@@ -118,17 +118,17 @@ void ClaimDesk::answer(const wbi::msg::JointClaimRequest& request,
   }
 
   if (request.action() == wbi::msg::ClaimAction::RELEASE) {
-    int released = 0;
+    std::vector<int> released;
     {
       std::lock_guard lock(lock_);
       released = claims_.release(who, joints);
     }
-    if (released > 0) {
+    if (!released.empty()) {
       const std::string text =
-          describe(who) + " released " + std::to_string(released) + " joint(s)";
+          describe(who) + " released " + std::to_string(released.size()) + " joint(s)";
       runtime::print_line(stderr, "claims: " + text);
       events_.emit(EventSeverity::info, EventKind::claim_changed, text,
-                   joint_subject(claims_, joints));
+                   joint_subject(claims_, released));
       publish_owners();
     }
     return;
