@@ -150,7 +150,8 @@ void BM_HostTick(benchmark::State& state) {
   }
   Icub3 robot("bench_host_tick");
   wbi::runtime::StatusReport report;
-  ControllerHost host(*robot.interface, report, {});
+  wbi::runtime::EventLog events;
+  ControllerHost host(*robot.interface, report, events, {});
   host_fixed_and_hold(host);
   double t = 0.0;
   for (auto _ : state) {
@@ -176,7 +177,8 @@ void BM_HostOverheadPaired(benchmark::State& state) {
   FixedTorque direct;
   direct.configure(*robot.interface, parameters);
   wbi::runtime::StatusReport report;
-  ControllerHost host(*robot.interface, report, {});
+  wbi::runtime::EventLog events;
+  ControllerHost host(*robot.interface, report, events, {});
   host_fixed_and_hold(host);
   std::vector<double> direct_ns, host_ns;
   direct_ns.reserve(static_cast<std::size_t>(state.max_iterations));
@@ -216,7 +218,8 @@ void BM_SwitchTicks(benchmark::State& state) {
   }
   Icub3 robot("bench_host_switch");
   wbi::runtime::StatusReport report;
-  ControllerHost host(*robot.interface, report, {});
+  wbi::runtime::EventLog events;
+  ControllerHost host(*robot.interface, report, events, {});
   std::atomic<std::uint64_t> ticks{0}, first_a{0}, first_b{0};
   host.add("a", "fixed", std::make_unique<FixedTorque>(&ticks, &first_a));
   host.configure("a");

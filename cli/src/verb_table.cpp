@@ -8,7 +8,7 @@
 namespace wbi::cli {
 
 std::span<const Verb> verbs() {
-  static const std::array<Verb, 11> table{{
+  static const std::array<Verb, 12> table{{
       {"launch", "start, watch and stop the processes of a deploy file", run_launch},
       {"record", "record DDS topics to an MCAP file", run_record},
       {"play", "replay an MCAP recording onto DDS", run_play},
@@ -16,6 +16,7 @@ std::span<const Verb> verbs() {
       {"render", "draw a recorded run into an MP4 video or a PNG frame (offscreen, MuJoCo)",
        run_render},
       {"topic", "list, echo and measure the topics on the DDS domain", run_topic},
+      {"events", "watch what happens in a run: faults and state changes (wbi/events)", run_events},
       {"controller", "list a robot's controllers and switch between them while it runs",
        run_controller},
       {"param", "list, read and set controllers' parameters while they run", run_param},

@@ -58,10 +58,15 @@ EventPump::~EventPump() {
   }
   stop_requested_.notify_all();
   thread_.join();
-  impl_->publish_queued();  // what came in since the last poll
+  flush_acknowledged(kFinalAckTimeout);  // what came in since the last poll
 }
 
 void EventPump::flush() { impl_->publish_queued(); }
+
+bool EventPump::flush_acknowledged(std::chrono::nanoseconds timeout) {
+  impl_->publish_queued();
+  return impl_->publisher.wait_acknowledged(timeout);
+}
 
 std::uint64_t EventPump::published() const {
   std::lock_guard lock(impl_->mutex);

@@ -170,7 +170,9 @@ void Host::build(const YAML::Node& root, const std::string& file, const std::str
     specs.push_back(Spec{name, type, rate_hz, item["parameters"]});
   }
 
-  options.name = "wbi_host";
+  // One process of a deploy file is named after it: events, discovery and
+  // claim lines then say "controller", not which program hosts it.
+  options.name = identity.empty() ? "wbi_host" : identity;
   try {
     // Across hosts and DDS Security (deploy/README.md); the identity is the process's name.
     if (placement) {

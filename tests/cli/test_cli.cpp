@@ -2,6 +2,7 @@
 // errors, and `wbi topic list|echo` against a real publisher process.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <string>
@@ -33,8 +34,8 @@ bool contains(const std::string& text, const std::string& part) {
 TEST(Cli, HelpListsEveryVerb) {
   const auto run = wbi_cli({"--help"});
   EXPECT_EQ(run.code, 0);
-  for (const char* verb :
-       {"launch", "record", "play", "bag", "render", "topic", "model", "robot", "estimate"}) {
+  for (const char* verb : {"launch", "record", "play", "bag", "render", "topic", "events", "model",
+                           "robot", "estimate"}) {
     EXPECT_TRUE(contains(run.output, std::string("\n  ") + verb + " ")) << verb << "\n"
                                                                         << run.output;
   }
@@ -59,7 +60,8 @@ TEST(Cli, UnknownVerbFailsWithMessage) {
 }
 
 TEST(Cli, EveryVerbHasHelp) {
-  for (const char* verb : {"topic", "model", "robot", "estimate", "bag", "launch", "render"}) {
+  for (const char* verb :
+       {"topic", "events", "model", "robot", "estimate", "bag", "launch", "render"}) {
     const auto run = wbi_cli({verb, "--help"});
     EXPECT_EQ(run.code, 0) << verb << ": " << run.output;
     EXPECT_TRUE(contains(run.output, "usage: wbi")) << run.output;
@@ -82,6 +84,19 @@ TEST(Cli, RobotCheck) {
                        "cli_bad_robot.yaml:2: imus[0].frame: unknown link or frame "
                        "'imu_fram'"))
       << run.output;
+}
+
+// `wbi events`: an unknown kind or severity is one line naming it, exit 1,
+// before any DDS.
+TEST(Cli, EventsNamesABadKindOrSeverity) {
+  const auto kind = wbi_cli({"events", "--kind", "WATCHDOG_TRIP,bogus"});
+  EXPECT_EQ(kind.code, 1);
+  EXPECT_TRUE(contains(kind.output, "wbi events: unknown event kind 'bogus' (kinds: "))
+      << kind.output;
+  EXPECT_EQ(std::count(kind.output.begin(), kind.output.end(), '\n'), 1) << kind.output;
+  const auto severity = wbi_cli({"events", "--severity", "loud"});
+  EXPECT_EQ(severity.code, 1);
+  EXPECT_TRUE(contains(severity.output, "unknown severity 'loud'")) << severity.output;
 }
 
 TEST(Cli, UnknownOptionIsNamed) {

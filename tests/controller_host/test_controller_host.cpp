@@ -76,7 +76,7 @@ class HostedArm {
     arm_->init(20s);
     q_.setZero(arm_->dofs());
     state_ = wbi::RobotState(arm_->dofs());
-    host_.emplace(*arm_, report_, ControllerHost::Options{});
+    host_.emplace(*arm_, report_, events_, ControllerHost::Options{});
     const auto& types = wbi::controllers::controller_types();
     ParameterTable& pd = host_->add("pd", "pd_gravity", types.create("pd_gravity"));
     pd.set(pd.index("target"), kTarget);
@@ -156,11 +156,21 @@ class HostedArm {
 
   ControllerHost& host() { return *host_; }
   wbi::runtime::StatusReport& report() { return report_; }
+  // The events emitted since the last call, in order.
+  std::vector<wbi::runtime::EventRecord> take_events() {
+    std::vector<wbi::runtime::EventRecord> taken;
+    wbi::runtime::EventRecord event;
+    while (events_.pop(event)) {
+      taken.push_back(event);
+    }
+    return taken;
+  }
 
  private:
   wbi::sim_rig::InProcessRobot rig_;
   std::unique_ptr<wbi::WholeBodyInterface> arm_;
   wbi::runtime::StatusReport report_;
+  wbi::runtime::EventLog events_;
   std::optional<ControllerHost> host_;
   wbi::RobotState state_;
   Eigen::VectorXd q_;
@@ -181,6 +191,11 @@ TEST(ControllerHost, SwitchesAtATickBoundaryWithoutATorqueJump) {
   // hold's first command continues pd's last (its blend): no step at the switch.
   EXPECT_LT(result.torque_step, 0.05) << result.text;
   EXPECT_EQ(arm.counter("switches"), 1u);
+  const auto events = arm.take_events();
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].kind, wbi::EventKind::controller_switched);
+  EXPECT_EQ(std::string(events[0].text.data()).find("pd → hold at t = "), 0u)
+      << events[0].text.data();
   arm.run(500);
   EXPECT_LT(arm.error_to_target(), 0.03) << "hold keeps the posture it took over";
 }
@@ -193,6 +208,10 @@ TEST(ControllerHost, ATickAllocatesNothingOfItsOwn) {
   arm.host().set_parameter("pd", "gain_scale", {0.8});
   EXPECT_EQ(arm.host_allocations_per_tick(200), 0.0);
   EXPECT_EQ(arm.counter("parameter_changes"), 1u);
+  const auto events = arm.take_events();
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].kind, wbi::EventKind::parameter_changed);
+  EXPECT_STREQ(events[0].text.data(), "pd.gain_scale = 0.8 (from the next tick)");
 }
 
 TEST(ControllerHost, ARefusedSwitchChangesNothing) {
@@ -290,6 +309,12 @@ TEST(ControllerHost, AControllerThatThrowsFallsBackToHold) {
             std::string::npos)
       << error;
   EXPECT_NE(error.find("fell back to 'hold'"), std::string::npos) << error;
+  const auto events = arm.take_events();
+  ASSERT_EQ(events.size(), 2u);
+  EXPECT_EQ(events[0].kind, wbi::EventKind::controller_switched);
+  EXPECT_EQ(events[1].kind, wbi::EventKind::controller_fallback);
+  EXPECT_EQ(events[1].severity, wbi::EventSeverity::warning);
+  EXPECT_STREQ(events[1].text.data(), error.c_str());
 }
 
 }  // namespace

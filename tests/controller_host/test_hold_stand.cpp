@@ -89,7 +89,8 @@ HoldRun run_hold(const std::string& robot, double seconds, const std::string& en
   humanoid->init(20s);
 
   wbi::runtime::StatusReport report;
-  ControllerHost host(*humanoid, report, ControllerHost::Options{});
+  wbi::runtime::EventLog events;
+  ControllerHost host(*humanoid, report, events, ControllerHost::Options{});
   auto& hold = host.add("hold", "hold", wbi::controllers::controller_types().create("hold"));
   if (bandwidth_hz > 0.0) {
     hold.set(hold.index("bandwidth_hz"), std::vector<double>{bandwidth_hz});

@@ -31,6 +31,7 @@
 set -euo pipefail
 [[ $# -eq 3 && $3 =~ ^(robot|estimator|controller|recorder)$ ]] || { sed -n '2,27p' "$0"; exit 2; }
 bin="$1/bin" checker="$1/tests/wbi_test_fault_recording" src=$(cd "$2" && pwd) target=$3
+source "$src/tests/support/launch_control.sh"
 work=$(mktemp -d /tmp/wbi-balance-faults.XXXXXX)
 deploy="$work/balance.yaml" log="$work/launch.log" events="$work/events"
 launch_pid=""
@@ -113,11 +114,7 @@ for fault in stall kill term; do
   wait_until 60 observed || fail "the balancing did not go on for 3 s after the $target's $fault"
 done
 
-kill -INT "$launch_pid"
-deadline=$((SECONDS + 30))
-while kill -0 "$launch_pid" 2>/dev/null && ((SECONDS < deadline)); do sleep 0.1; done
-kill -0 "$launch_pid" 2>/dev/null && fail "wbi launch did not end within 30 s of SIGINT"
-wait "$launch_pid" || true
+stop_launch "$launch_pid" || fail "wbi launch did not end within 30 s of SIGINT"
 launch_pid=""
 left=$(pgrep -f "$work/" || true)
 [[ -z "$left" ]] || fail "processes left behind: $(ps -o pid,args -p "${left//$'\n'/,}" || true)"

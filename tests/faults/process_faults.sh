@@ -31,6 +31,7 @@ set -euo pipefail
 [[ $# -eq 4 && $3 =~ ^(robot|estimator|model_service|controller)$ && $4 =~ ^(stall|restart|term)$ ]] ||
   { sed -n '2,26p' "$0"; exit 2; }
 bin="$1/bin" checker="$1/tests/wbi_test_fault_recording" src=$(cd "$2" && pwd) target=$3 fault=$4
+source "$src/tests/support/launch_control.sh"
 work=$(mktemp -d /tmp/wbi-faults.XXXXXX)
 deploy="$work/demo.yaml" log="$work/launch.log"
 launch_pid=""
@@ -125,11 +126,7 @@ worst=$(errors_after "$before" | sort -g | tail -n 1)
 awk -v e="$worst" -v b="$bound" 'BEGIN { exit !(e <= b) }' ||
   fail "the error reached $worst rad after the $target's $fault (bound $bound rad)"
 
-kill -INT "$launch_pid"
-deadline=$((SECONDS + 30))
-while kill -0 "$launch_pid" 2>/dev/null && ((SECONDS < deadline)); do sleep 0.1; done
-kill -0 "$launch_pid" 2>/dev/null && fail "wbi launch did not end within 30 s of SIGINT"
-wait "$launch_pid" || true
+stop_launch "$launch_pid" || fail "wbi launch did not end within 30 s of SIGINT"
 launch_pid=""
 left=$(pgrep -f "$work/" || true)
 [[ -z "$left" ]] || fail "processes left behind: $(ps -o pid,args -p "${left//$'\n'/,}" || true)"

@@ -17,9 +17,10 @@ TEST(ActuatorSide, CommandsTicksAndTripsDoNotAllocate) {
   const auto description = wbi::test::two_joint_description();
   wbi::dds::Participant participant("actuator_no_alloc");
   wbi::runtime::StatusReport report;
+  wbi::runtime::EventLog events;
   wbi::actuation::JointControllerConfig config;
   config.watchdog_timeout = 0.05;
-  wbi::robot::ActuatorSide side(participant, "toy_no_alloc", description, config, report);
+  wbi::robot::ActuatorSide side(participant, "toy_no_alloc", description, config, report, events);
   wbi::actuation::SensorReadings readings;
   readings.resize(description);
   readings.position.setZero();
@@ -62,6 +63,15 @@ TEST(ActuatorSide, CommandsTicksAndTripsDoNotAllocate) {
   EXPECT_EQ(report.last_error(),
             "watchdog: joint 'b' got no command for 0.05 s: holding its position");
   EXPECT_EQ(report.counter("rejected_commands").value(), 0u);
+  // Both joints trip in the same tick: one event naming both, per run.
+  wbi::runtime::EventRecord event;
+  int trips = 0;
+  while (events.pop(event)) {
+    ASSERT_EQ(event.kind, wbi::EventKind::watchdog_trip);
+    EXPECT_STREQ(event.subject.data(), "a,b");
+    ++trips;
+  }
+  EXPECT_EQ(trips, 4);
 }
 
 }  // namespace

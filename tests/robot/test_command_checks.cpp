@@ -26,8 +26,9 @@ struct Side {
   static constexpr const char* kRobot = "checked";
   wbi::dds::Participant participant{"command_checks"};
   wbi::runtime::StatusReport report;
-  wbi::robot::ActuatorSide side{
-      participant, kRobot, wbi::test::two_joint_description(), {}, report};
+  wbi::runtime::EventLog events;
+  wbi::robot::ActuatorSide side{participant, kRobot, wbi::test::two_joint_description(),
+                                {},          report, events};
   wbi::actuation::SensorReadings readings;
   wbi::actuation::JointCommands out;
   std::int64_t tick = 0;
@@ -282,6 +283,24 @@ TEST(RejectionLog, OneLinePerSenderAndKindThenPeriodicSummaries) {
                       "all)"),
             std::string::npos)
       << text;
+}
+
+// The first rejection of a burst (of one kind from one sender) is told to the
+// caller, who makes it an event: a new kind, a new sender, or one after a pause.
+TEST(RejectionLog, SaysWhichRejectionStartsABurst) {
+  using wbi::robot::RejectionLog;
+  wbi::runtime::StatusReport report;
+  std::ostringstream log;
+  RejectionLog rejections(report, log);
+  const auto t0 = RejectionLog::Clock::now();
+  const auto at = [&](int ms) { return t0 + std::chrono::milliseconds(ms); };
+  EXPECT_TRUE(rejections.reject("command", "bad", "joint index 40 out of range", at(0)));
+  for (int ms = 1; ms < 900; ++ms) {  // a stream with gaps shorter than kBurstGap
+    EXPECT_FALSE(rejections.reject("command", "bad", "joint index 41 out of range", at(ms)));
+  }
+  EXPECT_TRUE(rejections.reject("command", "bad", "mode 9 not in the enum", at(900)));
+  EXPECT_TRUE(rejections.reject("command", "other", "joint index 40 out of range", at(900)));
+  EXPECT_TRUE(rejections.reject("command", "bad", "joint index 40 out of range", at(2000)));
 }
 
 // Many senders and many kinds: the status keeps room for the owner's own

@@ -120,9 +120,9 @@ TEST(JointClaimRules, ForceTakesAndReleaseFrees) {
   EXPECT_EQ(claims.owner(1), supervisor);
   EXPECT_EQ(claims.owner(0), pd);
 
-  EXPECT_EQ(claims.release(pd, {}), 1) << "all of pd's joints: a";
+  EXPECT_EQ(claims.release(pd, {}), std::vector<int>{0}) << "all of pd's joints: a";
   EXPECT_FALSE(claims.held(0));
-  EXPECT_EQ(claims.release(pd, b), 0) << "b is not pd's to release";
+  EXPECT_TRUE(claims.release(pd, b).empty()) << "b is not pd's to release";
   EXPECT_TRUE(claims.held(1));
   EXPECT_EQ(claims.generation(), 3u);
 }
@@ -175,8 +175,9 @@ struct Controller {
 struct Robot {
   wbi::dds::Participant participant{"robot"};
   wbi::runtime::StatusReport report;
-  wbi::robot::ActuatorSide side{
-      participant, kRobot, wbi::test::two_joint_description(kRobot), {}, report};
+  wbi::runtime::EventLog events;
+  wbi::robot::ActuatorSide side{participant, kRobot, wbi::test::two_joint_description(kRobot),
+                                {},          report, events};
   wbi::dds::Subscriber<wbi::msg::JointOwners> owners{
       participant, wbi::dds::topics::joint_owners(kRobot), wbi::dds::qos::kLatched};
   wbi::actuation::SensorReadings readings;

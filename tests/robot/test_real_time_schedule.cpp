@@ -102,7 +102,8 @@ TEST(StallLines, AStoppedProcessIsAlwaysPrinted) {
 // start, comes when those 5 ms have passed: behind its deadline, caught up.
 TEST(RealTimePacer, CountsTheTicksBehindTheirDeadline) {
   wbi::runtime::StatusCounter stalls;
-  wbi::robot::RealTimePacer pacer(kPeriod, kMaxLag, "sim_robot 'arm'", stalls);
+  wbi::runtime::EventLog events;
+  wbi::robot::RealTimePacer pacer(kPeriod, kMaxLag, "sim_robot 'arm'", stalls, events);
   pacer.start();
   pacer.wait(4);
   pacer.wait(1);
@@ -120,7 +121,9 @@ TEST(RealTimePacer, CountsTheTicksBehindTheirDeadline) {
 // command computed from a sample, or after, as timing decides.
 TEST(LockstepPacer, ACommandWithNoTickAnswersNothing) {
   wbi::runtime::StatusCounter timeouts;
-  wbi::robot::LockstepPacer pacer({{"balance"}, 0.05, 0.05}, "sim_robot 'humanoid'", timeouts);
+  wbi::runtime::EventLog events;
+  wbi::robot::LockstepPacer pacer({{"balance"}, 0.05, 0.05}, "sim_robot 'humanoid'", timeouts,
+                                  events);
   pacer.start();
   wbi::msg::ActuatorCommand command;
   command.controller("balance");
@@ -128,6 +131,9 @@ TEST(LockstepPacer, ACommandWithNoTickAnswersNothing) {
   pacer.observe(command);
   pacer.wait(0);
   EXPECT_EQ(timeouts.value(), 1u) << "tick 0 was taken as answered by a command with no tick";
+  wbi::runtime::EventRecord event;
+  ASSERT_TRUE(events.pop(event)) << "a tick not answered in time is an event";
+  EXPECT_EQ(event.kind, wbi::EventKind::loop_stall);
   command.tick(0);
   pacer.observe(command);
   pacer.wait(0);

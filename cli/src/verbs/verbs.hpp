@@ -8,6 +8,7 @@ namespace wbi::cli {
 int run_bag(Args args);
 int run_controller(Args args);
 int run_estimate(Args args);
+int run_events(Args args);
 int run_launch(Args args);
 int run_model(Args args);
 int run_param(Args args);

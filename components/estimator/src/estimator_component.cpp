@@ -206,6 +206,8 @@ void EstimatorComponent::on_parameter(const wbi::msg::EstimatorParameter& parame
                              parameter.name().to_string() + "' rejected: " + e.what();
     report().set_error(text);
     runtime::print_line(stderr, text);
+    events().emit(EventSeverity::warning, EventKind::commands_rejected, text,
+                  dds::topics::estimator_parameters(robot_));
   }
 }
 

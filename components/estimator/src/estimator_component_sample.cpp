@@ -6,6 +6,7 @@
 #include <string>
 
 #include <Eigen/Geometry>
+#include <wbi/dds/topics.hpp>
 #include <wbi/runtime/console_line.hpp>
 
 #include "estimator_component_impl.hpp"
@@ -87,6 +88,8 @@ void EstimatorComponent::on_new_producer(const dds::detail::Guid& writer) {  // 
                            " (the robot restarted?): filters restarted";
   report().set_error(text);
   runtime::print_line(stderr, text);
+  events().emit(EventSeverity::warning, EventKind::producer_restarted, text,
+                dds::topics::sensors(robot_));
   if (estimator_) {
     earlier_counts_ += estimator_->stamp_counters();
   }

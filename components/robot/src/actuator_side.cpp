@@ -14,9 +14,11 @@ namespace wbi::robot {
 ActuatorSide::ActuatorSide(dds::Participant& participant, const std::string& robot,
                            const actuation::BackendDescription& description,
                            const actuation::JointControllerConfig& config,
-                           runtime::StatusReport& report, CommandObserver observer,
-                           bool require_claims)
+                           runtime::StatusReport& report, runtime::EventLog& events,
+                           CommandObserver observer, bool require_claims)
     : robot_(robot),
+      commands_topic_(dds::topics::commands(robot)),
+      parameters_topic_(dds::topics::control_parameters(robot)),
       joint_names_(description.joint_names),
       watchdog_timeout_s_(config.watchdog_timeout),
       damp_on_trip_(config.watchdog_action == actuation::WatchdogAction::kDamp),
@@ -26,6 +28,7 @@ ActuatorSide::ActuatorSide(dds::Participant& participant, const std::string& rob
       claims_(description.joint_names, static_cast<std::int64_t>(config.watchdog_timeout * 1e9),
               require_claims),
       report_(report),
+      events_(events),
       accepted_commands_(report.counter("accepted_commands")),
       accepted_parameters_(report.counter("accepted_parameters")),
       rejected_commands_(report.counter("rejected_commands")),
@@ -36,14 +39,14 @@ ActuatorSide::ActuatorSide(dds::Participant& participant, const std::string& rob
       observer_(std::move(observer)) {
   // Claims and subscribers last: their callbacks use everything above.
   claim_desk_ = std::make_unique<ClaimDesk>(participant, robot, claims_, mutex_, now_ns_, report,
-                                            rejections_);
+                                            events, rejections_);
   commands_ = std::make_unique<dds::Subscriber<wbi::msg::ActuatorCommand>>(
-      participant, dds::topics::commands(robot), dds::qos::kCommand,
+      participant, commands_topic_, dds::qos::kCommand,
       [this](const wbi::msg::ActuatorCommand& c, const dds::detail::SampleInfo& info) {
         handle(c, info.writer);
       });
   parameters_ = std::make_unique<dds::Subscriber<wbi::msg::ControlParameters>>(
-      participant, dds::topics::control_parameters(robot), dds::qos::kCommand,
+      participant, parameters_topic_, dds::qos::kCommand,
       [this](const wbi::msg::ControlParameters& p, const dds::detail::SampleInfo& info) {
         handle(p, info.writer);
       });
@@ -97,7 +100,7 @@ void ActuatorSide::handle(const wbi::msg::ActuatorCommand& command,
     }
   }
   if (!error.empty()) {
-    reject(rejected_commands_, "command", command.controller(), error);
+    reject(rejected_commands_, "command", commands_topic_, command.controller(), error);
   }
   if (observer_) {
     observer_(command);
@@ -135,18 +138,23 @@ void ActuatorSide::handle(const wbi::msg::ControlParameters& message,
     }
   }
   if (!error.empty()) {
-    reject(rejected_parameters_, "control parameters", message.controller(), error);
+    reject(rejected_parameters_, "control parameters", parameters_topic_, message.controller(),
+           error);
   }
 }
 
 void ActuatorSide::reject(runtime::StatusCounter& counter, std::string_view what,
-                          const wbi::msg::BoundedName& sender, const std::string& error) {
+                          const std::string& topic, const wbi::msg::BoundedName& sender,
+                          const std::string& error) {
   const std::string_view name(sender.c_str(), sender.size());
   const std::string text = RejectionLog::without_control_characters(error);  // may quote the wire
+  const std::string line =
+      std::string(what) + " from '" + RejectionLog::printable(name) + "' rejected: " + text;
   counter.add();
-  report_.set_error(std::string(what) + " from '" + RejectionLog::printable(name) +
-                    "' rejected: " + text);
-  rejections_.reject(what, name, text);
+  report_.set_error(line);
+  if (rejections_.reject(what, name, text)) {
+    events_.emit(EventSeverity::warning, EventKind::commands_rejected, line, topic);
+  }
 }
 
 void ActuatorSide::update(actuation::Time now, actuation::Duration period,
@@ -159,10 +167,14 @@ void ActuatorSide::update(actuation::Time now, actuation::Duration period,
   report_new_trips();
 }
 
-// A joint that tripped in this tick becomes the last error. Formatted into a
-// fixed buffer: a trip on the loop thread does not allocate.
+// A joint that tripped in this tick becomes the last error; the joints that
+// tripped in this tick are one WATCHDOG_TRIP event. Formatted into fixed
+// buffers: a trip on the loop thread does not allocate.
 void ActuatorSide::report_new_trips() {
   const auto& tripped = controller_.status().watchdog_tripped;
+  char joints[runtime::EventRecord::kMaxText + 1];
+  std::size_t joints_length = 0;  // of "j1,j2", cut at the buffer's end
+  int count = 0;
   for (std::size_t i = 0; i < tripped.size(); ++i) {
     if (tripped[i] != 0 && was_tripped_[i] == 0) {
       char text[256];
@@ -172,8 +184,20 @@ void ActuatorSide::report_new_trips() {
                         damp_on_trip_ ? "damped to rest" : "holding its position");
       report_.set_error(std::string_view(
           text, std::clamp<std::size_t>(static_cast<std::size_t>(length), 0, sizeof text - 1)));
+      const int added = std::snprintf(joints + joints_length, sizeof joints - joints_length, "%s%s",
+                                      count > 0 ? "," : "", joint_names_[i].c_str());
+      joints_length =
+          std::min(joints_length + static_cast<std::size_t>(std::max(added, 0)), sizeof joints - 1);
+      ++count;
     }
     was_tripped_[i] = tripped[i];
+  }
+  if (count > 0) {
+    char text[160];
+    std::snprintf(text, sizeof text, "%d joint(s) got no command for %g s: %s", count,
+                  watchdog_timeout_s_, damp_on_trip_ ? "damped to rest" : "holding their position");
+    events_.emit(EventSeverity::warning, EventKind::watchdog_trip, text,
+                 std::string_view(joints, joints_length));
   }
 }
 

@@ -17,6 +17,9 @@
 //   command from 'pd' rejected: joint index 41 out of range (the robot has 7 joints)
 // The log gets the first rejection of each kind per sender and a periodic
 // summary (RejectionLog): a bad publisher cannot flood it.
+// Events (wbi/events, the owner's EventLog): WATCHDOG_TRIP, one per tick that
+// tripped joints, naming them; COMMANDS_REJECTED, one per burst of one kind
+// from one sender (RejectionLog::reject); and the claim desk's.
 // One implementation, used by sim_robot and by the driver component.
 //
 // Threads: commands and parameters arrive on DDS threads; begin_tick() and
@@ -34,6 +37,7 @@
 #include <wbi/msg/commands.h>
 #include <wbi/actuation/joint_controller.hpp>
 #include <wbi/dds/subscriber.hpp>
+#include <wbi/runtime/event_log.hpp>
 #include <wbi/runtime/status_report.hpp>
 
 #include "claim_desk.hpp"
@@ -51,7 +55,8 @@ class ActuatorSide {
   ActuatorSide(dds::Participant& participant, const std::string& robot,
                const actuation::BackendDescription& description,
                const actuation::JointControllerConfig& config, runtime::StatusReport& report,
-               CommandObserver observer = {}, bool require_claims = false);
+               runtime::EventLog& events, CommandObserver observer = {},
+               bool require_claims = false);
   ~ActuatorSide();  // unsubscribes first: no callback runs after this
   ActuatorSide(const ActuatorSide&) = delete;
   ActuatorSide& operator=(const ActuatorSide&) = delete;
@@ -80,10 +85,11 @@ class ActuatorSide {
  private:
   void report_new_trips();
   // Counts (in `counter`), reports and logs a refused message (after mutex_ is released).
-  void reject(runtime::StatusCounter& counter, std::string_view what,
+  void reject(runtime::StatusCounter& counter, std::string_view what, const std::string& topic,
               const wbi::msg::BoundedName& sender, const std::string& error);
 
-  const std::string robot_;  // header.robot every message must carry
+  const std::string robot_;                              // header.robot every message must carry
+  const std::string commands_topic_, parameters_topic_;  // events' subjects
   const std::vector<std::string> joint_names_;
   const double watchdog_timeout_s_;
   const bool damp_on_trip_;
@@ -97,6 +103,7 @@ class ActuatorSide {
   JointClaims claims_;
 
   runtime::StatusReport& report_;
+  runtime::EventLog& events_;
   runtime::StatusCounter& accepted_commands_;
   runtime::StatusCounter& accepted_parameters_;
   runtime::StatusCounter& rejected_commands_;

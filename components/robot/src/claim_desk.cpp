@@ -20,6 +20,15 @@ std::string joint_list(const JointClaims& claims, const std::vector<int>& joints
   return text;
 }
 
+// The joints as an event's subject: "joint_1,joint_2".
+std::string joint_subject(const JointClaims& claims, const std::vector<int>& joints) {
+  std::string text;
+  for (const int joint : joints) {
+    text.append(text.empty() ? "" : ",").append(claims.joint_name(joint));
+  }
+  return text;
+}
+
 dds::detail::Guid participant_guid(const Claimant& claimant) {
   dds::detail::Guid guid{};
   std::copy(claimant.participant.begin(), claimant.participant.end(), guid.begin());
@@ -30,13 +39,15 @@ dds::detail::Guid participant_guid(const Claimant& claimant) {
 
 ClaimDesk::ClaimDesk(dds::Participant& participant, const std::string& robot, JointClaims& claims,
                      std::mutex& lock, const std::atomic<std::int64_t>& now_ns,
-                     runtime::StatusReport& report, RejectionLog& rejections)
+                     runtime::StatusReport& report, runtime::EventLog& events,
+                     RejectionLog& rejections)
     : participant_(participant),
       robot_(robot),
       claims_(claims),
       lock_(lock),
       now_ns_(now_ns),
       report_(report),
+      events_(events),
       rejections_(rejections),
       granted_(report.counter("claims_granted")),
       refused_(report.counter("claims_refused")),
@@ -107,14 +118,17 @@ void ClaimDesk::answer(const wbi::msg::JointClaimRequest& request,
   }
 
   if (request.action() == wbi::msg::ClaimAction::RELEASE) {
-    int released = 0;
+    std::vector<int> released;
     {
       std::lock_guard lock(lock_);
       released = claims_.release(who, joints);
     }
-    if (released > 0) {
-      runtime::print_line(stderr, "claims: " + describe(who) + " released " +
-                                      std::to_string(released) + " joint(s)");
+    if (!released.empty()) {
+      const std::string text =
+          describe(who) + " released " + std::to_string(released.size()) + " joint(s)";
+      runtime::print_line(stderr, "claims: " + text);
+      events_.emit(EventSeverity::info, EventKind::claim_changed, text,
+                   joint_subject(claims_, released));
       publish_owners();
     }
     return;
@@ -155,13 +169,38 @@ void ClaimDesk::answer(const wbi::msg::JointClaimRequest& request,
     return;
   }
   granted_.add();
-  runtime::print_line(stderr, "claims: " + describe(who) + " holds " + joint_list(claims_, joints));
-  for (const auto& taken : outcome.taken) {
-    runtime::print_line(stderr, "claims: joint " + claims_.joint_name(taken.joint) +
-                                    " taken from " + describe(taken.owner) +
-                                    (request.force() ? " by force" : ": its claim had ended"));
-  }
+  say_granted(who, joints, outcome, request.force());
   publish_owners();
+}
+
+void ClaimDesk::say_granted(const Claimant& who, const std::vector<int>& joints,
+                            const JointClaims::Outcome& outcome, bool force) {
+  const std::string holder = describe(who);
+  runtime::print_line(stderr, "claims: " + holder + " holds " + joint_list(claims_, joints));
+  std::vector<int> taken_joints;
+  std::string taken_from;
+  for (const auto& taken : outcome.taken) {
+    const std::string owner = describe(taken.owner);
+    runtime::print_line(stderr, "claims: joint " + claims_.joint_name(taken.joint) +
+                                    " taken from " + owner +
+                                    (force ? " by force" : ": its claim had ended"));
+    taken_joints.push_back(taken.joint);
+    if (taken_from.find(owner) == std::string::npos) {
+      taken_from.append(taken_from.empty() ? "" : ", ").append(owner);
+    }
+  }
+  if (force && !taken_joints.empty()) {
+    events_.emit(
+        EventSeverity::warning, EventKind::claim_forced,
+        holder + " took " + joint_list(claims_, taken_joints) + " from " + taken_from + " by force",
+        joint_subject(claims_, taken_joints));
+  }
+  events_.emit(
+      EventSeverity::info, EventKind::claim_changed,
+      holder + " holds " + joint_list(claims_, joints) +
+          (!force && !taken_joints.empty() ? " (taken from " + taken_from + ": its claim had ended)"
+                                           : ""),
+      joint_subject(claims_, joints));
 }
 
 void ClaimDesk::publish_owners() {

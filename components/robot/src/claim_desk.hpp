@@ -7,6 +7,10 @@
 //   claims: 'supervisor' (…) took joint_1 from 'pd' by force
 //   claims: 'pd' released joint_1, joint_2
 //
+// Each change is also an event on wbi/events, naming the joints: CLAIM_CHANGED
+// (info) for a claim granted or released, or for joints whose owner's claim
+// had ended; CLAIM_FORCED (warning) for joints taken from their owner by force.
+//
 // Counters on the owner's status: claims_granted, claims_refused. A refused
 // claim is one line per kind and sender (RejectionLog): a client that retries
 // cannot flood the log.
@@ -19,6 +23,7 @@
 #include <wbi/msg/claims.h>
 #include <wbi/dds/publisher.hpp>
 #include <wbi/dds/server.hpp>
+#include <wbi/runtime/event_log.hpp>
 #include <wbi/runtime/status_report.hpp>
 
 #include "joint_claims.hpp"
@@ -31,7 +36,7 @@ class ClaimDesk {
   // `claims` and `lock` outlive the desk; `now_ns` is the loop time (when claims lapse).
   ClaimDesk(dds::Participant& participant, const std::string& robot, JointClaims& claims,
             std::mutex& lock, const std::atomic<std::int64_t>& now_ns,
-            runtime::StatusReport& report, RejectionLog& rejections);
+            runtime::StatusReport& report, runtime::EventLog& events, RejectionLog& rejections);
   ~ClaimDesk();  // stops answering first
   ClaimDesk(const ClaimDesk&) = delete;
   ClaimDesk& operator=(const ClaimDesk&) = delete;
@@ -44,6 +49,9 @@ class ClaimDesk {
   std::string resolve(const wbi::msg::JointClaimRequest& request, std::vector<int>& joints) const;
   // Who `claimant` is, for log lines: its name, participant, process and host.
   std::string describe(const Claimant& claimant) const;
+  // Says a granted claim: a line per change, an event per kind of change.
+  void say_granted(const Claimant& who, const std::vector<int>& joints,
+                   const JointClaims::Outcome& outcome, bool force);
   // Publishes the owners as they are now (call without holding lock_).
   void publish_owners();
 
@@ -53,6 +61,7 @@ class ClaimDesk {
   std::mutex& lock_;
   const std::atomic<std::int64_t>& now_ns_;
   runtime::StatusReport& report_;
+  runtime::EventLog& events_;
   RejectionLog& rejections_;
   runtime::StatusCounter& granted_;
   runtime::StatusCounter& refused_;

@@ -65,17 +65,17 @@ JointClaims::Outcome JointClaims::claim(const Claimant& who, std::span<const int
   return outcome;
 }
 
-int JointClaims::release(const Claimant& who, std::span<const int> joints) {
-  int released = 0;
+std::vector<int> JointClaims::release(const Claimant& who, std::span<const int> joints) {
+  std::vector<int> released;
   for (int joint = 0; joint < joint_count(); ++joint) {
     const bool listed =
         joints.empty() || std::find(joints.begin(), joints.end(), joint) != joints.end();
     if (listed && owners_[joint].held && owners_[joint].by == who) {
       owners_[joint] = {};
-      ++released;
+      released.push_back(joint);
     }
   }
-  if (released > 0) {
+  if (!released.empty()) {
     ++generation_;
   }
   return released;

@@ -60,8 +60,8 @@ class JointClaims {
   Outcome claim(const Claimant& who, std::span<const int> joints, bool force, std::int64_t now_ns,
                 const std::function<bool(const Claimant&)>& gone);
   // Frees the claimant's joints among `joints` (all of its joints when empty);
-  // returns how many it held.
-  int release(const Claimant& who, std::span<const int> joints);
+  // returns those it held (their indices).
+  std::vector<int> release(const Claimant& who, std::span<const int> joints);
 
   // The position in `joints` of the first joint `who` may not command, or -1.
   // Indices out of range are not this check's to refuse (the joint controller

@@ -107,11 +107,12 @@ RejectionLog::Sender& RejectionLog::sender_entry(const std::string& name) {
   return other_senders_;
 }
 
-void RejectionLog::reject(std::string_view what, std::string_view sender, std::string_view error,
+bool RejectionLog::reject(std::string_view what, std::string_view sender, std::string_view error,
                           Clock::time_point now) {
   const std::string name = printable(sender);
   std::string key = std::string(what) + ": " + kind_of(error);
   std::lock_guard lock(mutex_);
+  bool first_of_burst = false;
   Sender& s = sender_entry(name);
   ++s.count;
   if (s.counter != nullptr) {
@@ -126,7 +127,7 @@ void RejectionLog::reject(std::string_view what, std::string_view sender, std::s
     key = "(other rejections)";
     kind = std::find_if(kinds_.begin(), kinds_.end(), [&](const Kind& k) { return k.key == key; });
     if (kind == kinds_.end()) {
-      kinds_.push_back({"(any)", key, 0, 0});
+      kinds_.push_back({"(any)", key, 0, 0, Clock::time_point{}});  // its first: a burst
       kind = kinds_.end() - 1;
       log_ << "rejections: more than " << kMaxKinds
            << " kinds of rejection; further kinds are counted together\n";
@@ -138,13 +139,17 @@ void RejectionLog::reject(std::string_view what, std::string_view sender, std::s
          << s.name << "' are counted: summary every " << seconds(period_) << ")\n";
     log_.flush();
     ++lines_;
-    kinds_.push_back({s.name, key, 1, 1});  // logged: nothing to summarise
+    kinds_.push_back({s.name, key, 1, 1, now});  // logged: nothing to summarise
+    first_of_burst = true;
   } else {
     ++kind->count;
+    first_of_burst = now - kind->last >= kBurstGap;
+    kind->last = now;
   }
   if (now - last_summary_ >= period_) {
     summarise(now);
   }
+  return first_of_burst;
 }
 
 void RejectionLog::summarise(Clock::time_point now) {

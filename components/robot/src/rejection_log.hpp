@@ -49,10 +49,16 @@ class RejectionLog {
   RejectionLog(const RejectionLog&) = delete;
   RejectionLog& operator=(const RejectionLog&) = delete;
 
+  // A rejection after this long without one of its kind from its sender
+  // starts a new burst.
+  static constexpr Clock::duration kBurstGap = std::chrono::seconds(1);
+
   // One refused message: `what` ("command", "control parameters"), the
   // sender's name (the message's controller field) and the error text
-  // (without control characters: ActuatorSide passes it so).
-  void reject(std::string_view what, std::string_view sender, std::string_view error,
+  // (without control characters: ActuatorSide passes it so). True when it is
+  // the first of a burst of its kind from its sender (its first ever, or the
+  // first after kBurstGap without one): the caller's event (COMMANDS_REJECTED).
+  bool reject(std::string_view what, std::string_view sender, std::string_view error,
               Clock::time_point now = Clock::now());
 
   // Rejections counted from `sender` (0 when none), as on the status.
@@ -74,6 +80,7 @@ class RejectionLog {
     std::string key;     // what + kind_of(error)
     std::uint64_t count = 0;
     std::uint64_t summarised = 0;  // count at the last summary
+    Clock::time_point last;        // of its newest rejection (bursts)
   };
   struct Sender {
     std::string name;  // printable

@@ -137,8 +137,9 @@ class RobotDriver final : public runtime::Component {
       };
     }
     if (sides.actuators) {
-      actuators_ = std::make_unique<ActuatorSide>(participant, robot_, description, control,
-                                                  report(), std::move(observer), require_claims);
+      actuators_ =
+          std::make_unique<ActuatorSide>(participant, robot_, description, control, report(),
+                                         events(), std::move(observer), require_claims);
     }
   }
 
@@ -221,7 +222,8 @@ class RobotDriver final : public runtime::Component {
         participant, robot_, simulation_->step_period(), options.lockstep);
     auto& timeouts = report().counter("lockstep_timeouts");  // 0 unless lockstep
     if (options.lockstep) {
-      pacers_.push_back(std::make_unique<LockstepPacer>(options.lockstep_options, who_, timeouts));
+      pacers_.push_back(
+          std::make_unique<LockstepPacer>(options.lockstep_options, who_, timeouts, events()));
     }
     auto& stalls = report().counter("real_time_stalls");  // 0 unless real time
     if (options.real_time) {
@@ -229,7 +231,7 @@ class RobotDriver final : public runtime::Component {
           simulation_->step_period(),
           std::chrono::duration_cast<std::chrono::nanoseconds>(
               std::chrono::duration<double>(options.real_time_max_lag_s)),
-          who_, stalls));
+          who_, stalls, events()));
     }
   }
 
@@ -292,6 +294,7 @@ class RobotDriver final : public runtime::Component {
           "simulation stopped at t = " + std::to_string(simulation_->time()) + " s: " + e.what();
       report().set_error(what);
       runtime::print_line(stderr, who_ + ": " + what);
+      events().emit(EventSeverity::error, EventKind::divergence, what);
       runtime::request_process_exit(1);
     }
   }

@@ -74,7 +74,9 @@ void RealTimePacer::wait(std::uint64_t tick) {
       if (unprinted > 0) {
         line << " (" << unprinted << " more stall(s) since the last such line)";
       }
-      runtime::print_line(stderr, line.str());
+      const std::string text = line.str();
+      runtime::print_line(stderr, text);
+      events_.emit(EventSeverity::warning, EventKind::loop_stall, text);
     }
   }
   std::unique_lock lock(mutex_);
@@ -90,8 +92,8 @@ void RealTimePacer::stop() {
 }
 
 LockstepPacer::LockstepPacer(LockstepOptions options, std::string who,
-                             runtime::StatusCounter& timeouts)
-    : options_(std::move(options)), who_(std::move(who)), timeouts_(timeouts) {
+                             runtime::StatusCounter& timeouts, runtime::EventLog& events)
+    : options_(std::move(options)), who_(std::move(who)), timeouts_(timeouts), events_(events) {
   for (const auto& name : options_.controllers) {
     answered_[name] = -1;
   }
@@ -136,7 +138,9 @@ void LockstepPacer::wait(std::uint64_t tick) {
     std::ostringstream line;
     line << who_ << ": tick " << tick << " not answered by every controller within " << timeout_s
          << " s: stepping on";
-    runtime::print_line(stderr, line.str());
+    const std::string text = line.str();
+    runtime::print_line(stderr, text);
+    events_.emit(EventSeverity::warning, EventKind::loop_stall, text);
   }
 }
 

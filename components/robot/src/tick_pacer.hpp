@@ -12,7 +12,8 @@
 //                  with the process instead of running the missed time in a burst
 //                  under commands computed before the stall.
 // A real robot needs neither: the runner's periodic cycle paces it
-// (robot_driver.cpp).
+// (robot_driver.cpp). A stall that gets its line, and a lockstep tick not
+// answered in time, are also LOOP_STALL events (warning) on the owner's log.
 //
 // Threads: wait() runs on the driver's loop; observe() on DDS threads; stop()
 // on the thread that deactivates. wait() never allocates (a timeout's warning
@@ -29,6 +30,7 @@
 #include <vector>
 
 #include <wbi/msg/commands.h>
+#include <wbi/runtime/event_log.hpp>
 #include <wbi/runtime/status_report.hpp>
 
 namespace wbi::robot {
@@ -92,10 +94,10 @@ class StallLines {
 class RealTimePacer final : public TickPacer {
  public:
   // who: names the robot in the stall message; stalls: the status counter of
-  // delays not caught up.
+  // delays not caught up; events: where a stall's event goes.
   RealTimePacer(std::chrono::nanoseconds period, std::chrono::nanoseconds max_lag, std::string who,
-                runtime::StatusCounter& stalls)
-      : schedule_(period, max_lag), who_(std::move(who)), stalls_(stalls) {}
+                runtime::StatusCounter& stalls, runtime::EventLog& events)
+      : schedule_(period, max_lag), who_(std::move(who)), stalls_(stalls), events_(events) {}
   void start() override;
   void wait(std::uint64_t tick) override;
   void stop() override;
@@ -111,6 +113,7 @@ class RealTimePacer final : public TickPacer {
   StallLines stall_lines_{std::chrono::seconds(10), std::chrono::milliseconds(100)};  // loop only
   const std::string who_;
   runtime::StatusCounter& stalls_;
+  runtime::EventLog& events_;
   std::mutex mutex_;  // guards stopped_
   std::condition_variable stopped_changed_;
   bool stopped_ = false;
@@ -125,8 +128,10 @@ struct LockstepOptions {
 class LockstepPacer final : public TickPacer {
  public:
   // who: names the robot in the timeout warning, e.g. "sim_robot 'arm'";
-  // timeouts: the status counter of ticks not answered in time.
-  LockstepPacer(LockstepOptions options, std::string who, runtime::StatusCounter& timeouts);
+  // timeouts: the status counter of ticks not answered in time; events: where
+  // a timeout's event goes.
+  LockstepPacer(LockstepOptions options, std::string who, runtime::StatusCounter& timeouts,
+                runtime::EventLog& events);
   void start() override;
   void wait(std::uint64_t tick) override;
   void stop() override;
@@ -139,6 +144,7 @@ class LockstepPacer final : public TickPacer {
   const LockstepOptions options_;
   const std::string who_;
   runtime::StatusCounter& timeouts_;
+  runtime::EventLog& events_;
   std::mutex mutex_;  // guards answered_, stopped_
   std::condition_variable changed_;
   std::map<std::string, std::int64_t> answered_;  // newest tick answered per controller

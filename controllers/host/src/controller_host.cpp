@@ -26,9 +26,10 @@ std::string seconds(double t) {
 }  // namespace
 
 ControllerHost::ControllerHost(WholeBodyInterface& robot, runtime::StatusReport& report,
-                               Options options)
+                               runtime::EventLog& events, Options options)
     : robot_(robot),
       report_(report),
+      events_(events),
       options_(options),
       measured_(robot.dofs()),
       last_command_(Eigen::VectorXd::Zero(robot.dofs())),
@@ -181,6 +182,7 @@ void ControllerHost::fall_back(const std::string& reason, double time_s) {
   report_.set_error(line);
   std::fprintf(stderr, "%s\n", line.c_str());
   std::fflush(stderr);
+  events_.emit(EventSeverity::warning, EventKind::controller_fallback, line);
 }
 
 bool ControllerHost::apply_switch(double time_s) {
@@ -391,6 +393,9 @@ void ControllerHost::finish_switch() {
   ++switches_done_;
   lock.unlock();
   switch_done_.notify_all();
+  if (last_switch_.done) {  // one that did not activate fell back: that is its event
+    events_.emit(EventSeverity::info, EventKind::controller_switched, last_switch_.text);
+  }
 }
 
 SwitchResult ControllerHost::check_switch(Hosted* to, Hosted* from) const {
@@ -489,6 +494,10 @@ void ControllerHost::set_parameter(const std::string& controller, const std::str
     active = active_ == &hosted;
   }
   hosted.parameters->stage(index, values, active);
+  const std::string& unit = hosted.parameters->spec(index).unit;
+  events_.emit(EventSeverity::info, EventKind::parameter_changed,
+               controller + "." + parameter + " = " + format_values(values) +
+                   (unit.empty() ? "" : " " + unit) + " (from the next tick)");
 }
 
 bool ControllerHost::wait_for_parameters(const std::string& controller, std::uint64_t generation,
@@ -528,8 +537,12 @@ void ControllerHost::report_references(Hosted& active, double time_s) {
     const ReferenceInput& input = *active.inputs[i];
     if (input.stale_episodes() != active.stale_said[i]) {
       active.stale_said[i] = input.stale_episodes();
-      std::fprintf(stderr, "t = %.3f s: reference %s stale (older than %.3f s): rule %s\n", time_s,
-                   input.owner().c_str(), input.spec().max_age_s, to_string(input.spec().rule));
+      char line[256];
+      std::snprintf(line, sizeof line,
+                    "t = %.3f s: reference %s stale (older than %.3f s): rule %s", time_s,
+                    input.owner().c_str(), input.spec().max_age_s, to_string(input.spec().rule));
+      std::fprintf(stderr, "%s\n", line);
+      events_.emit(EventSeverity::warning, EventKind::reference_stale, line, input.owner());
     }
   }
 }

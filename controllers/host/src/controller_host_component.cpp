@@ -92,25 +92,25 @@ class ControllerHostComponent final : public runtime::Component {
     }
 
     // A new estimator is a rebound of the state stream (wbi/dds/producers.hpp),
-    // said before its first sample is taken.
+    // said before its first sample is taken (and a PRODUCER_RESTARTED event).
     new_estimators_ = &report().counter("new_estimators");
-    std::string state_topic = "'";  // as the rebound's line quotes it
-    state_topic += dds::topics::state(options.robot);
-    state_topic += '\'';
+    std::string state_topic = dds::topics::state(options.robot);
+    std::string quoted = "'" + state_topic + "'";  // as the rebound's line quotes it
     options.on_producer_event = [count = runtime::count_producer_events(report()),
-                                 state = std::move(state_topic),
+                                 state = std::move(quoted), topic = std::move(state_topic),
                                  this](const dds::ProducerEvent& event) {
       count(event);
       if (event.kind == dds::ProducerEvent::Kind::rebound &&
           event.text.find(state) != std::string_view::npos && host_) {
         new_estimators_->add();
         host_->notify_state_source_changed();
+        events().emit(EventSeverity::info, EventKind::producer_restarted, event.text, topic);
       }
     };
     robot_ = make_dds_interface(options);
     robot_->add_joints(joints);
     robot_->init(std::chrono::milliseconds(static_cast<std::int64_t>(init_timeout_s * 1000)));
-    host_.emplace(*robot_, report(), host_options);
+    host_.emplace(*robot_, report(), events(), host_options);
 
     std::string active = kHoldController;
     if (!single_.empty()) {

@@ -55,6 +55,7 @@ namespace detail {
 int Launcher::run() {
   const auto start = Clock::now();
   bool failed = false;
+  start_events();
   if (std::any_of(processes_.begin(), processes_.end(),
                   [](const Managed& p) { return p.spec->hang_timeout_s > 0; })) {
     heartbeats_.emplace(participant());
@@ -142,6 +143,7 @@ bool Launcher::reap(bool& failed) {
     if (waitpid(process.pid, &status, WNOHANG) != process.pid) {
       continue;
     }
+    tell_exit(process, status);
     process.pid = -1;
     process.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     if (process.stopped_by_us) {
@@ -220,6 +222,7 @@ bool Launcher::check_hangs(bool& failed) {
     }
     process.hang_reported = true;
     say(process.spec->name + ": " + why);
+    tell(EventSeverity::error, EventKind::process_hung, process, why);
     const bool will_respawn =
         process.spec->respawn.enabled && process.restarts < process.spec->respawn.max_retries;
     if (will_respawn) {
@@ -244,8 +247,10 @@ bool Launcher::supervise(Clock::time_point start) {
     for (auto& process : processes_) {
       if (process.restart_at && Clock::now() >= *process.restart_at) {
         ++process.restarts;
-        say(process.spec->name + ": respawn " + std::to_string(process.restarts) + " of " +
-            std::to_string(process.spec->respawn.max_retries));
+        const std::string respawn = "respawn " + std::to_string(process.restarts) + " of " +
+                                    std::to_string(process.spec->respawn.max_retries);
+        say(process.spec->name + ": " + respawn);
+        tell(EventSeverity::warning, EventKind::process_respawned, process, respawn);
         if (!spawn(process) && process.spec->required) {
           return true;
         }
@@ -291,6 +296,7 @@ void Launcher::stop_all() {
       kill(-process.pid, SIGKILL);
       int status = 0;
       waitpid(process.pid, &status, 0);
+      tell_exit(process, status);
       process.exit_code = 128 + SIGKILL;
       process.pid = -1;
     }

@@ -11,6 +11,8 @@
 #include <vector>
 
 #include <wbi/dds/participant.hpp>
+#include <wbi/runtime/event_log.hpp>
+#include <wbi/runtime/event_pump.hpp>
 
 #include "heartbeats.hpp"
 #include "wbi/launch/launcher.hpp"
@@ -67,6 +69,11 @@ class Launcher {
   void stop_all();
   void drain_output();
   void print_summary();
+  // The launcher's events (launcher_events.cpp): about `process`, its source.
+  void start_events();
+  void tell(EventSeverity severity, EventKind kind, const Managed& process,
+            const std::string& text);
+  void tell_exit(const Managed& process, int wait_status);
 
   const DeployFile& deploy_;
   LaunchOptions options_;
@@ -74,6 +81,8 @@ class Launcher {
   std::vector<Managed> processes_;
   std::optional<dds::Participant> participant_;
   std::optional<Heartbeats> heartbeats_;  // when a process has a hang_timeout
+  runtime::EventLog events_;
+  std::optional<runtime::EventPump> event_pump_;  // before participant_ goes: sends the last
 };
 
 }  // namespace wbi::launch::detail

@@ -58,7 +58,9 @@ namespace detail {
 bool Launcher::spawn(Managed& process) {
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0) {
-    say(process.spec->name + ": cannot create a pipe: " + std::strerror(errno));
+    const std::string why = std::string("cannot create a pipe: ") + std::strerror(errno);
+    say(process.spec->name + ": " + why);
+    tell(EventSeverity::error, EventKind::process_exited, process, "not started: " + why);
     return false;
   }
   std::string program;
@@ -66,6 +68,8 @@ bool Launcher::spawn(Managed& process) {
     program = resolve_program(process.spec->command.front());
   } catch (const std::exception& e) {
     say(process.spec->name + ": " + e.what());
+    tell(EventSeverity::error, EventKind::process_exited, process,
+         std::string("not started: ") + e.what());
     close(fds[0]);
     close(fds[1]);
     return false;
@@ -107,7 +111,9 @@ bool Launcher::spawn(Managed& process) {
   close(fds[1]);
   if (rc != 0) {
     close(fds[0]);
-    say(process.spec->name + ": cannot start " + program + ": " + std::strerror(rc));
+    const std::string why = "cannot start " + program + ": " + std::strerror(rc);
+    say(process.spec->name + ": " + why);
+    tell(EventSeverity::error, EventKind::process_exited, process, "not started: " + why);
     return false;
   }
   fcntl(fds[0], F_SETFL, O_NONBLOCK);
@@ -120,7 +126,9 @@ bool Launcher::spawn(Managed& process) {
   if (heartbeats_) {
     heartbeats_->forget(process.spec->components);  // the new ones are not late yet
   }
-  say(process.spec->name + ": started (pid " + std::to_string(process.pid) + ")");
+  const std::string started = "started (pid " + std::to_string(process.pid) + ")";
+  say(process.spec->name + ": " + started);
+  tell(EventSeverity::info, EventKind::process_started, process, started);
   return true;
 }
 

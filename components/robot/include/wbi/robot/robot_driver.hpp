@@ -70,6 +70,9 @@
 // lockstep) and real_time_stalls (in real time); the last rejection or trip in
 // words as the last error. A simulation that throws (diverged) stops stepping
 // with "simulation stopped at t = T s: …" as the last error.
+// Events (wbi/events): WATCHDOG_TRIP, COMMANDS_REJECTED, CLAIM_CHANGED and
+// CLAIM_FORCED from the actuator side, LOOP_STALL from the tick pacers,
+// DIVERGENCE when the simulation throws (docs/events.md).
 #pragma once
 
 #include <functional>

@@ -22,6 +22,11 @@
 // model, is late: skipped, counter "late_services"): hold would lack the same.
 // Each fallback is counted (status counter "fallbacks"), becomes the status's
 // last error with its reason, and is printed on stderr: never a silent stop.
+//
+// Events (wbi/events, the component's EventLog): CONTROLLER_FALLBACK (warning,
+// the fallback's line), CONTROLLER_SWITCHED (info, what the switch did),
+// PARAMETER_CHANGED (info, the value staged) and REFERENCE_STALE (warning,
+// once per episode of a reference input).
 #pragma once
 
 #include <atomic>
@@ -33,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include <wbi/runtime/event_log.hpp>
 #include <wbi/runtime/status_report.hpp>
 
 #include "wbi/controllers/controller.hpp"
@@ -76,8 +82,10 @@ class ControllerHost {
     std::chrono::milliseconds switch_timeout{2000};  // request_switch waits this long for the loop
   };
 
-  // robot: initialized, with the host's joints. report: counters and last error.
-  ControllerHost(WholeBodyInterface& robot, runtime::StatusReport& report, Options options);
+  // robot: initialized, with the host's joints. report: counters and last
+  // error; events: its faults and changes (both the component's).
+  ControllerHost(WholeBodyInterface& robot, runtime::StatusReport& report,
+                 runtime::EventLog& events, Options options);
   ~ControllerHost();
   ControllerHost(const ControllerHost&) = delete;
   ControllerHost& operator=(const ControllerHost&) = delete;
@@ -163,6 +171,7 @@ class ControllerHost {
 
   WholeBodyInterface& robot_;
   runtime::StatusReport& report_;
+  runtime::EventLog& events_;
   Options options_;
   std::vector<std::unique_ptr<Hosted>> hosted_;
   Hosted* active_ = nullptr;
