@@ -4,6 +4,7 @@
 
 #include <sys/types.h>
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 #include <ostream>
@@ -42,7 +43,7 @@ struct Managed {
 class Launcher {
  public:
   Launcher(const DeployFile& deploy, const LaunchOptions& options, std::ostream& out)
-      : deploy_(deploy), options_(options), out_(out) {
+      : deploy_(deploy), options_(options), out_(out), events_(rate_limit_for(deploy)) {
     for (const auto& spec : deploy.processes) {
       Managed process;
       process.spec = &spec;
@@ -74,6 +75,14 @@ class Launcher {
   void tell(EventSeverity severity, EventKind kind, const Managed& process,
             const std::string& text);
   void tell_exit(const Managed& process, int wait_status);
+
+  // The EventLog's limit is per kind; the launcher speaks for every process,
+  // so it gets one process's limit per process (no exit lost at a shutdown).
+  static runtime::EventRateLimit rate_limit_for(const DeployFile& deploy) {
+    const double processes = std::max<double>(1.0, static_cast<double>(deploy.processes.size()));
+    const runtime::EventRateLimit one;
+    return {.per_second = one.per_second * processes, .burst = one.burst * processes};
+  }
 
   const DeployFile& deploy_;
   LaunchOptions options_;
