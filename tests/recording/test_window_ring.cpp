@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <random>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include <wbi/recording/window_recorder.hpp>
@@ -64,15 +65,16 @@ TEST(WindowRing, HoldsTheNewestSamplesWithinItsBytesAcrossManyWrapArounds) {
   std::uniform_int_distribution<std::size_t> size(0, 3000);
   for (std::uint64_t k = 0; k < 20000; ++k) {
     ASSERT_TRUE(push(ring, k, size(random)));
-    ASSERT_LE(ring.used_bytes(), ring.capacity());
+    ASSERT_LE(ring.stats().used_bytes, ring.capacity());
   }
+  const auto stats = ring.stats();
   const auto seen = read_all(ring, 0);
-  ASSERT_EQ(seen.size(), ring.records());
+  ASSERT_EQ(seen.size(), stats.records);
   ASSERT_GT(seen.size(), 20u);
   for (std::size_t i = 0; i < seen.size(); ++i) {  // the newest, consecutive, in order
     EXPECT_EQ(seen[i], 20000 - seen.size() + i);
   }
-  EXPECT_EQ(ring.oldest_log_time(), seen.front() * kMs);
+  EXPECT_EQ(stats.oldest_log_time, seen.front() * kMs);
 }
 
 TEST(WindowRing, ReadsFromATimeUntilATimeAndGoesOnWithWhatArrivesLater) {
@@ -127,14 +129,55 @@ TEST(WindowRing, CountsEvictionsInsideTheWindowAndRefusesHugeSamples) {
   for (std::uint64_t k = 0; k < 100; ++k) {
     push(small, k, 1024);
   }
-  EXPECT_GT(small.evicted_in_window(), 0u);
+  EXPECT_GT(small.stats().evicted_in_window, 0u);
   WindowRing roomy(1 << 20, 50 * kMs);
   for (std::uint64_t k = 0; k < 3000; ++k) {
     push(roomy, k, 1024);
   }
-  EXPECT_EQ(roomy.evicted_in_window(), 0u);  // only samples older than 50 ms were evicted
+  EXPECT_EQ(roomy.stats().evicted_in_window, 0u);  // only samples older than 50 ms were evicted
   EXPECT_FALSE(push(small, 1000, small.max_payload() + 1));
-  EXPECT_EQ(small.too_large(), 1u);
+  EXPECT_EQ(small.stats().too_large, 1u);
+}
+
+// The reader takes no lock: while a thread pushes (sizes varying, the ring
+// wrapping every few hundred samples), every record it copies out is whole
+// (its bytes all say its number), in order, and what it misses is counted.
+TEST(WindowRing, AReaderWithoutTheLockGetsWholeRecordsOrCountsThemLost) {
+  WindowRing ring(64 * 1024, 0);
+  constexpr std::uint64_t kSamples = 200000;
+  std::thread pusher([&] {
+    for (std::uint64_t k = 0; k < kSamples; ++k) {
+      push(ring, k, 16 + (k * 37) % 900);
+    }
+  });
+  RingBatch batch(16 * 1024);
+  ring.start_reading(0);
+  std::uint64_t read = 0;
+  std::uint64_t next = 0;
+  bool torn = false;
+  while (next < kSamples && !torn) {
+    ring.read(batch, UINT64_MAX);
+    for (std::size_t i = 0; i < batch.size(); ++i) {
+      const auto entry = batch[i];
+      const std::uint64_t k = entry.sample.log_time / kMs;
+      torn = torn || k < next || entry.bytes.size() != 16 + (k * 37) % 900;
+      for (const auto byte : entry.bytes) {
+        torn = torn || byte != static_cast<std::uint8_t>(k);
+      }
+      next = k + 1;
+      ++read;
+    }
+    if (ring.stats().pushed == kSamples && batch.size() == 0) {
+      break;
+    }
+  }
+  pusher.join();
+  while (ring.read(batch, UINT64_MAX) != WindowRing::ReadEnd::caught_up || batch.size() > 0) {
+    read += batch.size();
+  }
+  EXPECT_FALSE(torn);
+  EXPECT_EQ(read + ring.lost_to_reader(), kSamples) << "read " << read;
+  EXPECT_GT(read, 0u);
 }
 
 TEST(WindowRing, PushAllocatesNothing) {

@@ -35,6 +35,9 @@ int main(int argc, char** argv) {
       file.c_str(), report.trigger_sources.size(), report.trigger_sources.front().c_str(),
       report.events, argv[2], report.stream_samples, report.before_s, report.after_s, report.gaps,
       static_cast<unsigned long long>(report.missing));
+  for (const auto& [topic, missing] : report.missing_by_topic) {
+    std::printf("  %s: %llu missing\n", topic.c_str(), static_cast<unsigned long long>(missing));
+  }
   const bool pass =
       report.before_s >= before - kEdgeS && report.after_s >= after - kEdgeS && report.gaps == 0;
   return pass ? 0 : 1;

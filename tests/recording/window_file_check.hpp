@@ -1,7 +1,9 @@
 // What a windowed recorder's file holds, for the tests: the trigger events
 // in it (wbi/events), how far a stream reaches before the first and after the
 // last of them, and the gaps in that stream's Header.seq. Stream "*": every
-// topic whose type starts with a Header (the events aside), each counted on
+// topic whose type starts with a Header and that has one writer (channel
+// metadata "writers" when the recorder found it; wbi/status is every
+// component's, their sequences interleave), the events aside, each counted on
 // its own sequence.
 #pragma once
 
@@ -39,6 +41,7 @@ struct WindowFileReport {
   // new incarnation, not a gap), and the samples they skip.
   std::size_t gaps = 0;
   std::uint64_t missing = 0;
+  std::map<std::string, std::uint64_t> missing_by_topic;  // the topics with gaps
   std::string problem;  // empty: the file could be read and decoded
 };
 
@@ -105,8 +108,11 @@ inline WindowFileReport check_window_file(const std::filesystem::path& file,
         if (every_topic) {
           auto known = has_header.find(topic);
           if (known == has_header.end()) {
+            const auto writers = message->channel->metadata.find("writers");
             known = has_header
-                        .emplace(topic, message->schema != nullptr &&
+                        .emplace(topic, message->schema != nullptr && topic != "wbi/status" &&
+                                            writers != message->channel->metadata.end() &&
+                                            writers->second == "1" &&
                                             recording::starts_with_header(
                                                 message->schema->name,
                                                 std::string(message->schema->data.begin(),
@@ -131,6 +137,7 @@ inline WindowFileReport check_window_file(const std::filesystem::path& file,
         if (previous != previous_seq.end() && *seq > previous->second + 1) {
           ++report.gaps;
           report.missing += *seq - previous->second - 1;
+          report.missing_by_topic[topic] += *seq - previous->second - 1;
         }
         previous_seq[topic] = *seq;
         stream_log_times.push_back(message->log_time);

@@ -12,6 +12,9 @@
 #include <stdexcept>
 #include <thread>
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <wbi/msg/events.h>
 #include <wbi/dds/topics.hpp>
 #include <wbi/mcap/writer.hpp>
@@ -27,7 +30,8 @@ namespace wbi::recording {
 
 namespace {
 
-constexpr std::size_t kBatchBytes = std::size_t{2} << 20;
+// The writer's copy out of the ring per read (no lock: window_ring.hpp).
+constexpr std::size_t kBatchBytes = std::size_t{512} << 10;
 constexpr std::size_t kChunkBytes = std::size_t{512} << 10;
 // The MCAP writer's buffers at kChunkBytes: the open chunk (up to a chunk and
 // one sample of at most kMaxSampleBytes), its compressed copy, the codec's
@@ -38,6 +42,7 @@ constexpr std::size_t kWriterAllowance = std::size_t{6} << 20;
 constexpr std::uint64_t kCloseGraceNs = 100'000'000;
 constexpr std::chrono::milliseconds kWriterWake{20};
 constexpr std::size_t kMaxPendingTriggers = 64;
+constexpr int kWriterNice = 10;
 constexpr std::size_t kMaxTriggersNamed = 32;  // in a file's metadata
 constexpr double kNsPerSecond = 1e9;
 
@@ -102,8 +107,7 @@ struct WindowRecorder::Impl {
   std::array<bool, enum_count<EventKind>()> is_trigger{};
   const std::uint64_t start_ns = system_now_ns();
 
-  std::mutex ring_mutex;  // push (DDS threads) and read (writer thread)
-  WindowRing ring;
+  WindowRing ring;  // pushed by the DDS threads, read by the writer thread
   RingBatch batch;  // writer thread
 
   std::mutex trigger_mutex;
@@ -177,10 +181,7 @@ struct WindowRecorder::Impl {
       on_event_before_start(cdr);  // replayed by transient-local durability: not recorded
       return;
     }
-    {
-      std::lock_guard lock(ring_mutex);
-      ring.push(index, log_time, publish_time, cdr);
-    }
+    ring.push(index, log_time, publish_time, cdr);
     if (is_event) {
       std::lock_guard lock(event_mutex);
       if (decode_event(cdr, event)) {
@@ -243,11 +244,8 @@ struct WindowRecorder::Impl {
     opened.start_ns = trigger.time_ns > before ? trigger.time_ns - before : 0;
     opened.end_ns = trigger.time_ns + ns(options.after);
     opened.first_trigger_ns = trigger.time_ns;
-    {
-      std::lock_guard lock(ring_mutex);
-      ring.start_reading(opened.start_ns);
-      opened.lost_at_open = ring.lost_to_reader();
-    }
+    ring.start_reading(opened.start_ns);
+    opened.lost_at_open = ring.lost_to_reader();
     add_trigger(trigger);
     log("window: " + std::string(to_string(trigger.kind)) + " from '" + trigger.source.data() +
         "': writing " + file->path.string());
@@ -297,13 +295,13 @@ struct WindowRecorder::Impl {
   // ring's lock held only for each copy.
   void pump_file() {
     for (;;) {
-      {
-        std::lock_guard lock(ring_mutex);
-        file->last_read = ring.read(batch, file->end_ns);
-      }
+      file->last_read = ring.read(batch, file->end_ns);
       for (std::size_t i = 0; i < batch.size(); ++i) {
         const auto entry = batch[i];
         const std::uint32_t source = entry.sample.source;
+        if (source >= subscriptions.size()) {
+          continue;  // cannot be: a validated record names a subscribed topic
+        }
         const std::uint16_t channel = channel_for(source);  // sizes sequences too
         file->writer->write(channel, file->sequences[source]++, entry.sample.log_time,
                             entry.sample.publish_time, entry.bytes);
@@ -316,12 +314,8 @@ struct WindowRecorder::Impl {
 
   void finish_file() {
     pump_file();
-    std::uint64_t lost = 0;
-    {
-      std::lock_guard lock(ring_mutex);
-      lost = ring.lost_to_reader() - file->lost_at_open;
-      ring.stop_reading();
-    }
+    const std::uint64_t lost = ring.lost_to_reader() - file->lost_at_open;
+    ring.stop_reading();
     const auto& stats = file->writer->statistics();
     const std::uint64_t messages = stats.messages;
     file->writer->write_metadata("wbi_window",
@@ -366,19 +360,19 @@ struct WindowRecorder::Impl {
 
   void publish_progress() {
     WindowProgress now;
-    {
-      std::lock_guard lock(ring_mutex);
-      now.received = ring.pushed();
-      now.received_bytes = ring.pushed_bytes();
-      now.ring_used_bytes = ring.used_bytes();
-      now.ring_records = ring.records();
-      const std::uint64_t oldest = ring.oldest_log_time();
-      now.ring_span_s =
-          oldest == 0 ? 0.0 : static_cast<double>(system_now_ns() - oldest) / kNsPerSecond;
-      now.evicted_in_window = ring.evicted_in_window();
-      now.too_large = ring.too_large();
-      now.lost_to_file = ring.lost_to_reader();
-    }
+    const RingStats ring_now = ring.stats();
+    now.received = ring_now.pushed;
+    now.received_bytes = ring_now.pushed_bytes;
+    now.ring_used_bytes = ring_now.used_bytes;
+    now.ring_records = ring_now.records;
+    const std::uint64_t oldest = ring_now.oldest_log_time;
+    const std::uint64_t system_now = system_now_ns();
+    now.ring_span_s = oldest == 0 || oldest > system_now
+                          ? 0.0
+                          : static_cast<double>(system_now - oldest) / kNsPerSecond;
+    now.evicted_in_window = ring_now.evicted_in_window;
+    now.too_large = ring_now.too_large;
+    now.lost_to_file = ring.lost_to_reader();
     now.triggers = triggers_taken;
     now.triggers_merged = triggers_merged;
     now.triggers_before_start = triggers_before_start.load(std::memory_order_relaxed);
@@ -395,6 +389,10 @@ struct WindowRecorder::Impl {
   }
 
   void run() {
+    // Compressing a window's backlog is a burst of CPU: the DDS threads that
+    // fill the ring go first (a robot stream keeps one sample: a reader that
+    // waits for the CPU loses samples). Best effort: a thread's nice value.
+    static_cast<void>(setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), kWriterNice));
     using clock = std::chrono::steady_clock;
     auto next_discovery = clock::now();
     std::array<Trigger, kMaxPendingTriggers> triggers{};
