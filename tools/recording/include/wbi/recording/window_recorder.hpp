@@ -6,9 +6,10 @@
 // window_ring.hpp), the oldest evicted to make room; the block, the batch the
 // file writer copies through and an allowance for the MCAP writer's buffers
 // are the whole bound (WindowMemory), fixed at the start and never exceeded.
-// DDS callbacks copy a sample into the ring under a mutex (no allocation);
-// one writer thread copies batches out of it and writes them, so writing a
-// file never stalls the readers and the window keeps filling meanwhile.
+// DDS callbacks copy a sample into the ring under the pushers' mutex (no
+// allocation); one writer thread copies batches out of it without taking
+// that mutex and writes them, so writing a file never stalls the DDS readers
+// and the window keeps filling meanwhile.
 //
 // Triggers: wbi/events is always subscribed, recorded as a channel like any
 // topic and read for triggers. An event of a trigger kind stamped at t (its
