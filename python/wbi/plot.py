@@ -9,8 +9,10 @@ recording says what they are: `values` of a Signals topic by its `names`
 (`wbi-plot run.mcap wbi/icub3/signals/balance values[4,1]`: the CoM reference
 and the CoM along y, in one panel), and the joint vectors of a robot's topics (q, dq,
 ddq, tau, encoder_position, …: one element per joint) by the joint names of
-its recorded `wbi/<robot>/description`. Uses matplotlib's Agg backend (no
-display needed). Exit codes: 0 success, 1 error (one line on stderr).
+its recorded `wbi/<robot>/description`. `--events` marks the recording's
+wbi/events (a windowed recorder's file holds them) on the time axis: a line at
+each event's stamp, coloured by severity, named by its kind. Uses matplotlib's
+Agg backend (no display needed). Exit codes: 0 success, 1 error (one line on stderr).
 """
 
 import argparse
@@ -79,8 +81,36 @@ def _list(recording, out):
             out.write(f"{topic}  (not decoded: {error})\n")
 
 
-def plot(recording, topic, fields, output, title=None):
-    """Writes the PNG; returns the TopicData plotted."""
+_SEVERITY_COLOURS = {"DEBUG": "grey", "INFO": "tab:blue", "WARNING": "tab:orange",
+                     "ERROR": "tab:red", "FATAL": "black"}
+
+
+def recorded_events(recording):
+    """[(time [s] on the recording's time base, severity, kind, source)] of its wbi/events:
+    the time is the event's stamp (when it happened), not when it was recorded."""
+    if "wbi/events" not in recording.topics:
+        return []
+    data = recording.topic("wbi/events")
+    kinds = data.enum_names("kind")
+    severities = data.enum_names("severity")
+    t = data.t + (data["header.stamp_ns"] - data.log_time_ns) * 1e-9
+    return [(float(t[i]), severities.get(int(data["severity"][i]), "?"),
+             kinds.get(int(data["kind"][i]), "?"), str(data["source"][i]))
+            for i in range(len(data))]
+
+
+def _mark_events(axes, events):
+    for row, ax in enumerate(axes[:, 0]):
+        for time, severity, kind, source in events:
+            ax.axvline(time, color=_SEVERITY_COLOURS.get(severity, "grey"), linestyle="--",
+                       linewidth=0.8, alpha=0.8)
+            if row == 0:
+                ax.text(time, 1.0, f" {kind} {source}", transform=ax.get_xaxis_transform(),
+                        rotation=90, va="top", ha="right", fontsize="x-small")
+
+
+def plot(recording, topic, fields, output, title=None, events=None):
+    """Writes the PNG; returns the TopicData plotted. events: recorded_events() to mark."""
     data = recording.topic(topic)
     series = [_series(data, spec, recording) for spec in fields]
     import matplotlib  # here: slow to import, and not needed for --list or a bad field
@@ -100,6 +130,8 @@ def plot(recording, topic, fields, output, title=None):
         ax.grid(True, alpha=0.3)
         if values.ndim == 1 or values.shape[1] <= 12:
             ax.legend(loc="upper right", fontsize="small", ncol=4)
+    if events:
+        _mark_events(axes, events)
     axes[-1, 0].set_xlabel("log time [s]")
     figure.suptitle(title or f"{topic}  ({recording.path})", fontsize="medium")
     figure.tight_layout()
@@ -118,6 +150,8 @@ def main(argv=None):
     parser.add_argument("-o", "--output", help="the PNG to write")
     parser.add_argument("--title", help="figure title (default: topic and file)")
     parser.add_argument("--list", action="store_true", help="print topics and fields, and exit")
+    parser.add_argument("--events", action="store_true",
+                        help="mark the recording's wbi/events on the time axis")
     args = parser.parse_args(argv)
     try:
         recording = Recording(args.file)
@@ -128,10 +162,12 @@ def main(argv=None):
             return 0
         if not args.topic or not args.fields or not args.output:
             parser.error("give TOPIC, at least one FIELD and -o OUT.png (or --list)")
-        data = plot(recording, args.topic, args.fields, args.output, args.title)
+        events = recorded_events(recording) if args.events else None
+        data = plot(recording, args.topic, args.fields, args.output, args.title, events)
         print(f"wrote {args.output}: {args.topic}, {len(data)} messages over "
               f"{(data.t[-1] - data.t[0]) if len(data) else 0.0:.3f} s; fields "
-              + ", ".join(args.fields))
+              + ", ".join(args.fields)
+              + (f"; {len(events)} events marked" if events is not None else ""))
         return 0
     except (McapError, RecordingError, OSError) as error:
         print(f"wbi-plot: {error}", file=sys.stderr)

@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 #include <wbi/mcap/reader.hpp>
+#include <wbi/recording/recorded_events.hpp>
 
 #include "../options.hpp"
 #include "../subcommands.hpp"
@@ -96,7 +97,58 @@ Summary summarise(const mcap::FileInfo& info) {
   return s;
 }
 
-void print_json(const std::string& file, const mcap::FileInfo& info, const Summary& s) {
+// The events, one line each: when (the sender's stamp), severity, source, kind, text.
+void print_events(const recording::RecordedEvents& recorded) {
+  if (recorded.events.empty() && recorded.undecoded == 0) {
+    return;
+  }
+  std::cout << "events:       " << recorded.events.size();
+  if (recorded.undecoded > 0) {
+    std::cout << "  (" << recorded.undecoded << " more did not decode)";
+  }
+  std::cout << "\n";
+  std::size_t source_width = 6;
+  for (const auto& event : recorded.events) {
+    source_width = std::max(source_width, event.source.size());
+  }
+  for (const auto& event : recorded.events) {
+    std::cout << "  "
+              << utc_time(static_cast<std::uint64_t>(std::max<std::int64_t>(event.stamp_ns, 0)))
+              << "  " << std::left << std::setw(7) << to_string(event.severity) << "  "
+              << std::setw(static_cast<int>(source_width)) << event.source << "  " << std::setw(19)
+              << to_string(event.kind) << std::right << "  " << event.text;
+    if (!event.subject.empty()) {
+      std::cout << "  [" << event.subject << "]";
+    }
+    if (event.suppressed > 0) {
+      std::cout << "  (+" << event.suppressed << " suppressed)";
+    }
+    std::cout << "\n";
+  }
+}
+
+nlohmann::ordered_json events_json(const recording::RecordedEvents& recorded) {
+  auto events = nlohmann::ordered_json::array();
+  for (const auto& event : recorded.events) {
+    nlohmann::ordered_json entry;
+    entry["stamp_ns"] = event.stamp_ns;
+    entry["time"] = utc_time(static_cast<std::uint64_t>(std::max<std::int64_t>(event.stamp_ns, 0)));
+    entry["log_time_ns"] = event.log_time;
+    entry["severity"] = to_string(event.severity);
+    entry["kind"] = to_string(event.kind);
+    entry["robot"] = event.robot;
+    entry["participant"] = event.participant;
+    entry["source"] = event.source;
+    entry["subject"] = event.subject;
+    entry["text"] = event.text;
+    entry["suppressed"] = event.suppressed;
+    events.push_back(std::move(entry));
+  }
+  return events;
+}
+
+void print_json(const std::string& file, const mcap::FileInfo& info, const Summary& s,
+                const recording::RecordedEvents& events) {
   const auto& stats = info.statistics;
   nlohmann::ordered_json out;
   out["path"] = file;
@@ -145,6 +197,8 @@ void print_json(const std::string& file, const mcap::FileInfo& info, const Summa
     topics.push_back(std::move(entry));
   }
   out["topics"] = std::move(topics);
+  out["events"] = events_json(events);
+  out["undecoded_events"] = events.undecoded;
   std::cout << out.dump(2) << "\n";
 }
 
@@ -194,11 +248,12 @@ void print_text(const std::string& file, const mcap::FileInfo& info, const Summa
 int run_info(Args args) {
   Options options("wbi bag info FILE [options]",
                   "Prints what an MCAP recording holds: its duration, start and end, size and\n"
-                  "compression, and per topic its type, message count and rate. Uses the file's\n"
-                  "summary when it has one, else scans it. A truncated file (e.g. a killed\n"
-                  "recorder) prints what could be read, then one line saying where it ends and\n"
-                  "what was lost, and exits 1; an empty, foreign or corrupt file is a one-line\n"
-                  "error (exit 1).");
+                  "compression, and per topic its type, message count and rate; then the events\n"
+                  "of wbi/events it holds (time, severity, source, kind, text). Uses the file's\n"
+                  "summary when it has one, else scans it (the events: a pass over the file). A\n"
+                  "truncated file (e.g. a killed recorder) prints what could be read, then one\n"
+                  "line saying where it ends and what was lost, and exits 1; an empty, foreign\n"
+                  "or corrupt file is a one-line error (exit 1).");
   options.positional("FILE", "the .mcap file");
   options.flag("json", "print one JSON object instead of text");
   options.flag("verify", "also read every chunk and check every CRC (reads the whole file)");
@@ -218,10 +273,12 @@ int run_info(Args args) {
     }
   }
   const Summary summary = summarise(info);
+  const auto events = recording::read_events(reader);
   if (options.has("json")) {
-    print_json(file, info, summary);
+    print_json(file, info, summary, events);
   } else {
     print_text(file, info, summary);
+    print_events(events);
   }
   if (info.truncated) {
     std::cout.flush();

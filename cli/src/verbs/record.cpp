@@ -16,6 +16,7 @@
 #include "../join_options.hpp"
 #include "../options.hpp"
 #include "../terminal.hpp"
+#include "record_window.hpp"
 #include "verbs.hpp"
 
 namespace wbi::cli {
@@ -59,7 +60,9 @@ std::string progress_text(const recording::RecorderProgress& now,
 
 int run_record(Args args) {
   Options options(
-      "wbi record -o FILE.mcap [TOPIC_REGEX...] [--all] [options]",
+      "wbi record -o FILE.mcap [TOPIC_REGEX...] [--all] [options]\n"
+      "       wbi record --window BEFORE:AFTER --trigger KIND[,KIND...] -o DIRECTORY\n"
+      "                  [TOPIC_REGEX...] [--all] [options]",
       "Records DDS topics to an MCAP file until Ctrl-C (or SIGTERM, or --duration).\n"
       "Topics are found through discovery, also those that appear later; a topic is\n"
       "recorded when its name fully matches a TOPIC_REGEX (ECMAScript), or with --all.\n"
@@ -67,9 +70,17 @@ int run_record(Args args) {
       "Header.stamp_ns, or the log time for types without a Header. The file is\n"
       "flushed every 0.5 s: a killed recorder leaves it readable up to then.\n"
       "Prints a progress line once a second (in place on a terminal) and a summary.\n"
-      "Exit: 0 when stopped by Ctrl-C, SIGTERM or --duration (the file is complete).");
+      "Exit: 0 when stopped by Ctrl-C, SIGTERM or --duration (the file is complete).\n"
+      "\n"
+      "With --window, the topics are kept in memory (the last BEFORE s, within\n"
+      "--max-memory, printed at the start) and wbi/events is watched: an event of a\n"
+      "--trigger kind writes BEFORE s before it and AFTER s after it (events included)\n"
+      "to DIRECTORY/<UTC time>_<KIND>.mcap; a trigger while that file is open extends\n"
+      "it. A window the memory cannot hold at the rate seen in the first --probe s is\n"
+      "refused (exit 1).");
   options.rest("TOPIC_REGEX", "record the topics whose names fully match one of these");
-  options.option("output", "FILE", "the MCAP file to write (also -o FILE)");
+  options.option("output", "FILE",
+                 "the MCAP file to write (also -o FILE); with --window, the directory");
   options.flag("all", "record every topic");
   options.option("exclude", "REGEX", "do not record topics whose names fully match this");
   options.option("duration", "SECONDS", "stop after this long (0: until Ctrl-C)", "0");
@@ -77,15 +88,11 @@ int run_record(Args args) {
                  "start a new file past this size; files are STEM_0.mcap, STEM_1.mcap, ...");
   options.option("compression", "KIND", "chunk compression: none, zstd or lz4", "zstd");
   options.option("queue", "N", "samples that may wait for the writer thread before drops", "16384");
+  add_window_options(options);
   add_join_options(options, true, "observer");
   if (!options.parse(args)) {
     return kExitOk;
   }
-  recording::RecorderOptions recorder_options;
-  if (!options.has("output")) {
-    throw UsageError("missing -o FILE.mcap");
-  }
-  recorder_options.output = options.get("output");
   if (options.has("all")) {
     if (!options.rest_values().empty()) {
       throw UsageError("give TOPIC_REGEX arguments or --all, not both");
@@ -93,6 +100,23 @@ int run_record(Args args) {
   } else if (options.rest_values().empty()) {
     throw UsageError("give TOPIC_REGEX arguments or --all");
   }
+  if (options.has("window")) {
+    if (options.has("split-size")) {
+      throw UsageError("--split-size does not go with --window (each window is one file)");
+    }
+    std::signal(SIGINT, on_record_signal);
+    std::signal(SIGTERM, on_record_signal);
+    return run_window_record(options, compression_named(options.get("compression")),
+                             stop_requested);
+  }
+  if (const auto name = window_only_option_given(options); !name.empty()) {
+    throw UsageError("--" + name + " goes with --window");
+  }
+  recording::RecorderOptions recorder_options;
+  if (!options.has("output")) {
+    throw UsageError("missing -o FILE.mcap");
+  }
+  recorder_options.output = options.get("output");
   recorder_options.topic_patterns = options.rest_values();
   recorder_options.exclude_pattern = options.get_optional("exclude").value_or("");
   const double duration_s = options.get_double("duration");

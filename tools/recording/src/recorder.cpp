@@ -1,31 +1,19 @@
 #include "wbi/recording/recorder.hpp"
 
 #include <atomic>
-#include <deque>
 #include <mutex>
 #include <optional>
-#include <set>
 #include <thread>
 
-#include <wbi/dds/raw_subscriber.hpp>
-#include <wbi/dds/topics.hpp>
 #include <wbi/mcap/writer.hpp>
-#include <wbi/msg/idl_text.hpp>
 
-#include "channel_qos.hpp"
 #include "sample_queue.hpp"
-#include "source_stamp.hpp"
 #include "topic_filter.hpp"
+#include "topic_subscriptions.hpp"
 
 namespace wbi::recording {
 
 namespace {
-
-std::uint64_t system_now_ns() {
-  return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                        std::chrono::system_clock::now().time_since_epoch())
-                                        .count());
-}
 
 std::filesystem::path split_file(const std::filesystem::path& output, std::size_t index) {
   auto name = output.stem().string() + "_" + std::to_string(index) + output.extension().string();
@@ -35,28 +23,18 @@ std::filesystem::path split_file(const std::filesystem::path& output, std::size_
 }  // namespace
 
 struct Recorder::Impl {
-  // One recorded topic. Lives in a deque: DDS callbacks never see it, only its index.
-  struct Subscription {
-    dds::TopicInfo topic;
-    std::string idl_text;  // empty: not a wbi type, recorded without schema
-    mcap::KeyValues metadata;
-    std::uint16_t channel_id = 0;
-    std::uint32_t sequence = 0;
-    std::unique_ptr<dds::RawSubscriber> subscriber;
-  };
-
   dds::Participant& participant;
   RecorderOptions options;
   TopicFilter filter;
   SampleQueue queue;
 
+  TopicSubscriptions subscriptions;
+
   // Writer-thread state.
   std::optional<mcap::Writer> writer;
-  std::deque<Subscription> subscriptions;
-  std::set<std::string> seen_topics;  // subscribed or filtered out
+  std::vector<std::uint16_t> channel_ids;  // per subscription, in the open file
+  std::vector<std::uint32_t> sequences;    // per subscription, MCAP sequence
   std::uint64_t closed_files_bytes = 0;
-
-  std::atomic<std::uint64_t> foreign{0};  // samples of a second writer of a robot stream
 
   std::thread thread;
   std::atomic<bool> stop_requested{false};
@@ -72,7 +50,14 @@ struct Recorder::Impl {
       : participant(p),
         options(std::move(o)),
         filter(options.topic_patterns, options.exclude_pattern),
-        queue(options.queue_capacity) {}
+        queue(options.queue_capacity),
+        subscriptions(
+            p, [this](const std::string& topic) { return filter.accepts(topic); },
+            [this](std::uint32_t index, const RecordedTopic& /*topic*/, std::uint64_t log_time,
+                   std::uint64_t publish_time, std::span<const std::uint8_t> cdr) {
+              queue.push(index, log_time, publish_time, cdr);
+            },
+            options.log) {}
 
   void log(const std::string& line) const {
     if (options.log) {
@@ -86,87 +71,38 @@ struct Recorder::Impl {
     const auto path =
         options.split_size_bytes == 0 ? options.output : split_file(options.output, files.size());
     writer.emplace(path, writer_options);
-    for (auto& subscription : subscriptions) {  // a split file repeats every channel
-      add_channel(subscription);
+    for (std::size_t i = 0; i < subscriptions.size(); ++i) {  // a split file repeats every channel
+      add_channel(i);
     }
     std::lock_guard lock(progress_mutex);
     files.push_back(path);
     progress.files = files.size();
   }
 
-  void add_channel(Subscription& subscription) {
+  void add_channel(std::size_t index) {
+    const RecordedTopic& topic = subscriptions[index];
     const std::uint16_t schema =
-        subscription.idl_text.empty()
-            ? 0
-            : writer->add_schema(subscription.topic.type, subscription.idl_text);
-    subscription.channel_id =
-        writer->add_channel(schema, subscription.topic.name, "cdr", subscription.metadata);
+        topic.idl_text.empty() ? 0 : writer->add_schema(topic.topic.type, topic.idl_text);
+    channel_ids.resize(subscriptions.size());
+    sequences.resize(subscriptions.size());
+    channel_ids[index] = writer->add_channel(schema, topic.topic.name, "cdr", topic.metadata);
   }
 
   void discover() {
-    for (const auto& topic : participant.discovered_topics()) {
-      if (topic.writers == 0 || seen_topics.count(topic.name) != 0) {
-        continue;  // nothing to record yet, or already handled
-      }
-      seen_topics.insert(topic.name);
-      if (filter.accepts(topic.name)) {
-        subscribe(topic);
-      }
+    const std::size_t first_new = subscriptions.size();
+    if (subscriptions.discover() == 0) {
+      return;
     }
-  }
-
-  void subscribe(const dds::TopicInfo& topic) {
-    Subscription& subscription = subscriptions.emplace_back();
-    subscription.topic = topic;
-    subscription.metadata = channel_metadata(topic);
-    try {
-      subscription.idl_text = msg::idl_text_for(topic.type);
-    } catch (const std::invalid_argument&) {
-      log("warning: " + topic.name + ": type " + topic.type +
-          " is not a wbi type; recorded without schema");
+    for (std::size_t i = first_new; i < subscriptions.size(); ++i) {
+      add_channel(i);
     }
-    const bool has_header =
-        !subscription.idl_text.empty() && starts_with_header(topic.type, subscription.idl_text);
-    add_channel(subscription);
-    const auto index = static_cast<std::uint32_t>(subscriptions.size() - 1);
-    subscription.subscriber = std::make_unique<dds::RawSubscriber>(
-        participant, topic,
-        [this, index, has_header](const dds::RawSample& sample) {
-          const std::uint64_t received = system_now_ns();
-          std::uint64_t published = received;
-          if (has_header) {
-            if (const auto stamp = header_stamp_ns(sample.cdr); stamp && *stamp >= 0) {
-              published = static_cast<std::uint64_t>(*stamp);
-            }
-          }
-          queue.push(index, received, published, sample.cdr);
-        },
-        producer_policy(topic.name));
-    {
-      std::lock_guard lock(progress_mutex);
-      progress.topics = subscriptions.size();
-    }
-    log("recording " + topic.name + " [" + topic.type + "] " +
-        subscription.metadata.at("reliability") + ", " + subscription.metadata.at("durability"));
-  }
-
-  // A robot's stream is recorded from one writer; a restarted producer is
-  // taken once the one before is gone, so both incarnations are in the file.
-  dds::ProducerPolicy producer_policy(const std::string& topic) {
-    if (!dds::topics::is_single_producer_stream(topic)) {
-      return {};
-    }
-    return dds::ProducerPolicy::one([this](const dds::ProducerEvent& event) {
-      if (event.kind == dds::ProducerEvent::Kind::foreign_sample) {
-        foreign.fetch_add(1, std::memory_order_relaxed);
-      }
-    });
+    std::lock_guard lock(progress_mutex);
+    progress.topics = subscriptions.size();
   }
 
   void write(const QueuedSample& sample) {
     split_if_large();  // here, not after a drain: a new file starts with a message, never empty
-    Subscription& subscription = subscriptions[sample.source];
-    writer->write(subscription.channel_id, subscription.sequence++, sample.log_time,
+    writer->write(channel_ids[sample.source], sequences[sample.source]++, sample.log_time,
                   sample.publish_time, sample.bytes);
   }
 
@@ -175,7 +111,7 @@ struct Recorder::Impl {
     std::lock_guard lock(progress_mutex);
     progress.file_bytes = closed_files_bytes + stats.file_bytes;
     progress.dropped = queue.dropped();
-    progress.foreign = foreign.load(std::memory_order_relaxed);
+    progress.foreign = subscriptions.foreign();
     progress.queue_high_water = queue.high_water();
   }
 
@@ -220,9 +156,7 @@ struct Recorder::Impl {
       }
       publish_counts();
     }
-    for (auto& subscription : subscriptions) {
-      subscription.subscriber.reset();  // no callback runs after this
-    }
+    subscriptions.unsubscribe_all();  // no callback runs after this
     while (queue.drain(consume, std::chrono::nanoseconds(0)) > 0) {
     }
     writer->close();
@@ -242,9 +176,7 @@ Recorder::Recorder(dds::Participant& participant, RecorderOptions options)
         std::lock_guard lock(impl->progress_mutex);
         impl->progress.failed = true;
       }
-      for (auto& subscription : impl->subscriptions) {
-        subscription.subscriber.reset();
-      }
+      impl->subscriptions.unsubscribe_all();
     }
   });
 }

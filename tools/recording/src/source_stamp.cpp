@@ -62,7 +62,10 @@ bool starts_with_header(const std::string& type_name, const std::string& idl_tex
   return false;
 }
 
-std::optional<std::int64_t> header_stamp_ns(std::span<const std::uint8_t> cdr) {
+namespace {
+
+// The 8-byte member `index` after Header.robot: 0 stamp_ns, 1 seq.
+std::optional<std::uint64_t> header_word(std::span<const std::uint8_t> cdr, std::size_t index) {
   constexpr std::size_t kEncapsulation = 4;
   if (cdr.size() < kEncapsulation + 4) {
     return std::nullopt;
@@ -87,10 +90,22 @@ std::optional<std::int64_t> header_stamp_ns(std::span<const std::uint8_t> cdr) {
   const std::uint64_t name_length = read(0, 4);  // includes the terminating NUL
   std::size_t offset = 4 + name_length;
   offset = (offset + int64_alignment - 1) / int64_alignment * int64_alignment;
+  offset += 8 * index;
   if (name_length > body || offset + 8 > body) {
     return std::nullopt;
   }
-  return static_cast<std::int64_t>(read(offset, 8));
+  return read(offset, 8);
+}
+
+}  // namespace
+
+std::optional<std::int64_t> header_stamp_ns(std::span<const std::uint8_t> cdr) {
+  const auto word = header_word(cdr, 0);
+  return word ? std::optional<std::int64_t>(static_cast<std::int64_t>(*word)) : std::nullopt;
+}
+
+std::optional<std::uint64_t> header_seq(std::span<const std::uint8_t> cdr) {
+  return header_word(cdr, 1);
 }
 
 }  // namespace wbi::recording

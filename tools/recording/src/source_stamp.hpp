@@ -17,5 +17,7 @@ bool starts_with_header(const std::string& type_name, const std::string& idl_tex
 // Header.stamp_ns of a payload whose type starts with a Header; nullopt when
 // the bytes are too short or the encapsulation is not plain CDR (XCDR1 or 2).
 std::optional<std::int64_t> header_stamp_ns(std::span<const std::uint8_t> cdr);
+// Header.seq of such a payload (the stream's sequence number), likewise.
+std::optional<std::uint64_t> header_seq(std::span<const std::uint8_t> cdr);
 
 }  // namespace wbi::recording

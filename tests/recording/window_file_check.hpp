@@ -1,0 +1,166 @@
+// What a windowed recorder's file holds, for the tests: the trigger events
+// in it (wbi/events), how far a stream reaches before the first and after the
+// last of them, and the gaps in that stream's Header.seq. Stream "*": every
+// topic whose type starts with a Header and that has one writer (channel
+// metadata "writers" when the recorder found it; wbi/status is every
+// component's, their sequences interleave), the events aside, each counted on
+// its own sequence.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <fastdds/rtps/common/SerializedPayload.h>
+#include <wbi/msg/eventsPubSubTypes.h>
+#include <wbi/msg/sensorsPubSubTypes.h>
+#include <wbi/mcap/reader.hpp>
+#include <wbi/msg/wire_vocabulary.hpp>
+
+#include "source_stamp.hpp"
+
+namespace wbi::test {
+
+struct WindowFileReport {
+  std::size_t events = 0;
+  std::vector<std::string> trigger_sources;  // one per trigger event, in log-time order
+  std::int64_t first_trigger_ns = 0;         // their stamps
+  std::int64_t last_trigger_ns = 0;
+  std::size_t stream_samples = 0;
+  double before_s = 0;  // first trigger − first sample of the stream (log times)
+  double after_s = 0;   // last sample of the stream − last trigger
+  // Header.seq steps other than +1 within one writer's run (a step back is a
+  // new incarnation, not a gap), and the samples they skip.
+  std::size_t gaps = 0;
+  std::uint64_t missing = 0;
+  std::map<std::string, std::uint64_t> missing_by_topic;  // the topics with gaps
+  std::string problem;  // empty: the file could be read and decoded
+};
+
+template <class TypeSupport, class T>
+bool decode_cdr(std::span<const std::uint8_t> bytes, T& out) {
+  TypeSupport type;
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(bytes.size()));
+  std::memcpy(payload.data, bytes.data(), bytes.size());
+  payload.length = static_cast<std::uint32_t>(bytes.size());
+  return type.deserialize(&payload, &out);
+}
+
+// The first trigger's stamp, to the millisecond, from a window file's name
+// (window_file_name: "20261127-235513.123_KIND.mcap"); 0 when it is not one.
+inline std::int64_t window_file_time_ns(const std::filesystem::path& file) {
+  std::tm utc{};
+  int millis = 0;
+  const std::string name = file.filename().string();
+  if (std::sscanf(name.c_str(), "%4d%2d%2d-%2d%2d%2d.%3d_", &utc.tm_year, &utc.tm_mon, &utc.tm_mday,
+                  &utc.tm_hour, &utc.tm_min, &utc.tm_sec, &millis) != 7) {
+    return 0;
+  }
+  utc.tm_year -= 1900;
+  utc.tm_mon -= 1;
+  return static_cast<std::int64_t>(timegm(&utc)) * 1'000'000'000 + millis * 1'000'000LL;
+}
+
+// stream: a SensorSample topic (e.g. wbi/arm/sensors); triggers: the kinds
+// the recorder was started with. The file's triggers are those stamped at or
+// after the time in its name: its BEFORE may reach back over an earlier
+// fault's events.
+inline WindowFileReport check_window_file(const std::filesystem::path& file,
+                                          const std::string& stream,
+                                          const std::vector<wbi::EventKind>& triggers) {
+  const std::int64_t first_trigger_floor = window_file_time_ns(file);
+  WindowFileReport report;
+  std::vector<std::uint64_t> stream_log_times;
+  std::map<std::string, std::uint64_t> previous_seq;  // per topic
+  std::map<std::string, bool> has_header;
+  const bool every_topic = stream == "*";
+  try {
+    const mcap::Reader reader(file);
+    auto cursor = reader.messages(mcap::Order::log_time);
+    while (const auto* message = cursor.next()) {
+      const std::string& topic = message->channel->topic;
+      if (topic == "wbi/events") {
+        msg::Event event;
+        if (!decode_cdr<msg::EventPubSubType>(message->data, event)) {
+          report.problem = "an event does not decode";
+          return report;
+        }
+        ++report.events;
+        const auto kind = msg::from_wire(event.kind());
+        const std::int64_t stamp = event.header().stamp_ns();
+        if (kind && std::find(triggers.begin(), triggers.end(), *kind) != triggers.end() &&
+            stamp >= first_trigger_floor) {
+          report.first_trigger_ns =
+              report.trigger_sources.empty() ? stamp : std::min(report.first_trigger_ns, stamp);
+          report.last_trigger_ns = std::max(report.last_trigger_ns, stamp);
+          report.trigger_sources.push_back(event.source().to_string());
+        }
+      } else if (topic == stream || every_topic) {
+        std::optional<std::uint64_t> seq;
+        if (every_topic) {
+          auto known = has_header.find(topic);
+          if (known == has_header.end()) {
+            const auto writers = message->channel->metadata.find("writers");
+            known = has_header
+                        .emplace(topic, message->schema != nullptr && topic != "wbi/status" &&
+                                            writers != message->channel->metadata.end() &&
+                                            writers->second == "1" &&
+                                            recording::starts_with_header(
+                                                message->schema->name,
+                                                std::string(message->schema->data.begin(),
+                                                            message->schema->data.end())))
+                        .first;
+          }
+          if (!known->second) {
+            continue;
+          }
+          seq = recording::header_seq(message->data);
+        } else {
+          msg::SensorSample sample;
+          if (decode_cdr<msg::SensorSamplePubSubType>(message->data, sample)) {
+            seq = sample.header().seq();
+          }
+        }
+        if (!seq) {
+          report.problem = "a sample of " + topic + " does not decode";
+          return report;
+        }
+        const auto previous = previous_seq.find(topic);
+        if (previous != previous_seq.end() && *seq > previous->second + 1) {
+          ++report.gaps;
+          report.missing += *seq - previous->second - 1;
+          report.missing_by_topic[topic] += *seq - previous->second - 1;
+        }
+        previous_seq[topic] = *seq;
+        stream_log_times.push_back(message->log_time);
+      }
+    }
+  } catch (const std::exception& e) {
+    report.problem = e.what();
+    return report;
+  }
+  report.stream_samples = stream_log_times.size();
+  if (report.trigger_sources.empty()) {
+    report.problem = "no trigger event in the file";
+  } else if (stream_log_times.empty()) {
+    report.problem = "no sample of " + stream + " in the file";
+  } else {
+    const auto first = static_cast<std::int64_t>(
+        *std::min_element(stream_log_times.begin(), stream_log_times.end()));
+    const auto last = static_cast<std::int64_t>(
+        *std::max_element(stream_log_times.begin(), stream_log_times.end()));
+    report.before_s = 1e-9 * static_cast<double>(report.first_trigger_ns - first);
+    report.after_s = 1e-9 * static_cast<double>(last - report.last_trigger_ns);
+  }
+  return report;
+}
+
+}  // namespace wbi::test

@@ -1,0 +1,97 @@
+#include "topic_subscriptions.hpp"
+
+#include <chrono>
+#include <stdexcept>
+
+#include <wbi/dds/topics.hpp>
+#include <wbi/msg/idl_text.hpp>
+
+#include "channel_qos.hpp"
+#include "source_stamp.hpp"
+
+namespace wbi::recording {
+
+std::uint64_t system_now_ns() {
+  return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                        std::chrono::system_clock::now().time_since_epoch())
+                                        .count());
+}
+
+TopicSubscriptions::TopicSubscriptions(dds::Participant& participant, Accepts accepts, Sink sink,
+                                       Log log)
+    : participant_(participant),
+      accepts_(std::move(accepts)),
+      sink_(std::move(sink)),
+      log_(std::move(log)) {}
+
+TopicSubscriptions::~TopicSubscriptions() { unsubscribe_all(); }
+
+std::size_t TopicSubscriptions::discover() {
+  const std::size_t before = entries_.size();
+  for (const auto& topic : participant_.discovered_topics()) {
+    if (topic.writers == 0 || seen_topics_.count(topic.name) != 0) {
+      continue;  // nothing to record yet, or already handled
+    }
+    seen_topics_.insert(topic.name);
+    if (accepts_(topic.name)) {
+      subscribe(topic);
+    }
+  }
+  return entries_.size() - before;
+}
+
+void TopicSubscriptions::unsubscribe_all() {
+  for (auto& entry : entries_) {
+    entry.subscriber.reset();  // no callback runs after this
+  }
+}
+
+void TopicSubscriptions::subscribe(const dds::TopicInfo& topic) {
+  Entry& entry = entries_.emplace_back();
+  RecordedTopic& recorded = entry.recorded;
+  recorded.topic = topic;
+  recorded.metadata = channel_metadata(topic);
+  try {
+    recorded.idl_text = msg::idl_text_for(topic.type);
+  } catch (const std::invalid_argument&) {
+    if (log_) {
+      log_("warning: " + topic.name + ": type " + topic.type +
+           " is not a wbi type; recorded without schema");
+    }
+  }
+  recorded.has_header =
+      !recorded.idl_text.empty() && starts_with_header(topic.type, recorded.idl_text);
+  const auto index = static_cast<std::uint32_t>(entries_.size() - 1);
+  entry.subscriber = std::make_unique<dds::RawSubscriber>(
+      participant_, topic,
+      [this, index, topic_entry = &recorded](const dds::RawSample& sample) {
+        const std::uint64_t received = system_now_ns();
+        std::uint64_t published = received;
+        if (topic_entry->has_header) {
+          if (const auto stamp = header_stamp_ns(sample.cdr); stamp && *stamp >= 0) {
+            published = static_cast<std::uint64_t>(*stamp);
+          }
+        }
+        sink_(index, *topic_entry, received, published, sample.cdr);
+      },
+      producer_policy(topic.name));
+  if (log_) {
+    log_("recording " + topic.name + " [" + topic.type + "] " +
+         recorded.metadata.at("reliability") + ", " + recorded.metadata.at("durability"));
+  }
+}
+
+// A robot's stream is recorded from one writer; a restarted producer is
+// taken once the one before is gone, so both incarnations are recorded.
+dds::ProducerPolicy TopicSubscriptions::producer_policy(const std::string& topic) {
+  if (!dds::topics::is_single_producer_stream(topic)) {
+    return {};
+  }
+  return dds::ProducerPolicy::one([this](const dds::ProducerEvent& event) {
+    if (event.kind == dds::ProducerEvent::Kind::foreign_sample) {
+      foreign_.fetch_add(1, std::memory_order_relaxed);
+    }
+  });
+}
+
+}  // namespace wbi::recording
