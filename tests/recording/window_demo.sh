@@ -4,9 +4,9 @@
 # windowed recorder beside it:
 #   wbi record --window 5:2 --trigger $WINDOW_TRIGGER -o DIR 'wbi/arm/.*'
 # Once the window has filled, the controller is killed (SIGKILL) twice, the
-# second time once the first fault's file is written. The trigger is an event
-# of the fault: LIFECYCLE (the respawned controller's runner) by default,
-# PROCESS_EXITED once the launcher publishes its own (WINDOW_TRIGGER).
+# second time once the first fault's file is written. The trigger is the
+# launcher's event of the fault, PROCESS_EXITED (WINDOW_TRIGGER may name
+# another kind, e.g. LIFECYCLE: the respawned controller's runner).
 # Passes when each fault gave one file, and each covers at least 5 s before
 # its first trigger and 2 s after its last with no gap in the Header.seq of
 # wbi/arm/sensors (wbi_test_window_check, to within 5 ms: the first and last
@@ -16,7 +16,7 @@
 set -euo pipefail
 [[ $# -eq 2 ]] || { sed -n '2,15p' "$0"; exit 2; }
 bin="$1/bin" checker="$1/tests/wbi_test_window_check" src=$(cd "$2" && pwd)
-trigger=${WINDOW_TRIGGER:-LIFECYCLE}
+trigger=${WINDOW_TRIGGER:-PROCESS_EXITED}
 work=$(mktemp -d /tmp/wbi-window.XXXXXX)
 deploy="$work/demo.yaml" log="$work/launch.log" recorder_log="$work/recorder.log"
 windows="$work/windows"
