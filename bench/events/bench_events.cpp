@@ -46,8 +46,7 @@ void BM_EmitPublished(benchmark::State& state) {
     state.ResumeTiming();
     const auto start = Clock::now();
     log.emit(wbi::EventSeverity::warning, wbi::EventKind::watchdog_trip,
-             "watchdog: joint 'joint_3' got no command for 0.1 s: holding its position",
-             "joint_3");
+             "watchdog: joint 'joint_3' got no command for 0.1 s: holding its position", "joint_3");
     took_ns.push_back(static_cast<double>((Clock::now() - start).count()));
   }
   pump.flush();
