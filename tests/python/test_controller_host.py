@@ -18,13 +18,17 @@ class ControllerHostFromPython(unittest.TestCase):
                                     "--duration", "60"])
         cls.host = wbi.ControllerHost("arm", timeout_s=5.0)
         deadline = time.monotonic() + 60.0
-        while True:  # the host answers once its process is up
-            try:
+        while True:  # the host answers once its process is up, and has an
+            try:     # active controller once its component is activated
                 cls.host.controllers()
-                break
+                if cls.host.active() is not None:
+                    break
             except TimeoutError:
-                if time.monotonic() > deadline:
-                    raise
+                pass
+            if time.monotonic() > deadline:
+                raise TimeoutError("the controller host of deploy/arm_controller_host.yaml "
+                                   "had no active controller within 60 s")
+            time.sleep(0.05)  # polling the service: no event to await from Python
 
     @classmethod
     def tearDownClass(cls):
