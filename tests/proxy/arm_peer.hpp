@@ -74,6 +74,10 @@ class ArmPeer {
     }
   }
 
+  // The number of the last sample published (valid once stop() returned): a
+  // reader that has it has everything the peer sent.
+  std::uint64_t last_published_seq() const { return last_published_seq_; }
+
   wbi::dds::Subscriber<wbi::msg::ActuatorCommand>& commands() { return commands_; }
   wbi::dds::Subscriber<wbi::msg::ControlParameters>& parameters() { return parameters_; }
 
@@ -113,6 +117,7 @@ class ArmPeer {
       state.base_pose().position().x(static_cast<double>(seq));
       sensors_.publish(sample);
       state_.publish(state);
+      last_published_seq_ = seq;
       std::this_thread::sleep_for(5ms);  // the robot's rate, not a synchronisation
     }
   }
@@ -127,6 +132,7 @@ class ArmPeer {
   std::size_t force_torque_sensors_;
   bool state_without_force_torque_;
   std::atomic<bool> running_{true};
+  std::atomic<std::uint64_t> last_published_seq_{0};
   std::thread thread_;
 };
 
