@@ -23,7 +23,7 @@ LAYERS = {
     "idl": {"vocabulary"},
     "dds": {"vocabulary", "idl"},
     "model_service": {"vocabulary"},
-    "estimation": {"vocabulary"},
+    "estimation": {"vocabulary", "model_service"},  # F/T estimation runs through the model
     "robot_side": LIBRARIES,
     "runtime": BOTTOM,
     "components": BOTTOM | LIBRARIES | {"robot_side", "runtime"},
