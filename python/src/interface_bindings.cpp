@@ -69,7 +69,10 @@ class PythonInterface {
     const auto sensors = kind == EstimateKind::force_torque
                              ? static_cast<int>(sensor_count(SensorKind::force_torque))
                              : 0;
-    return wbi::estimate_count(kind, robot_->dofs(), sensors);
+    const auto links = kind == EstimateKind::external_wrench
+                           ? static_cast<int>(robot_->external_wrench_links().size())
+                           : 0;
+    return wbi::estimate_count(kind, robot_->dofs(), sensors, links);
   }
 
  private:
@@ -451,7 +454,11 @@ void bind_interface(py::module_& module) {
       .def(
           "sensor_list",
           [](PythonInterface& self, SensorKind kind) { return self.robot().sensor_list(kind); },
-          arg("kind"));
+          arg("kind"))
+      .def_property_readonly(
+          "external_wrench_links",
+          [](PythonInterface& self) { return self.robot().external_wrench_links(); },
+          "links with an external-wrench estimate (EstimateKind.external_wrench), init()'s");
   bind_reads(interface);
   bind_actuators(interface);
   bind_model_element(interface);

@@ -43,7 +43,8 @@ void bind_vocabulary(py::module_& module) {
       .value("base_pose", EstimateKind::base_pose)
       .value("base_velocity", EstimateKind::base_velocity)
       .value("base_acceleration", EstimateKind::base_acceleration)
-      .value("force_torque", EstimateKind::force_torque);
+      .value("force_torque", EstimateKind::force_torque)
+      .value("external_wrench", EstimateKind::external_wrench);
   py::enum_<ReadMode>(module, "ReadMode")
       .value("latest", ReadMode::latest)
       .value("blocking", ReadMode::blocking);

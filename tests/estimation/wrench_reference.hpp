@@ -56,6 +56,34 @@ inline DynamicState random_state(const model::Model& m, const std::vector<std::s
   return s;
 }
 
+// A robot at rest (ν = ν̇ = 0) at a random configuration, with random wrenches
+// on `links` and, on `balancing_link`, the wrench that holds it: the base
+// needs no actuation, as on a floating-base robot.
+inline DynamicState static_state(const model::Model& m, const std::vector<std::string>& links,
+                                 const std::string& balancing_link, std::mt19937& rng) {
+  DynamicState s;
+  model::Data data(m);
+  s.q = model::random_configuration(m, rng);
+  s.nu = Eigen::VectorXd::Zero(m.nv);
+  s.dnu = Eigen::VectorXd::Zero(m.nv);
+  for (const std::string& link : links) {
+    Vector6d w;
+    w << random_vector(3, rng, 100.0), random_vector(3, rng, 10.0);
+    s.wrenches.push_back({m.frame_id(link), w});
+  }
+  const Eigen::Vector3d gravity(0, 0, -9.81);
+  model::inverse_dynamics(m, data, s.q, s.nu, s.dnu, gravity, s.wrenches);
+  const Vector6d held = data.f[0];  // Σ inertial − Σ external, world origin: what is missing
+  const int frame = m.frame_id(balancing_link);
+  const int b = m.frame_body[frame];
+  const Eigen::Vector3d p = data.p_WB[b] + data.R_WB[b] * m.frame_p_BF[frame];
+  Vector6d w;
+  w << held.head<3>(), held.tail<3>() - p.cross(held.head<3>());
+  s.wrenches.push_back({frame, w});
+  s.tau = model::inverse_dynamics(m, data, s.q, s.nu, s.dnu, gravity, s.wrenches).tail(m.n_joints);
+  return s;
+}
+
 class SensorReference {
  public:
   SensorReference(const std::filesystem::path& urdf, std::vector<ForceTorqueSensor> sensors)

@@ -15,6 +15,7 @@
 #include <wbi/runtime/runner.hpp>
 
 #include "test_support.hpp"
+#include "wrench_reference.hpp"
 
 namespace {
 
@@ -27,8 +28,11 @@ class EstimatorFixture {
  public:
   // force_torque_sensors: F/T sensors "ft_0", … in the description; the samples
   // carry the wrenches of set_wrenches().
+  // force_torque_frames: their frames (default: none); floating_base: the description's.
   EstimatorFixture(const std::string& robot, const std::vector<std::string>& joints,
-                   const std::string& parameters_yaml, int force_torque_sensors = 0)
+                   const std::string& parameters_yaml, int force_torque_sensors = 0,
+                   const std::vector<std::string>& force_torque_frames = {},
+                   bool floating_base = false)
       : robot_(robot),
         description_(participant_, topics::description(robot), qos::kLatched),
         sensors_(participant_, topics::sensors(robot), qos::kStream),
@@ -36,6 +40,7 @@ class EstimatorFixture {
         state_(participant_, topics::state(robot), qos::kStream) {
     wbi::msg::RobotDescription description;
     description.header().robot(robot);
+    description.floating_base(floating_base);
     for (const auto& joint : joints) {
       description.joint_names().push_back(joint);
     }
@@ -43,6 +48,9 @@ class EstimatorFixture {
       wbi::msg::SensorInfo sensor;
       sensor.name("ft_" + std::to_string(i));
       sensor.kind(wbi::msg::SensorKind::FORCE_TORQUE);
+      if (static_cast<std::size_t>(i) < force_torque_frames.size()) {
+        sensor.frame(force_torque_frames[static_cast<std::size_t>(i)]);
+      }
       description.sensors().push_back(sensor);
     }
     wrenches_.resize(static_cast<std::size_t>(force_torque_sensors));
@@ -91,6 +99,22 @@ class EstimatorFixture {
     w.torque().z(-3 * f);
   }
 
+  // The F/T readings of the next samples, (force, torque) per sensor; fewer
+  // than the description has makes samples that lack some.
+  void set_readings(const std::vector<wbi::model::Vector6d>& readings) {
+    wrenches_.resize(readings.size());
+    for (std::size_t i = 0; i < readings.size(); ++i) {
+      auto& w = wrenches_[i].wrench();
+      const auto& r = readings[i];
+      w.force().x(r[0]);
+      w.force().y(r[1]);
+      w.force().z(r[2]);
+      w.torque().x(r[3]);
+      w.torque().y(r[4]);
+      w.torque().z(r[5]);
+    }
+  }
+
   wbi::dds::Publisher<wbi::msg::EstimatorParameter>& parameters() { return parameters_; }
   wbi::dds::Participant& participant() { return participant_; }
 
@@ -101,6 +125,7 @@ class EstimatorFixture {
     sample.header().seq(k);
     sample.header().stamp_ns(static_cast<std::int64_t>(k) * 1'000'000);
     sample.encoder_position().assign(q.data(), q.data() + q.size());
+    sample.force_torque() = wrenches_;
     sensors_.publish(sample);
   }
 
@@ -182,6 +207,65 @@ TEST(EstimatorComponent, ForceTorqueEstimatesAreTheReadingsLowPassed) {
   EXPECT_NEAR(state.force_torque()[0].force().z(), 60.0, 1e-6);
   EXPECT_NEAR(state.force_torque()[0].torque().x(), -20.0, 1e-6);
   EXPECT_NEAR(state.force_torque()[1].force().x(), -4.0, 1e-6);
+}
+
+// joint_torques: force_torque — the humanoid at rest with known wrenches on
+// its soles and chest: the state carries the model's joint torques and those
+// wrenches, computed from the two foot F/T readings; a NaN reading is flagged
+// and counted, and samples without every reading are named.
+TEST(EstimatorComponent, JointTorquesFromForceTorqueSensors) {
+  const auto urdf = wbi::test::project_model("humanoid.urdf");
+  const wbi::model::Model m = wbi::model::load_urdf_file(urdf.string());
+  std::mt19937 rng(4);
+  const auto s = wbi::test::static_state(m, {"l_sole", "r_sole"}, "chest", rng);
+  wbi::test::SensorReference reference(
+      urdf, {{"l_foot_ft", "l_foot_ft_sensor"}, {"r_foot_ft", "r_foot_ft_sensor"}});
+  const auto readings = reference.readings(m, s);
+  const Eigen::Vector3d p = s.q.head<3>();
+  const auto& o = s.q.segment<4>(3);
+  std::ostringstream yaml;
+  yaml.precision(17);
+  yaml << "robot: ftt\nurdf: " << urdf.string() << "\nbase: fixed\nbase_position: [" << p[0] << ", "
+       << p[1] << ", " << p[2] << "]\nbase_quaternion: [" << o[0] << ", " << o[1] << ", " << o[2]
+       << ", " << o[3]
+       << "]\njoint_torques: force_torque\ncontact_links: [l_sole, r_sole]\n"
+          "extra_links: [chest]\n";
+  EstimatorFixture fixture("ftt", m.joint_name, yaml.str(), 2, {"l_foot", "r_foot"},
+                           /*floating_base=*/true);
+  fixture.set_readings(readings);
+  const Eigen::VectorXd q = s.q.tail(m.n_joints);
+  wbi::msg::StateEstimate state;
+  for (std::uint64_t k = 0; k < 3; ++k) {
+    state = fixture.step(k, q);
+  }
+  ASSERT_EQ(state.tau().size(), static_cast<std::size_t>(m.n_joints));
+  for (int j = 0; j < m.n_joints; ++j) {
+    EXPECT_NEAR(state.tau()[static_cast<std::size_t>(j)], s.tau[j], 1e-6) << m.joint_name[j];
+  }
+  ASSERT_EQ(state.external_wrenches().size(), 3u);
+  const char* links[] = {"l_sole", "r_sole", "chest"};
+  for (std::size_t h = 0; h < 3; ++h) {
+    const auto& e = state.external_wrenches()[h];
+    EXPECT_EQ(e.link().to_string(), links[h]);
+    EXPECT_EQ(e.contact(), h < 2);
+    EXPECT_TRUE(e.valid());
+    EXPECT_NEAR(e.wrench().force().z(), s.wrenches[h].wrench[2], 1e-6) << links[h];
+    EXPECT_NEAR(e.wrench().torque().x(), s.wrenches[h].wrench[3], 1e-6) << links[h];
+  }
+  auto bad = readings;
+  bad[1][2] = std::nan("");
+  fixture.set_readings(bad);
+  state = fixture.step(3, q);
+  EXPECT_FALSE(state.external_wrenches()[1].valid());
+  EXPECT_TRUE(state.external_wrenches()[0].valid());
+  for (const double tau : state.tau()) {
+    ASSERT_TRUE(std::isfinite(tau));
+  }
+  EXPECT_GE(fixture.status_counter("invalid_torque_estimates", 1).value_or(0), 1u);
+  fixture.set_readings({readings[0]});
+  fixture.send(4, q);
+  EXPECT_NE(fixture.status_error("missing: ft_1").find("sensor samples carry 1 F/T readings"),
+            std::string::npos);
 }
 
 TEST(EstimatorComponent, EstimatesFollowEverySampleWithItsStamp) {
@@ -358,6 +442,18 @@ TEST(EstimatorComponent, BadParametersAreNamed) {
                 .find("foot_force_torque: an empty sensor name in 'l_front+'"),
             std::string::npos);
   EXPECT_NE(configure("robot: r\nvelocity_windw: 3\n").find("velocity_windw"), std::string::npos);
+  EXPECT_NE(configure("robot: r\njoint_torques: guessed\n")
+                .find("joint_torques must be sensors or force_torque, got 'guessed'"),
+            std::string::npos);
+  EXPECT_NE(configure("robot: r\njoint_torques: force_torque\n").find("needs the robot's urdf"),
+            std::string::npos);
+  EXPECT_NE(
+      configure("robot: r\njoint_torques: force_torque\nurdf: x.urdf\n").find("contact_links"),
+      std::string::npos);
+  EXPECT_NE(configure("robot: r\njoint_torques: force_torque\nurdf: x.urdf\n"
+                      "contact_links: [a]\ntorque_accelerations: measured\n")
+                .find("torque_accelerations must be none or estimated, got 'measured'"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -31,6 +31,10 @@ inline double arm_position(std::size_t j) { return 0.1 * static_cast<double>(j +
 inline double arm_velocity(std::size_t j) { return -0.01 * static_cast<double>(j + 1); }
 // F/T sensor i's vertical force [N] (and minus its torque about x [N·m]).
 inline double arm_wrench(std::size_t i) { return 5.0 * static_cast<double>(i + 1); }
+// With F/T sensors, the state also carries an external-wrench estimate on this
+// link: this vertical force [N], and minus it as moment about y [N·m].
+inline const char* const kArmWrenchLink = "ee_link";
+inline constexpr double kArmExternalForce = 7.5;
 
 // The robot side, as DDS sees it: description, sensor and state streams, a
 // command and a parameter reader. Streams are published at 200 Hz while running.
@@ -103,6 +107,15 @@ class ArmPeer {
       if (!state_without_force_torque_) {
         state.force_torque().push_back(w);
       }
+    }
+    if (force_torque_sensors_ > 0) {
+      wbi::msg::ExternalWrenchEstimate external;
+      external.link(kArmWrenchLink);
+      external.wrench().force().z(kArmExternalForce);
+      external.wrench().torque().y(-kArmExternalForce);
+      external.contact(true);
+      external.valid(true);
+      state.external_wrenches().push_back(external);
     }
     state.base_pose().orientation().w(1.0);
     state.base_pose().position().z(0.25);

@@ -113,12 +113,13 @@ TEST(DdsInterface, EveryEstimateKindIsAnswered) {
   auto robot = wbi::make_dds_interface(arm_options("arm_kinds"));
   robot->add_joints({"joint_2", "joint_5"});
   robot->init(10s);
-  const auto last = static_cast<int>(wbi::EstimateKind::force_torque);
+  const auto last = static_cast<int>(wbi::EstimateKind::external_wrench);
   for (int k = 0; k <= last; ++k) {
     const auto kind = static_cast<wbi::EstimateKind>(k);
     const int count = k <= static_cast<int>(wbi::EstimateKind::joint_torque) ? 2
                       : kind == wbi::EstimateKind::force_torque              ? 2
                                                                              : 1;
+    ASSERT_EQ(count, wbi::estimate_count(kind, 2, 2, 1)) << k;
     Eigen::VectorXd values = Eigen::VectorXd::Constant(count * wbi::estimate_width(kind), -99.0);
     ASSERT_NO_THROW(robot->read_estimates(kind, values, wbi::ReadMode::blocking)) << k;
     EXPECT_TRUE(values.allFinite()) << k;
@@ -128,6 +129,11 @@ TEST(DdsInterface, EveryEstimateKindIsAnswered) {
   robot->read_estimates(wbi::EstimateKind::force_torque, wrenches);
   EXPECT_DOUBLE_EQ(wrenches[2], arm_wrench(0));
   EXPECT_DOUBLE_EQ(wrenches[9], -arm_wrench(1));
+  ASSERT_EQ(robot->external_wrench_links(), wbi::IdList{kArmWrenchLink});
+  Eigen::VectorXd external(6);
+  robot->read_estimate(wbi::EstimateKind::external_wrench, 0, external);
+  EXPECT_DOUBLE_EQ(external[2], kArmExternalForce);
+  EXPECT_DOUBLE_EQ(external[4], -kArmExternalForce);
   Eigen::VectorXd velocity(2);
   robot->read_estimates(wbi::EstimateKind::joint_velocity, velocity);
   EXPECT_DOUBLE_EQ(velocity[1], arm_velocity(4));

@@ -30,6 +30,14 @@ class DdsInterfaceTest(unittest.TestCase):
         with self.assertRaises(wbi.Error):
             robot.read_estimates(wbi.EstimateKind.joint_position)
 
+    def test_external_wrenches_are_an_estimate_kind(self):
+        robot = wbi.DdsInterface(robot="nobody", urdf=ARM, joints=["joint_1"])
+        self.assertIn("external_wrench", wbi.EstimateKind.__members__)
+        with self.assertRaisesRegex(wbi.Error, "not initialized"):
+            robot.external_wrench_links
+        with self.assertRaisesRegex(wbi.Error, "not initialized"):
+            robot.read_estimates(wbi.EstimateKind.external_wrench)
+
     def test_reads_and_outputs_check_sizes(self):
         robot = wbi.DdsInterface(robot="nobody", urdf=ARM, joints=["joint_1"])
         with self.assertRaisesRegex(ValueError, "out must be a writable contiguous vector of"):

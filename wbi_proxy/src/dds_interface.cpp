@@ -88,6 +88,10 @@ class DdsInterface final : public WholeBodyInterface {
     robot_.require_init();
     return state_;
   }
+  const State& state() const override {
+    robot_.require_init();
+    return state_;
+  }
   Model& model() override {
     robot_.require_init();  // before it, a local model does not exist yet
     return *model_;

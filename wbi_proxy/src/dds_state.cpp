@@ -71,6 +71,11 @@ Stamp DdsState::read_base_pose(Transform& world_H_base, ReadMode mode) {
   return robot_.state.stamp();
 }
 
+const IdList& DdsState::external_wrench_links() const {
+  robot_.require_init();
+  return robot_.external_wrench_links;
+}
+
 // "fixed_link" takes the link's index in frame_list() and travels by name.
 void DdsState::set_estimation_parameter(const std::string& name, double value) {
   robot_.require_init();
@@ -93,7 +98,8 @@ void DdsState::set_estimation_parameter(const std::string& name, double value) {
 
 int DdsState::estimate_count(EstimateKind kind) const {
   return wbi::estimate_count(kind, static_cast<int>(robot_.controlled.size()),
-                             static_cast<int>(robot_.force_torque_names.size()));
+                             static_cast<int>(robot_.force_torque_names.size()),
+                             static_cast<int>(robot_.external_wrench_links.size()));
 }
 
 Stamp DdsState::read_range(EstimateKind kind, int first, int count, VectorRef out, ReadMode mode) {
@@ -133,6 +139,20 @@ Stamp DdsState::read_range(EstimateKind kind, int first, int count, VectorRef ou
       }
       for (int i = 0; i < count; ++i) {
         const auto& w = state.force_torque().at(static_cast<std::size_t>(first + i));
+        out.segment<6>(6 * i) << w.force().x(), w.force().y(), w.force().z(), w.torque().x(),
+            w.torque().y(), w.torque().z();
+      }
+      break;
+    case EstimateKind::external_wrench:
+      if (state.external_wrenches().size() < static_cast<std::size_t>(first + count)) {
+        throw Error("external_wrench estimates: the state of robot '" + robot_.options.robot +
+                    "' carries " + std::to_string(state.external_wrenches().size()) +
+                    " external wrenches, init() saw " +
+                    std::to_string(robot_.external_wrench_links.size()) +
+                    " (the estimator was reconfigured?)");
+      }
+      for (int i = 0; i < count; ++i) {
+        const auto& w = state.external_wrenches().at(static_cast<std::size_t>(first + i)).wrench();
         out.segment<6>(6 * i) << w.force().x(), w.force().y(), w.force().z(), w.torque().x(),
             w.torque().y(), w.torque().z();
       }

@@ -21,6 +21,7 @@ class DdsState final : public wbi::State {
   Stamp read_estimates(EstimateKind kind, VectorRef values, ReadMode mode) override;
   Stamp read_estimate(EstimateKind kind, int index, VectorRef values, ReadMode mode) override;
   Stamp read_base_pose(Transform& world_H_base, ReadMode mode) override;
+  const IdList& external_wrench_links() const override;
   void set_estimation_parameter(const std::string& name, double value) override;
 
  private:

@@ -82,6 +82,10 @@ void RobotConnection::resolve(const IdList& joints) {
       force_torque_names.push_back(sensor.name().to_string());
     }
   }
+  external_wrench_links.clear();
+  for (const auto& wrench : state.received.sample.external_wrenches()) {
+    external_wrench_links.push_back(wrench.link().to_string());
+  }
 }
 
 std::map<std::string, double> RobotConnection::locked_positions() const {

@@ -26,8 +26,8 @@ namespace wbi::proxy {
 
 // Kinds of read that keep their own "seen" count for blocking reads.
 constexpr std::size_t kSensorReads = enum_count<SensorKind>();
-constexpr std::size_t kStateReads = 9;  // EstimateKind, then read_robot_state
-constexpr std::size_t kRobotStateRead = 8;
+constexpr std::size_t kStateReads = 10;  // EstimateKind, then read_robot_state
+constexpr std::size_t kRobotStateRead = 9;
 
 std::int64_t system_now_ns();
 
@@ -63,6 +63,7 @@ class RobotConnection {
   std::vector<std::uint16_t> robot_index;  // [dofs] position of controlled joint k in R
   IdList imu_names;
   IdList force_torque_names;
+  IdList external_wrench_links;  // of the state estimate init() saw
   bool initialized = false;
 };
 

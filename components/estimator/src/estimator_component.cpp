@@ -98,6 +98,9 @@ void EstimatorComponent::on_configure(const runtime::Parameters& parameters,
                 parameters.get<std::vector<double>>("base_quaternion", {1.0, 0.0, 0.0, 0.0}));
   const auto base_topic =
       parameters.get<std::string>("base_topic", dds::topics::ground_truth(robot_));
+  torque_config_ = TorqueEstimationConfig::from(parameters, urdf_.empty() && parameters.has("urdf")
+                                                                ? file_parameter(parameters, "urdf")
+                                                                : urdf_);
 
   // The stamp monitor's counts, on the status topic (also summed in StateEstimate.warnings).
   dropped_ = &report().counter("dropped_samples");
@@ -107,6 +110,8 @@ void EstimatorComponent::on_configure(const runtime::Parameters& parameters,
   non_finite_ = &report().counter("non_finite_samples");
   wrong_size_ = &report().counter("wrong_size_samples");
   new_producers_ = &report().counter("new_producers");
+  invalid_torque_estimates_ = &report().counter("invalid_torque_estimates");
+  missing_force_torque_ = &report().counter("missing_force_torque_samples");
   // The robot's streams come from one writer each: a second robot of the same
   // name, or a rogue, is dropped and counted, not mixed into the estimate.
   // Its sensors come from the participant whose description was taken.
@@ -160,6 +165,7 @@ void EstimatorComponent::on_cleanup() {
   estimator_.reset();
   base_estimator_.reset();
   legged_estimator_.reset();
+  torque_estimation_.reset();
   have_base_sample_ = false;
   failed_ = false;
 }

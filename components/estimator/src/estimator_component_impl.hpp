@@ -16,6 +16,7 @@
 #include <wbi/estimation/estimator_factory.hpp>
 #include <wbi/estimation/low_pass_filter.hpp>
 
+#include "torques_from_force_torque.hpp"
 #include "wbi/estimator/base_estimator.hpp"
 #include "wbi/estimator/estimator_component.hpp"
 #include "wbi/estimator/legged_base_estimator.hpp"
@@ -53,6 +54,7 @@ class EstimatorComponent final : public runtime::Component {
   ImuInput sample_imu() const;
   const Eigen::Matrix3Xd& foot_forces();
   void fill_base(const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq);
+  void estimate_torques(const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq);
   void on_parameter(const wbi::msg::EstimatorParameter& parameter);
   void apply_parameter(const wbi::msg::EstimatorParameter& parameter);
 
@@ -87,6 +89,9 @@ class EstimatorComponent final : public runtime::Component {
   std::optional<wbi::msg::SensorSample> pending_;  // a sample that came before the description
   Eigen::VectorXd q_;
   Eigen::VectorXd tau_;
+  // joint_torques: force_torque (absent: the sensed torques)
+  std::optional<TorqueEstimationConfig> torque_config_;
+  std::unique_ptr<TorquesFromForceTorque> torque_estimation_;
   std::uint32_t ignored_ = 0;
   runtime::StatusCounter* dropped_ = nullptr;  // the report's counters (on_configure)
   runtime::StatusCounter* duplicated_ = nullptr;
@@ -95,6 +100,8 @@ class EstimatorComponent final : public runtime::Component {
   runtime::StatusCounter* non_finite_ = nullptr;
   runtime::StatusCounter* wrong_size_ = nullptr;
   runtime::StatusCounter* new_producers_ = nullptr;
+  runtime::StatusCounter* invalid_torque_estimates_ = nullptr;  // samples with some invalid
+  runtime::StatusCounter* missing_force_torque_ = nullptr;      // samples without every F/T reading
   dds::detail::Guid producer_{};              // the writer of the last sensor sample
   estimation::StampCounters earlier_counts_;  // of the filters before a new producer
   wbi::msg::StateEstimate state_;

@@ -114,7 +114,7 @@ void EstimatorComponent::estimate(const wbi::msg::SensorSample& sample) {
   q_ = Eigen::Map<const Eigen::VectorXd>(positions.data(), q_.size());
   estimator_->update(sample.header().stamp_ns(), q_);
   const auto& tau_in = sample.joint_torque();
-  if (tau_in.size() == positions.size()) {
+  if (!torque_estimation_ && tau_in.size() == positions.size()) {
     torque_filter_->update(sample.header().stamp_ns(),
                            Eigen::Map<const Eigen::VectorXd>(tau_in.data(), q_.size()));
     tau_ = torque_filter_->value();
@@ -161,11 +161,12 @@ void EstimatorComponent::publish(const wbi::msg::SensorSample& sample) {
     state.q()[k] = q_[j];
     state.dq()[k] = dq[j];
     state.ddq()[k] = ddq[j];
-    state.tau()[k] = tau_[j];
   }
   current_sample_ = &sample;
   fill_base(dq, ddq);
+  estimate_torques(dq, ddq);
   current_sample_ = nullptr;
+  std::copy(tau_.data(), tau_.data() + tau_.size(), state.tau().begin());
   auto counters = earlier_counts_;
   counters += estimator_->stamp_counters();
   state.warnings(static_cast<std::uint32_t>(counters.anomalies()) + ignored_);
@@ -175,6 +176,30 @@ void EstimatorComponent::publish(const wbi::msg::SensorSample& sample) {
   gaps_->set(counters.gaps);
   non_finite_->set(counters.non_finite);
   state_publisher_->publish(state);
+}
+
+// joint_torques: force_torque — the torques through the model from the F/T
+// readings, at the state's base (fill_base first), low-passed like sensed ones.
+void EstimatorComponent::estimate_torques(const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq) {
+  if (!torque_estimation_) {
+    return;
+  }
+  if (!torque_estimation_->update(*current_sample_, q_, dq, ddq, state_)) {
+    if (missing_force_torque_->value() == 0) {  // the first one: allocates, once
+      const std::string text = "estimator of robot '" + robot_ +
+                               "': " + torque_estimation_->missing_readings(*current_sample_);
+      report().set_error(text);
+      runtime::print_line(stderr, text);
+    }
+    missing_force_torque_->add();  // the last torques and wrenches are kept
+    return;
+  }
+  if (torque_estimation_->invalid_joints() > 0 || torque_estimation_->invalid_wrenches() > 0) {
+    invalid_torque_estimates_->add();
+  }
+  torque_filter_->update(current_sample_->header().stamp_ns(), torque_estimation_->torques());
+  tau_ = torque_filter_->value();
+  torque_estimation_->write_wrenches(state_);
 }
 
 void EstimatorComponent::write_base(const BaseState& base) {

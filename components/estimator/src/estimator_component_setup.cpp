@@ -117,6 +117,13 @@ bool EstimatorComponent::prepare_sized(std::size_t joints) {
   } else if (base_source_ == BaseSource::legged) {
     prepare_legged(description->sample, names);
   }
+  torque_estimation_.reset();
+  state.external_wrenches().clear();
+  if (torque_config_) {
+    torque_estimation_ =
+        std::make_unique<TorquesFromForceTorque>(*torque_config_, description->sample, names);
+    torque_estimation_->write_wrenches(state);
+  }
   return true;
 }
 

@@ -26,6 +26,11 @@ class State {
   // interface's bound, then throws TimeoutError; StaleDataError as below.
   virtual Stamp read_robot_state(RobotState& state, ReadMode mode = ReadMode::latest) = 0;
 
+  // The links the estimator estimates an external wrench on (EstimateKind::
+  // external_wrench), as its first estimate at init() named them; empty unless
+  // it estimates joint torques from F/T sensors (joint_torques: force_torque).
+  virtual const IdList& external_wrench_links() const = 0;
+
   // The base pose as a homogeneous transform.
   virtual Stamp read_base_pose(Transform& world_H_base, ReadMode mode = ReadMode::latest) = 0;
 

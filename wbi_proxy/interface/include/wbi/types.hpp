@@ -41,6 +41,8 @@ enum class EstimateKind {
   base_velocity,       // 6: mixed representation (ṗ_B, ω_B), world axes
   base_acceleration,   // 6: time derivative of base_velocity
   force_torque,        // 6 per F/T sensor, filtered
+  external_wrench,     // 6 per link of State::external_wrench_links(): force [N], moment about
+                       // the link origin [N m], world axes; estimated from F/T sensors
 };
 
 // Values per estimate of a kind (the counts above).
@@ -51,6 +53,7 @@ constexpr int estimate_width(EstimateKind kind) {
     case EstimateKind::base_velocity:
     case EstimateKind::base_acceleration:
     case EstimateKind::force_torque:
+    case EstimateKind::external_wrench:
       return 6;
     default:
       return 1;
@@ -58,8 +61,9 @@ constexpr int estimate_width(EstimateKind kind) {
 }
 
 // Estimates of a kind (the counts above), for a robot with `joints` controlled
-// joints and `force_torque_sensors` F/T sensors.
-constexpr int estimate_count(EstimateKind kind, int joints, int force_torque_sensors) {
+// joints, `force_torque_sensors` F/T sensors and `external_wrench_links` links.
+constexpr int estimate_count(EstimateKind kind, int joints, int force_torque_sensors,
+                             int external_wrench_links = 0) {
   switch (kind) {
     case EstimateKind::base_pose:
     case EstimateKind::base_velocity:
@@ -67,6 +71,8 @@ constexpr int estimate_count(EstimateKind kind, int joints, int force_torque_sen
       return 1;
     case EstimateKind::force_torque:
       return force_torque_sensors;
+    case EstimateKind::external_wrench:
+      return external_wrench_links;
     default:
       return joints;
   }

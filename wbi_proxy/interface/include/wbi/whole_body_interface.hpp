@@ -59,6 +59,7 @@ class WholeBodyInterface {
   virtual Model& model() = 0;
   virtual const Model& model() const = 0;
   virtual const Sensors& sensors() const = 0;
+  virtual const State& state() const = 0;
 
   // ---- The flat API: each call is its element's ----
 
@@ -78,6 +79,7 @@ class WholeBodyInterface {
   }
 
   const IdList& sensor_list(SensorKind kind) const { return sensors().sensor_list(kind); }
+  const IdList& external_wrench_links() const { return state().external_wrench_links(); }
   Stamp read_sensors(SensorKind kind, VectorRef values, ReadMode mode = ReadMode::latest) {
     return sensors().read_sensors(kind, values, mode);
   }

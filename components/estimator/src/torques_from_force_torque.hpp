@@ -1,0 +1,78 @@
+// The estimator component's `joint_torques: force_torque`: joint torques and
+// external wrenches from the robot's F/T sensors through the model
+// (wbi::estimation::WrenchEstimator), for robots without joint-torque sensors.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <wbi/msg/description.h>
+#include <wbi/msg/sensors.h>
+#include <wbi/msg/state.h>
+#include <Eigen/Core>
+#include <wbi/estimation/wrench_estimator.hpp>
+#include <wbi/runtime/parameters.hpp>
+
+namespace wbi::estimator::detail {
+
+// The deploy-file parameters; absent unless joint_torques is force_torque.
+struct TorqueEstimationConfig {
+  std::string urdf;
+  std::vector<std::string> contact_links;
+  std::vector<std::string> extra_links;
+  double contact_on_force = 10.0;
+  double contact_off_force = 5.0;
+  double force_limit = 0.0;   // 0: no limit
+  double torque_limit = 0.0;  // 0: no limit
+  // Whether the estimated q̈ and base acceleration enter the dynamics; without
+  // them (the default) the estimate is quasi-static: velocity terms, gravity and
+  // the readings. Measured in balancing (README): the accelerations differentiated
+  // from encoders and the legged base were noisier than the inertial terms they add.
+  bool use_accelerations = false;
+
+  // joint_torques: sensors (the default, no config) or force_torque. Throws
+  // runtime::ParameterError naming the parameter.
+  static std::optional<TorqueEstimationConfig> from(const runtime::Parameters& parameters,
+                                                    const std::string& urdf);
+};
+
+class TorquesFromForceTorque {
+ public:
+  // The model in the robot's joint order, every F/T sensor of the description
+  // (its frame is the child link of its fixed joint). Throws
+  // std::invalid_argument naming what does not fit.
+  TorquesFromForceTorque(const TorqueEstimationConfig& config,
+                         const wbi::msg::RobotDescription& description,
+                         const std::vector<std::string>& joints);
+
+  // One sample: q, dq, ddq of the joints, the base as in `state` (pose,
+  // velocity, acceleration already written). False, with the sample left
+  // unused, when it lacks F/T readings (counted by the caller). Never allocates.
+  bool update(const wbi::msg::SensorSample& sample, const Eigen::VectorXd& q,
+              const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq,
+              const wbi::msg::StateEstimate& state);
+
+  // Why update() refused a sample: the sensors whose readings it lacks.
+  std::string missing_readings(const wbi::msg::SensorSample& sample) const;
+
+  // Joint torques of the last update (an invalid joint keeps its last valid value).
+  const Eigen::VectorXd& torques() const { return torques_; }
+  // Joints and hypotheses whose estimate the last update could not make.
+  int invalid_joints() const { return invalid_joints_; }
+  int invalid_wrenches() const { return invalid_wrenches_; }
+  // The external wrenches, written into the state (sized once, here).
+  void write_wrenches(wbi::msg::StateEstimate& state) const;
+
+ private:
+  std::unique_ptr<estimation::WrenchEstimator> estimator_;
+  std::vector<model::Vector6d> readings_;
+  std::vector<std::string> sensor_names_;
+  Eigen::VectorXd q_model_, nu_, dnu_, torques_;
+  int invalid_joints_ = 0;
+  int invalid_wrenches_ = 0;
+  bool use_accelerations_ = false;  // else dnu_ stays zero
+};
+
+}  // namespace wbi::estimator::detail
