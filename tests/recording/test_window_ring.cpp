@@ -145,13 +145,15 @@ TEST(WindowRing, CountsEvictionsInsideTheWindowAndRefusesHugeSamples) {
 TEST(WindowRing, AReaderWithoutTheLockGetsWholeRecordsOrCountsThemLost) {
   WindowRing ring(64 * 1024, 0);
   constexpr std::uint64_t kSamples = 200000;
+  // Reading starts before the first push: records evicted before start_reading()
+  // are not the reader's to lose (CI under load saw the pusher 128k records ahead).
+  ring.start_reading(0);
   std::thread pusher([&] {
     for (std::uint64_t k = 0; k < kSamples; ++k) {
       push(ring, k, 16 + (k * 37) % 900);
     }
   });
   RingBatch batch(16 * 1024);
-  ring.start_reading(0);
   std::uint64_t read = 0;
   std::uint64_t next = 0;
   bool torn = false;
