@@ -108,6 +108,14 @@ inline void fill_state(msg::StateEstimate& state, const std::string& robot, std:
   }
   state.force_torque().clear();
   state.warnings(static_cast<std::uint32_t>(seq % 3));
+  state.external_wrenches().resize(1);
+  auto& external = state.external_wrenches()[0];
+  external.link("l_sole");
+  external.wrench().force().z(interop_value(seq, 110));
+  external.wrench().torque().x(interop_value(seq, 111));
+  external.contact(true);
+  external.loaded(seq % 2 == 0);
+  external.valid(true);
 }
 
 // --- The same values as the decoder's JSON ---------------------------------
@@ -180,6 +188,14 @@ inline nlohmann::json to_json(const msg::StateEstimate& s) {
   for (const auto& wrench : s.force_torque()) {
     force_torque.push_back(to_json(wrench));
   }
+  nlohmann::json external = nlohmann::json::array();
+  for (const auto& e : s.external_wrenches()) {
+    external.push_back({{"link", e.link().to_string()},
+                        {"wrench", to_json(e.wrench())},
+                        {"contact", e.contact()},
+                        {"loaded", e.loaded()},
+                        {"valid", e.valid()}});
+  }
   return {{"header", to_json(s.header())},
           {"q", s.q()},
           {"dq", s.dq()},
@@ -191,7 +207,8 @@ inline nlohmann::json to_json(const msg::StateEstimate& s) {
           {"base_velocity", s.base_velocity()},
           {"base_acceleration", s.base_acceleration()},
           {"force_torque", force_torque},
-          {"warnings", s.warnings()}};
+          {"warnings", s.warnings()},
+          {"external_wrenches", external}};
 }
 
 }  // namespace wbi::test
