@@ -11,9 +11,7 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <iostream>
-#include <map>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -25,60 +23,11 @@
 #include "child_process.hpp"
 #include "progress_lines.hpp"
 #include "test_support.hpp"
+#include "torque_comparison.hpp"
 
 namespace {
 
 using namespace std::chrono_literals;
-
-// Estimated and sensed joint torques of the same source stamp (streams are
-// best effort: either may miss some), summed once settled.
-class TorqueComparison {
- public:
-  struct Figures {
-    std::size_t matched = 0;
-    std::size_t external_wrenches = 0;
-    double rmse = 0.0;  // [N·m] over every joint
-    double rms = 0.0;   // [N·m] of the sensed torques
-  };
-
-  void sensed(std::int64_t stamp_ns, const std::vector<double>& tau) {
-    std::lock_guard lock(mutex_);
-    sensed_[stamp_ns] = tau;
-    if (sensed_.size() > 4000) {
-      sensed_.erase(sensed_.begin());
-    }
-  }
-
-  void estimated(std::int64_t stamp_ns, const std::vector<double>& tau, std::size_t wrenches) {
-    std::lock_guard lock(mutex_);
-    first_ns_ = first_ns_ == 0 ? stamp_ns : first_ns_;
-    external_wrenches_ = wrenches;
-    const auto found = sensed_.find(stamp_ns);
-    if (found == sensed_.end() || found->second.size() != tau.size() ||
-        stamp_ns - first_ns_ < 1'500'000'000) {
-      return;
-    }
-    for (std::size_t j = 0; j < tau.size(); ++j) {
-      error_ += (tau[j] - found->second[j]) * (tau[j] - found->second[j]);
-      square_ += found->second[j] * found->second[j];
-      ++values_;
-    }
-    ++matched_;
-  }
-
-  Figures figures() const {
-    std::lock_guard lock(mutex_);
-    const double n = std::max<double>(1.0, static_cast<double>(values_));
-    return {matched_, external_wrenches_, std::sqrt(error_ / n), std::sqrt(square_ / n)};
-  }
-
- private:
-  mutable std::mutex mutex_;
-  std::map<std::int64_t, std::vector<double>> sensed_;
-  std::int64_t first_ns_ = 0;
-  std::size_t matched_ = 0, values_ = 0, external_wrenches_ = 0;
-  double error_ = 0.0, square_ = 0.0;
-};
 
 TEST(BalanceLaunch, ThreeProcessesTrackTheSinusoidFor20Seconds) {
   // The controller's signals, as a recorder would see them.
@@ -104,11 +53,11 @@ TEST(BalanceLaunch, ThreeProcessesTrackTheSinusoidFor20Seconds) {
 
   // Estimated joint torques (state) against sensed ones (sensor samples), matched by
   // source stamp, after 1.5 s of settling.
-  TorqueComparison torques;
+  wbi::test::TorqueComparison torques;
   wbi::dds::Subscriber<wbi::msg::SensorSample> sensors(
       participant, wbi::dds::topics::sensors("humanoid"), wbi::dds::qos::kStream,
       [&](const wbi::msg::SensorSample& sample, const wbi::dds::detail::SampleInfo&) {
-        torques.sensed(sample.header().stamp_ns(), sample.joint_torque());
+        torques.truth(sample.header().stamp_ns(), sample.joint_torque());
       });
   wbi::dds::Subscriber<wbi::msg::StateEstimate> state(
       participant, wbi::dds::topics::state("humanoid"), wbi::dds::qos::kStream,
