@@ -28,6 +28,7 @@ actuation::BackendDescription joint_description(const model::Model& m, const Rob
     const bool given = joint != config.joints.end();
     d.position_kp.push_back(given ? joint->second.kp : 0.0);
     d.position_kd.push_back(given ? joint->second.kd : 0.0);
+    d.torque_sensor.push_back(config.joint_torque_sensors.has(name));
   }
   return d;
 }
@@ -95,6 +96,12 @@ SimPlan make_sim_plan(const RobotConfig& c, const model::Model& m, const std::st
     }
     return m.frame_id(link);
   };
+  for (const auto& joint : c.joint_torque_sensors.joints) {
+    if (!m.has_joint(joint)) {
+      throw std::invalid_argument(where + ": joint_torque_sensors: unknown joint '" + joint +
+                                  "' in " + c.urdf);
+    }
+  }
   plan_joints(c, m, plan);
   plan_initial_state(c, m, where, plan);
 
