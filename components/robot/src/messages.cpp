@@ -127,6 +127,15 @@ void fill_ground_truth(const actuation::GroundTruth& truth, const std::string& r
     set(out.contact_wrenches()[i].force(), truth.contact_wrenches[i].head<3>());
     set(out.contact_wrenches()[i].torque(), truth.contact_wrenches[i].tail<3>());
   }
+  copy(truth.tau_actuator, out.applied_torque());
+  out.push_wrenches().resize(
+      std::min<std::size_t>({truth.push_wrenches.size(), truth.push_links.size(), 16}));
+  for (std::size_t i = 0; i < out.push_wrenches().size(); ++i) {
+    auto& push = out.push_wrenches()[i];
+    push.link(truth.push_links[i]);  // a bounded string: no allocation
+    set(push.wrench().force(), truth.push_wrenches[i].head<3>());
+    set(push.wrench().torque(), truth.push_wrenches[i].tail<3>());
+  }
 }
 
 }  // namespace wbi::robot

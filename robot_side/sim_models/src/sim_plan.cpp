@@ -84,6 +84,10 @@ actuation::GroundTruth SimPlan::initial_ground_truth() const {
   truth.contact_links = contact_links;
   truth.contact_wrenches.assign(contact_links.size(), actuation::Vector6d::Zero());
   truth.contact_positions.assign(contact_links.size(), Eigen::Vector3d::Zero());
+  for (const auto& push : pushes) {
+    truth.push_links.push_back(push.link);
+  }
+  truth.push_wrenches.assign(pushes.size(), actuation::Vector6d::Zero());
   return truth;
 }
 
@@ -122,6 +126,7 @@ SimPlan make_sim_plan(const RobotConfig& c, const model::Model& m, const std::st
 
   for (const auto& p : c.pushes) {
     SimPlan::Push push;
+    push.link = p.link;
     push.frame = frame_of(p.link, "pushes");
     if (!(p.duration >= 0.0)) {
       throw std::invalid_argument(where + ": pushes: 'duration' must be >= 0");
