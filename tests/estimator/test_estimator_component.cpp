@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <limits>
 #include <optional>
 
 #include <wbi/dds/publisher.hpp>
@@ -27,10 +28,13 @@ namespace qos = wbi::dds::qos;
 class EstimatorFixture {
  public:
   // force_torque_sensors: F/T sensors "ft_0", … in the description; the samples
-  // carry the wrenches of set_wrenches().
-  // force_torque_frames: their frames (default: none); floating_base: the description's.
+  // carry the wrenches of set_wrenches() (or set_readings()), with the frames
+  // force_torque_frames (default: none). torque_sensors: the joints listed as
+  // JOINT_TORQUE sensors (none listed: every joint has one); the samples carry
+  // the joint torques of set_torques(). floating_base: the description's.
   EstimatorFixture(const std::string& robot, const std::vector<std::string>& joints,
                    const std::string& parameters_yaml, int force_torque_sensors = 0,
+                   const std::vector<std::string>& torque_sensors = {},
                    const std::vector<std::string>& force_torque_frames = {},
                    bool floating_base = false)
       : robot_(robot),
@@ -51,6 +55,12 @@ class EstimatorFixture {
       if (static_cast<std::size_t>(i) < force_torque_frames.size()) {
         sensor.frame(force_torque_frames[static_cast<std::size_t>(i)]);
       }
+      description.sensors().push_back(sensor);
+    }
+    for (const auto& joint : torque_sensors) {
+      wbi::msg::SensorInfo sensor;
+      sensor.name(joint);
+      sensor.kind(wbi::msg::SensorKind::JOINT_TORQUE);
       description.sensors().push_back(sensor);
     }
     wrenches_.resize(static_cast<std::size_t>(force_torque_sensors));
@@ -76,6 +86,7 @@ class EstimatorFixture {
     sample.header().stamp_ns(stamp_ns >= 0 ? stamp_ns : static_cast<std::int64_t>(k) * 1'000'000);
     sample.encoder_position().assign(q.data(), q.data() + q.size());
     sample.force_torque() = wrenches_;
+    sample.joint_torque() = torques_;
     // Best-effort stream: send again until this sample's estimate comes back.
     for (int attempt = 0; attempt < 50; ++attempt) {
       sensors_.publish(sample);
@@ -114,6 +125,9 @@ class EstimatorFixture {
       w.torque().z(r[5]);
     }
   }
+
+  // The joint torques of the next samples (robot order; empty: none).
+  void set_torques(std::vector<double> torques) { torques_ = std::move(torques); }
 
   wbi::dds::Publisher<wbi::msg::EstimatorParameter>& parameters() { return parameters_; }
   wbi::dds::Participant& participant() { return participant_; }
@@ -184,6 +198,7 @@ class EstimatorFixture {
                                                           qos::kStatus};
   wbi::dds::Received<wbi::msg::StateEstimate> received_;
   std::vector<wbi::msg::ForceTorqueReading> wrenches_;
+  std::vector<double> torques_;
   std::unique_ptr<wbi::runtime::ComponentRunner> runner_;
 };
 
@@ -230,7 +245,7 @@ TEST(EstimatorComponent, JointTorquesFromForceTorqueSensors) {
        << ", " << o[3]
        << "]\njoint_torques: force_torque\ncontact_links: [l_sole, r_sole]\n"
           "extra_links: [chest]\n";
-  EstimatorFixture fixture("ftt", m.joint_name, yaml.str(), 2, {"l_foot", "r_foot"},
+  EstimatorFixture fixture("ftt", m.joint_name, yaml.str(), 2, {}, {"l_foot", "r_foot"},
                            /*floating_base=*/true);
   fixture.set_readings(readings);
   const Eigen::VectorXd q = s.q.tail(m.n_joints);
@@ -266,6 +281,28 @@ TEST(EstimatorComponent, JointTorquesFromForceTorqueSensors) {
   fixture.send(4, q);
   EXPECT_NE(fixture.status_error("missing: ft_1").find("sensor samples carry 1 F/T readings"),
             std::string::npos);
+}
+
+// Joint torques: a joint without a sensor (NaN on the wire, idl/sensors.idl)
+// and a sample without any leave 0 in the state, never NaN.
+TEST(EstimatorComponent, JointsWithoutATorqueSensorEstimateZeroNotNaN) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EstimatorFixture some("tau_some", {"a", "b", "c"}, "robot: tau_some\n", 0, {"b"});
+  some.set_torques({nan, 2.5, nan});
+  const Eigen::VectorXd q = Eigen::VectorXd::Zero(3);
+  for (std::uint64_t k = 0; k < 3; ++k) {
+    const auto state = some.step(k, q);
+    ASSERT_EQ(state.tau().size(), 3u);
+    EXPECT_EQ(state.tau()[0], 0.0);
+    EXPECT_EQ(state.tau()[1], 2.5);  // unfiltered (torque_cutoff_hz: 0)
+    EXPECT_EQ(state.tau()[2], 0.0);
+  }
+  EstimatorFixture none("tau_none", {"a", "b"}, "robot: tau_none\n");
+  none.set_torques({});
+  const auto state = none.step(0, Eigen::VectorXd::Zero(2));
+  ASSERT_EQ(state.tau().size(), 2u);
+  EXPECT_EQ(state.tau()[0], 0.0);
+  EXPECT_EQ(state.tau()[1], 0.0);
 }
 
 TEST(EstimatorComponent, EstimatesFollowEverySampleWithItsStamp) {

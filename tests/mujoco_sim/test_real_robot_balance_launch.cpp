@@ -7,14 +7,24 @@
 // rms < 1 cm (the controller's line), and from the simulator's ground truth
 // (sim_robot's summary): the feet slip ≤ 2 mm, no joint at a limit for more
 // than 1 % of the ticks, every torque within its effort limit. The runs give
-// 1.6-1.9 mm rms and 0.3-1.0 mm slip (deploy/README.md).
+// 1.6-1.9 mm rms and 0.3-1.0 mm slip (deploy/README.md). On icub3_balance.yaml
+// the estimator estimates the joint torques from iCub 3's 8 F/T sensors (it has
+// no joint-torque sensor): within 20 % RMS of the applied torques of the ground
+// truth (10 % measured; estimation/wrenches/README.md).
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <iostream>
+#include <optional>
 #include <string>
+
+#include <wbi/dds/participant.hpp>
+#include <wbi/dds/subscriber.hpp>
+#include <wbi/dds/topics.hpp>
 
 #include "progress_lines.hpp"
 #include "real_robot_launch.hpp"
+#include "torque_comparison.hpp"
 
 namespace {
 
@@ -25,6 +35,23 @@ class RealRobotBalanceLaunch : public testing::TestWithParam<std::string> {};
 TEST_P(RealRobotBalanceLaunch, TracksTheSinusoidThroughThePushWithoutSlipOrLimits) {
   if (const std::string skip = wbi::test::real_robot_skip_reason(); !skip.empty()) {
     GTEST_SKIP() << skip;
+  }
+  // icub3_balance.yaml: estimated torques (state) against applied ones (ground truth).
+  const bool estimates_torques = GetParam() == "icub3_balance.yaml";
+  wbi::test::TorqueComparison torques;
+  std::optional<wbi::dds::Participant> participant;
+  std::optional<wbi::dds::Subscriber<wbi::msg::GroundTruth>> truth;
+  std::optional<wbi::dds::Subscriber<wbi::msg::StateEstimate>> state;
+  if (estimates_torques) {
+    participant.emplace("balance_launch_torques");
+    truth.emplace(*participant, wbi::dds::topics::ground_truth("icub3"), wbi::dds::qos::kStream,
+                  [&](const wbi::msg::GroundTruth& t, const wbi::dds::detail::SampleInfo&) {
+                    torques.truth(t.header().stamp_ns(), t.applied_torque());
+                  });
+    state.emplace(*participant, wbi::dds::topics::state("icub3"), wbi::dds::qos::kStream,
+                  [&](const wbi::msg::StateEstimate& e, const wbi::dds::detail::SampleInfo&) {
+                    torques.estimated(e.header().stamp_ns(), e.tau(), e.external_wrenches().size());
+                  });
   }
   // The controller ends the run after 21 s of robot time (exit_after_s).
   auto launch = wbi::test::launch_deploy_file(GetParam(), 250);
@@ -48,6 +75,15 @@ TEST_P(RealRobotBalanceLaunch, TracksTheSinusoidThroughThePushWithoutSlipOrLimit
   EXPECT_LE(*effort, 1.0) << "of the effort limit\n" << out;
   std::cout << GetParam() << ": com tracking rms " << *rms << " m, slip " << *slip
             << " mm, joint at a limit " << *at_limit << " % of ticks\n";
+  if (estimates_torques) {
+    const auto figures = torques.figures();
+    EXPECT_GE(figures.matched, 5000u) << "estimates matched with a ground truth of their stamp";
+    EXPECT_EQ(figures.external_wrenches, 9u) << "4 sole plates, 2 lower legs, 2 hands, chest";
+    EXPECT_LT(figures.rmse, 0.2 * figures.rms) << figures.rmse << " N·m RMSE, RMS " << figures.rms;
+    std::cout << "estimated joint torques: RMSE " << figures.rmse << " N·m, "
+              << 100.0 * figures.rmse / figures.rms << " % of the RMS applied torque "
+              << figures.rms << " N·m, " << figures.matched << " estimates\n";
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Deploys, RealRobotBalanceLaunch,

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "test_support.hpp"
 #include "wbi/robot_config/robot_config.hpp"
@@ -159,6 +160,44 @@ TEST(RobotConfig, DefaultsComeFromTheUrdf) {
   EXPECT_EQ(in_code.joints.size(), 30u);
   EXPECT_EQ(in_code.joints.at("l_knee").armature, 0.5);
   EXPECT_EQ(in_code.contacts.size(), 2u);
+}
+
+// joint_torque_sensors: absent or all (every joint), none, or a list of joints.
+TEST(RobotConfig, JointTorqueSensorsAllNoneOrListed) {
+  using Which = JointTorqueSensors::Which;
+  const RobotConfig absent = parse_robot_config(humanoid(""), "robot.yaml");
+  EXPECT_EQ(absent.joint_torque_sensors.which, Which::kAll);
+  EXPECT_TRUE(absent.joint_torque_sensors.has("l_knee"));
+  const RobotConfig all = parse_robot_config(humanoid("joint_torque_sensors: all\n"), "robot.yaml");
+  EXPECT_EQ(all.joint_torque_sensors.which, Which::kAll);
+  const RobotConfig none =
+      parse_robot_config(humanoid("joint_torque_sensors: none\n"), "robot.yaml");
+  EXPECT_EQ(none.joint_torque_sensors.which, Which::kNone);
+  EXPECT_FALSE(none.joint_torque_sensors.has("l_knee"));
+  const RobotConfig listed =
+      parse_robot_config(humanoid("joint_torque_sensors: [r_knee, l_knee]\n"), "robot.yaml");
+  EXPECT_EQ(listed.joint_torque_sensors.which, Which::kListed);
+  EXPECT_EQ(listed.joint_torque_sensors.joints, (std::vector<std::string>{"r_knee", "l_knee"}));
+  EXPECT_TRUE(listed.joint_torque_sensors.has("l_knee"));
+  EXPECT_FALSE(listed.joint_torque_sensors.has("l_hip_pitch"));
+  const RobotConfig empty =
+      parse_robot_config(humanoid("joint_torque_sensors: []\n"), "robot.yaml");
+  EXPECT_FALSE(empty.joint_torque_sensors.has("l_knee")) << "an empty list is none";
+}
+
+TEST(RobotConfigErrors, JointTorqueSensors) {
+  expect_error(humanoid("joint_torque_sensors: some\n"), 2, "joint_torque_sensors",
+               "expected all, none or a list of joints, got 'some'");
+  expect_error(humanoid("joint_torque_sensors: {l_knee: true}\n"), 2, "joint_torque_sensors",
+               "expected all, none or a list of joints");
+  expect_error(humanoid("joint_torque_sensors:\n  - l_knee\n  - [r_knee]\n"), 4,
+               "joint_torque_sensors[1]", "expected a string");
+  expect_error(humanoid("joint_torque_sensors: [l_knee, l_kne]\n"), 2, "joint_torque_sensors[1]",
+               "unknown joint 'l_kne' (not a movable joint of ");
+  expect_error(humanoid("joint_torque_sensors: [l_foot_ft_sensor]\n"), 2, "joint_torque_sensors[0]",
+               "unknown joint 'l_foot_ft_sensor'");  // a fixed joint
+  expect_error(humanoid("joint_torque_sensors:\n  - l_knee\n  - r_knee\n  - l_knee\n"), 5,
+               "joint_torque_sensors[2]", "joint 'l_knee' given twice");
 }
 
 // ---- one test per error class ----

@@ -105,6 +105,8 @@ TEST(RobotFiles, Icub3) {
   EXPECT_EQ(c.contacts.size(), 4u);
   EXPECT_EQ(c.force_torque.size(), 8u);
   EXPECT_EQ(c.imus.size(), 2u);
+  // As the real robot: no joint-torque sensors (torques come from the F/T sensors).
+  EXPECT_EQ(c.joint_torque_sensors.which, JointTorqueSensors::Which::kNone);
   expect_soles_at(c, {"l_foot_front", "l_foot_rear"}, "l_sole");
   expect_soles_at(c, {"r_foot_front", "r_foot_rear"}, "r_sole");
 }
@@ -141,6 +143,8 @@ TEST(RobotFiles, FixedBaseVariantsHaveTheStandingRobotsJoints) {
     EXPECT_FALSE(a.fixed_base) << standing;
     EXPECT_TRUE(b.fixed_base) << fixed;
     ASSERT_EQ(a.joints.size(), b.joints.size()) << fixed;
+    EXPECT_EQ(a.joint_torque_sensors.which, b.joint_torque_sensors.which) << fixed;
+    EXPECT_EQ(a.joint_torque_sensors.joints, b.joint_torque_sensors.joints) << fixed;
     for (const auto& [name, joint] : a.joints) {
       const auto& other = b.joints.at(name);
       EXPECT_EQ(joint.armature, other.armature) << fixed << ": " << name;

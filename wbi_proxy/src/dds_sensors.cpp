@@ -50,6 +50,7 @@ Stamp DdsSensors::read_range(SensorKind kind, int first, int count, VectorRef ou
       robot_.gather(sample.encoder_position(), first, count, out, "encoder positions");
       break;
     case SensorKind::joint_torque:
+      robot_.require_torque_sensors(sample.joint_torque(), first, count);
       robot_.gather(sample.joint_torque(), first, count, out, "joint torques");
       break;
     case SensorKind::motor_pwm:

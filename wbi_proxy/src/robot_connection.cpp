@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <optional>
 
+#include <wbi/msg/joint_torque_sensors.hpp>
+
 namespace wbi::proxy {
 
 std::int64_t system_now_ns() {
@@ -86,6 +88,7 @@ void RobotConnection::resolve(const IdList& joints) {
   for (const auto& wrench : state.received.sample.external_wrenches()) {
     external_wrench_links.push_back(wrench.link().to_string());
   }
+  torque_sensor = wbi::msg::joint_torque_sensors(description_rx.sample);
 }
 
 std::map<std::string, double> RobotConnection::locked_positions() const {
@@ -112,6 +115,38 @@ void RobotConnection::gather(const std::vector<double>& robot_values, int first,
     }
     out[k] = robot_values[r];
   }
+}
+
+void RobotConnection::require_torque_sensors(const std::vector<double>& torques, int first,
+                                             int count) const {
+  auto sensed = [&](int k) {
+    const auto r = robot_index[static_cast<std::size_t>(first + k)];
+    return !torques.empty() && r < torque_sensor.size() && torque_sensor[r];
+  };
+  int missing = 0;
+  for (int k = 0; k < count; ++k) {
+    missing += sensed(k) ? 0 : 1;
+  }
+  if (missing == 0) {
+    return;
+  }
+  std::string joints;
+  for (int k = 0; k < count; ++k) {
+    if (!sensed(k)) {
+      joints += (joints.empty() ? "" : ", ") + controlled[static_cast<std::size_t>(first + k)];
+    }
+  }
+  std::string with;
+  const auto& names = description_rx.sample.joint_names();
+  for (std::size_t r = 0; !torques.empty() && r < names.size() && r < torque_sensor.size(); ++r) {
+    if (torque_sensor[r]) {
+      with += (with.empty() ? "" : ", ") + names[r].to_string();
+    }
+  }
+  throw Error("robot '" + options.robot + "' has no joint-torque sensor on joint" +
+              (missing > 1 ? "s " : " ") + joints +
+              (with.empty() ? " (it has no joint-torque sensors)"
+                            : " (the joints with one: " + with + ")"));
 }
 
 void RobotConnection::require_init() const {

@@ -49,6 +49,11 @@ class RobotConnection {
   void gather(const std::vector<double>& robot_values, int first, int count, VectorRef out,
               const char* what) const;
 
+  // Throws Error naming the controlled joints in [first, first + count) that
+  // have no joint-torque sensor (`torques`: a sample's joint_torque, empty
+  // when the robot has none); nothing when all have one. Never allocates then.
+  void require_torque_sensors(const std::vector<double>& torques, int first, int count) const;
+
   void require_init() const;
 
   const DdsInterfaceOptions options;
@@ -63,7 +68,8 @@ class RobotConnection {
   std::vector<std::uint16_t> robot_index;  // [dofs] position of controlled joint k in R
   IdList imu_names;
   IdList force_torque_names;
-  IdList external_wrench_links;  // of the state estimate init() saw
+  IdList external_wrench_links;     // of the state estimate init() saw
+  std::vector<bool> torque_sensor;  // [robot joints] R order: has a joint-torque sensor
   bool initialized = false;
 };
 

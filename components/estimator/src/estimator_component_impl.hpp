@@ -92,6 +92,10 @@ class EstimatorComponent final : public runtime::Component {
   // joint_torques: force_torque (absent: the sensed torques)
   std::optional<TorqueEstimationConfig> torque_config_;
   std::unique_ptr<TorquesFromForceTorque> torque_estimation_;
+  // Joint torques fed to torque_filter_: the sample's where the joint has a
+  // sensor, 0 where it has none (its NaN never reaches the estimate).
+  Eigen::VectorXd tau_in_;
+  std::vector<bool> torque_sensor_;  // [joints] from the description
   std::uint32_t ignored_ = 0;
   runtime::StatusCounter* dropped_ = nullptr;  // the report's counters (on_configure)
   runtime::StatusCounter* duplicated_ = nullptr;

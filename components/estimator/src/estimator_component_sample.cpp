@@ -113,10 +113,15 @@ void EstimatorComponent::estimate(const wbi::msg::SensorSample& sample) {
   }
   q_ = Eigen::Map<const Eigen::VectorXd>(positions.data(), q_.size());
   estimator_->update(sample.header().stamp_ns(), q_);
+  // Joint torques: none when the array is empty (tau stays 0); a joint without
+  // a sensor (NaN on the wire, idl/sensors.idl) enters as 0.
   const auto& tau_in = sample.joint_torque();
   if (!torque_estimation_ && tau_in.size() == positions.size()) {
-    torque_filter_->update(sample.header().stamp_ns(),
-                           Eigen::Map<const Eigen::VectorXd>(tau_in.data(), q_.size()));
+    for (Eigen::Index j = 0; j < tau_in_.size(); ++j) {
+      tau_in_[j] =
+          torque_sensor_[static_cast<std::size_t>(j)] ? tau_in[static_cast<std::size_t>(j)] : 0.0;
+    }
+    torque_filter_->update(sample.header().stamp_ns(), tau_in_);
     tau_ = torque_filter_->value();
   }
   filter_force_torque(sample);

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include <wbi/msg/joint_torque_sensors.hpp>
 #include <wbi/runtime/console_line.hpp>
 
 #include "estimator_component_impl.hpp"
@@ -92,6 +93,8 @@ bool EstimatorComponent::prepare_sized(std::size_t joints) {
   torque_filter_.emplace(n, cutoff_hz_);
   q_.setZero(n);
   tau_.setZero(n);
+  tau_in_.setZero(n);
+  torque_sensor_ = wbi::msg::joint_torque_sensors(description->sample);
   const auto force_torques = static_cast<std::size_t>(std::count_if(
       description->sample.sensors().begin(), description->sample.sensors().end(),
       [](const auto& sensor) { return sensor.kind() == wbi::msg::SensorKind::FORCE_TORQUE; }));

@@ -50,6 +50,19 @@ void describe(const actuation::BackendDescription& description, const std::strin
     info.frame(description.ft_frames[i]);
     out.sensors().push_back(info);
   }
+  // Joint-torque sensors are listed only when some joints lack one (idl/description.idl).
+  const auto& sensed = description.torque_sensor;
+  if (description.any_torque_sensor() &&
+      std::find(sensed.begin(), sensed.end(), false) != sensed.end()) {
+    for (std::size_t j = 0; j < sensed.size(); ++j) {
+      if (sensed[j]) {
+        wbi::msg::SensorInfo info;
+        info.name(description.joint_names[j]);
+        info.kind(wbi::msg::SensorKind::JOINT_TORQUE);
+        out.sensors().push_back(info);
+      }
+    }
+  }
 }
 
 void prepare_sensor_sample(const actuation::BackendDescription& description,
@@ -57,7 +70,8 @@ void prepare_sensor_sample(const actuation::BackendDescription& description,
   const auto n = description.joint_names.size();
   sample.header().robot(robot);
   sample.encoder_position().assign(n, 0.0);
-  sample.joint_torque().assign(n, 0.0);
+  // No joint-torque sensor at all: an empty array (idl/sensors.idl).
+  sample.joint_torque().assign(description.any_torque_sensor() ? n : 0, 0.0);
   sample.motor_pwm().assign(n, 0.0);
   sample.imus().resize(description.imu_names.size());
   sample.force_torque().resize(description.ft_names.size());
@@ -68,7 +82,9 @@ void fill_sensor_sample(const actuation::SensorReadings& readings, std::uint64_t
   sample.header().seq(tick);
   sample.header().stamp_ns(stamp_ns);
   copy(readings.position, sample.encoder_position());
-  copy(readings.torque, sample.joint_torque());
+  if (!sample.joint_torque().empty()) {  // NaN where a joint has no sensor (RobotBackend::read)
+    copy(readings.torque, sample.joint_torque());
+  }
   copy(readings.pwm, sample.motor_pwm());
   for (std::size_t i = 0; i < readings.imus.size() && i < sample.imus().size(); ++i) {
     const auto& imu = readings.imus[i];
@@ -110,6 +126,15 @@ void fill_ground_truth(const actuation::GroundTruth& truth, const std::string& r
   for (std::size_t i = 0; i < out.contact_wrenches().size(); ++i) {
     set(out.contact_wrenches()[i].force(), truth.contact_wrenches[i].head<3>());
     set(out.contact_wrenches()[i].torque(), truth.contact_wrenches[i].tail<3>());
+  }
+  copy(truth.tau_actuator, out.applied_torque());
+  out.push_wrenches().resize(
+      std::min<std::size_t>({truth.push_wrenches.size(), truth.push_links.size(), 16}));
+  for (std::size_t i = 0; i < out.push_wrenches().size(); ++i) {
+    auto& push = out.push_wrenches()[i];
+    push.link(truth.push_links[i]);  // a bounded string: no allocation
+    set(push.wrench().force(), truth.push_wrenches[i].head<3>());
+    set(push.wrench().torque(), truth.push_wrenches[i].tail<3>());
   }
 }
 

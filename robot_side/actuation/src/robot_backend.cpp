@@ -1,5 +1,7 @@
 #include "wbi/actuation/robot_backend.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 namespace wbi::actuation {
@@ -11,6 +13,10 @@ int BackendDescription::joint_index(const std::string& name) const {
     }
   }
   throw std::invalid_argument("robot '" + robot + "': unknown joint '" + name + "'");
+}
+
+bool BackendDescription::any_torque_sensor() const {
+  return std::find(torque_sensor.begin(), torque_sensor.end(), true) != torque_sensor.end();
 }
 
 void SensorReadings::resize(const BackendDescription& description) {
@@ -52,9 +58,13 @@ void RobotBackend::configure() {
       d.velocity_limit.size() != n || d.effort_limit.size() != n ||
       !(d.position_kp.empty() || d.position_kp.size() == n) ||
       !(d.position_kd.empty() || d.position_kd.size() == n) ||
+      !(d.torque_sensor.empty() || d.torque_sensor.size() == n) ||
       d.imu_frames.size() != d.imu_names.size() || d.ft_frames.size() != d.ft_names.size()) {
     throw std::logic_error("robot backend '" + d.robot +
                            "': on_configure() returned a description with inconsistent sizes");
+  }
+  if (d.torque_sensor.empty()) {
+    d.torque_sensor.assign(n, true);  // a backend that says nothing: every joint has one
   }
   description_ = std::move(d);
   readings_.resize(description_);
@@ -100,6 +110,11 @@ void RobotBackend::read(Time time, Duration period) {
     require(state_, LifecycleState::inactive, "read()");
   }
   on_read(time, period, readings_);
+  for (std::size_t j = 0; j < description_.torque_sensor.size(); ++j) {
+    if (!description_.torque_sensor[j]) {
+      readings_.torque[static_cast<Eigen::Index>(j)] = std::numeric_limits<double>::quiet_NaN();
+    }
+  }
 }
 
 void RobotBackend::write(Time time, Duration period) {

@@ -97,6 +97,10 @@ struct MujocoBackend::Impl {
     int site = 0, body = 0;
     std::int64_t start = 0, end = 0;  // MuJoCo steps: active for start ≤ k < end
     Vector3d force = Vector3d::Zero();
+    Vector3d point = Vector3d::Zero();  // in the link frame (the site's axes are the link's)
+    // The wrench of the last step: (force, moment about the link frame origin),
+    // world axes; zero outside the window (ground truth).
+    Vector6d applied = Vector6d::Zero();
   };
   std::vector<Push> pushes;
   std::int64_t mj_steps = 0;
@@ -179,6 +183,7 @@ void MujocoBackend::Impl::find_names(double timestep) {
     push.start = sim_models::step_index(p.start, timestep);
     push.end = sim_models::step_index(p.end, timestep);
     push.force = p.force;
+    push.point = p.point;
     pushes.push_back(push);
   }
 }
@@ -342,7 +347,8 @@ void MujocoBackend::apply_controls() {
   for (const auto& push : s.pushes) {
     std::fill_n(d->xfrc_applied + 6 * push.body, 6, 0.0);
   }
-  for (const auto& push : s.pushes) {
+  for (auto& push : s.pushes) {
+    push.applied.setZero();
     if (s.mj_steps < push.start || s.mj_steps >= push.end) {
       continue;
     }
@@ -351,6 +357,11 @@ void MujocoBackend::apply_controls() {
     Eigen::Map<Vector6d> w(d->xfrc_applied + 6 * push.body);
     w.head<3>() += push.force;
     w.tail<3>() += (p - com).cross(push.force);
+    // For the ground truth, about the link frame origin p − R_WL·point.
+    const Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> R_WL(d->site_xmat +
+                                                                              9 * push.site);
+    push.applied.head<3>() = push.force;
+    push.applied.tail<3>() = (R_WL * push.point).cross(push.force);
   }
 }
 
@@ -425,6 +436,9 @@ void MujocoBackend::collect_dynamics() {
     }
   }
   truth_.tau_actuator = s.commands.torque();
+  for (std::size_t i = 0; i < s.pushes.size(); ++i) {
+    truth_.push_wrenches[i] = s.pushes[i].applied;
+  }
   // Ground contact wrenches per contact link: (force, moment about the link
   // frame origin), world axes. mj_contactForce is in the contact frame (normal
   // first, from geom1 to geom2): the force on geom2; geom1 gets its opposite.

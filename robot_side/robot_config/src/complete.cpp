@@ -1,4 +1,5 @@
 // What a configuration leaves out, from its URDF: joint dynamics and contact boxes.
+#include <algorithm>
 #include <stdexcept>
 
 #include <urdf_parser/urdf_parser.h>
@@ -55,6 +56,18 @@ void complete_from_urdf(RobotConfig& config) {
       contact.friction = config.ground.friction;
     }
   }
+}
+
+bool JointTorqueSensors::has(const std::string& joint) const {
+  switch (which) {
+    case Which::kAll:
+      return true;
+    case Which::kNone:
+      return false;
+    case Which::kListed:
+      break;
+  }
+  return std::find(joints.begin(), joints.end(), joint) != joints.end();
 }
 
 std::map<std::string, double> armature_by_joint(const RobotConfig& config) {

@@ -32,16 +32,18 @@ class Parser {
   Parser(const YAML::Node& root, const std::string& context) : r_(context), root_(root) {}
 
   RobotConfig parse() {
-    r_.check_keys(root_, "",
-                  {"urdf", "fixed_base", "gravity", "initial_joint_positions",
-                   "initial_base_position", "initial_base_orientation", "place_on_ground", "ground",
-                   "contacts", "joints", "imus", "force_torque", "pushes", "wbi", "mujoco"});
+    r_.check_keys(
+        root_, "",
+        {"urdf", "fixed_base", "gravity", "initial_joint_positions", "initial_base_position",
+         "initial_base_orientation", "place_on_ground", "ground", "contacts", "joints",
+         "joint_torque_sensors", "imus", "force_torque", "pushes", "wbi", "mujoco"});
     load_urdf();
     r_.get_vec<3>(root_, "", "gravity", c_.gravity);
     initial_state();
     ground();
     contacts();
     const auto overrides = joints();
+    joint_torque_sensors();
     imus();
     force_torque();
     pushes();
@@ -250,6 +252,38 @@ class Parser {
       } else {
         set(c_.joints.at(name), o);
       }
+    }
+  }
+
+  // joint_torque_sensors: all | none | [joint, ...]
+  void joint_torque_sensors() {
+    const char* key = "joint_torque_sensors";
+    const YAML::Node n = root_[key];
+    if (!n) {
+      return;
+    }
+    JointTorqueSensors& sensors = c_.joint_torque_sensors;
+    if (n.IsScalar()) {
+      const std::string& v = n.Scalar();
+      if (v != "all" && v != "none") {
+        r_.fail(n, key, "expected all, none or a list of joints, got '" + v + "'");
+      }
+      sensors.which =
+          v == "all" ? JointTorqueSensors::Which::kAll : JointTorqueSensors::Which::kNone;
+      return;
+    }
+    if (!n.IsSequence()) {
+      r_.fail(n, key, "expected all, none or a list of joints");
+    }
+    sensors.which = JointTorqueSensors::Which::kListed;
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      const std::string p = std::string(key) + "[" + std::to_string(i) + "]";
+      const auto name = r_.as<std::string>(n[i], p);
+      check_joint(n[i], p, name);
+      if (sensors.has(name)) {
+        r_.fail(n[i], p, "joint '" + name + "' given twice");
+      }
+      sensors.joints.push_back(name);
     }
   }
 

@@ -261,16 +261,20 @@ void SimBackend::compute_contacts() {
   for (std::size_t i = 0; i < s.pushes.size(); ++i) {
     Impl::Push& state = s.pushes[i];
     state.active = s.substep_count >= state.start && s.substep_count < state.end;
+    Vector6d& truth = truth_.push_wrenches[i];
+    truth.setZero();
     if (!state.active) {
       continue;
     }
     const SimPlan::Push& push = s.plan.pushes[i];
     const auto fi = static_cast<std::size_t>(push.frame);
     const auto b = static_cast<std::size_t>(m.frame_body[fi]);
+    // about the link frame origin: r from it to the point, world axes
     const Vector3d r = d.R_WB[b] * (m.frame_R_BF[fi] * push.point);
+    truth.head<3>() = push.force;
+    truth.tail<3>() = r.cross(push.force);
     s.wrenches[k].frame = push.frame;
-    s.wrenches[k].wrench.head<3>() = push.force;
-    s.wrenches[k].wrench.tail<3>() = r.cross(push.force);
+    s.wrenches[k].wrench = truth;
     ++k;
   }
   s.n_wrenches = k;

@@ -28,6 +28,7 @@ actuation::BackendDescription joint_description(const model::Model& m, const Rob
     const bool given = joint != config.joints.end();
     d.position_kp.push_back(given ? joint->second.kp : 0.0);
     d.position_kd.push_back(given ? joint->second.kd : 0.0);
+    d.torque_sensor.push_back(config.joint_torque_sensors.has(name));
   }
   return d;
 }
@@ -83,6 +84,10 @@ actuation::GroundTruth SimPlan::initial_ground_truth() const {
   truth.contact_links = contact_links;
   truth.contact_wrenches.assign(contact_links.size(), actuation::Vector6d::Zero());
   truth.contact_positions.assign(contact_links.size(), Eigen::Vector3d::Zero());
+  for (const auto& push : pushes) {
+    truth.push_links.push_back(push.link);
+  }
+  truth.push_wrenches.assign(pushes.size(), actuation::Vector6d::Zero());
   return truth;
 }
 
@@ -95,6 +100,12 @@ SimPlan make_sim_plan(const RobotConfig& c, const model::Model& m, const std::st
     }
     return m.frame_id(link);
   };
+  for (const auto& joint : c.joint_torque_sensors.joints) {
+    if (!m.has_joint(joint)) {
+      throw std::invalid_argument(where + ": joint_torque_sensors: unknown joint '" + joint +
+                                  "' in " + c.urdf);
+    }
+  }
   plan_joints(c, m, plan);
   plan_initial_state(c, m, where, plan);
 
@@ -115,6 +126,7 @@ SimPlan make_sim_plan(const RobotConfig& c, const model::Model& m, const std::st
 
   for (const auto& p : c.pushes) {
     SimPlan::Push push;
+    push.link = p.link;
     push.frame = frame_of(p.link, "pushes");
     if (!(p.duration >= 0.0)) {
       throw std::invalid_argument(where + ": pushes: 'duration' must be >= 0");

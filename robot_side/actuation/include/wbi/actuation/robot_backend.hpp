@@ -77,14 +77,20 @@ struct BackendDescription {
   std::vector<double> effort_limit;    // [N·m]; +inf when none
   // The joint controller's position PD per joint, or empty; an entry ≤ 0 takes
   // its default (JointController). A simulation's come from its robot config.
-  std::vector<double> position_kp;      // [N·m/rad]
-  std::vector<double> position_kd;      // [N·m·s/rad]
+  std::vector<double> position_kp;  // [N·m/rad]
+  std::vector<double> position_kd;  // [N·m·s/rad]
+  // [n] whether each joint has a joint-torque sensor; empty from on_configure():
+  // every joint has one (configure() fills it in). read() leaves NaN (not a
+  // reading) in SensorReadings::torque for a joint without one.
+  std::vector<bool> torque_sensor;
   std::vector<std::string> imu_names;   // order of SensorReadings::imus
   std::vector<std::string> imu_frames;  // frame (link) each IMU sits in
   std::vector<std::string> ft_names;    // order of SensorReadings::force_torque
   std::vector<std::string> ft_frames;   // sensor frame of each F/T sensor
 
   int n_joints() const { return static_cast<int>(joint_names.size()); }
+  // Whether any joint has a joint-torque sensor (else a sample carries no joint torque).
+  bool any_torque_sensor() const;
   // Index of a joint; throws std::invalid_argument naming it.
   int joint_index(const std::string& name) const;
 };
@@ -93,7 +99,8 @@ struct BackendDescription {
 struct SensorReadings {
   Eigen::VectorXd position;      // [n] encoder positions [rad] (quantised, possibly noisy)
   Eigen::VectorXd velocity;      // [n] joint velocities [rad/s]
-  Eigen::VectorXd torque;        // [n] joint torques [N·m] (torque sensors / motor current)
+  Eigen::VectorXd torque;        // [n] joint torques [N·m] (torque sensors / motor current);
+                                 // NaN for a joint without a torque sensor
   Eigen::VectorXd pwm;           // [n] motor PWM duty cycle applied, in [−1, 1]
   Time joint_stamp{0};           // source stamp of the joint quantities
   std::vector<ImuReading> imus;  // [n_imus]
@@ -137,7 +144,8 @@ class RobotBackend {
   LifecycleState state() const { return state_; }
 
   // ---- cyclic (INACTIVE or ACTIVE; never allocate) ----
-  // Reads every sensor into readings().
+  // Reads every sensor into readings(); a joint without a torque sensor
+  // (description().torque_sensor) reads NaN as its torque, whatever on_read wrote.
   void read(Time time, Duration period);
   // ACTIVE: applies commands() (sizes checked). INACTIVE: applies IDLE to every joint.
   void write(Time time, Duration period);

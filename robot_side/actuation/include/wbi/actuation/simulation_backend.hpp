@@ -36,7 +36,8 @@ struct GroundTruth {
   Eigen::VectorXd dnu;           // [nv] ν̇ of the last integration step
   Eigen::VectorXd tau;           // [n] total joint torque of the last integration step
                                  // (actuators + limits + friction)
-  Eigen::VectorXd tau_actuator;  // [n] actuator torque of the last integration step
+  Eigen::VectorXd tau_actuator;  // [n] actuator torque of the last integration step (the
+                                 // command after the motor model and saturation)
   Eigen::Vector3d base_position = Eigen::Vector3d::Zero();
   Eigen::Vector4d base_orientation{1.0, 0.0, 0.0, 0.0};  // w, x, y, z
   Vector6d base_velocity = Vector6d::Zero();             // (ṗ, ω), world axes
@@ -48,6 +49,10 @@ struct GroundTruth {
   // [n_contact_links] each contact link's frame origin, world [m] (where a foot is:
   // its slip on the ground).
   std::vector<Eigen::Vector3d> contact_positions;
+  std::vector<std::string> push_links;  // [n_pushes] link of each push of the config, in order
+  // [n_pushes] each push's wrench in the last integration step: (force, moment
+  // about the link frame origin), world axes; zero outside its window.
+  std::vector<Vector6d> push_wrenches;
 };
 
 class SimulationBackend : public RobotBackend {

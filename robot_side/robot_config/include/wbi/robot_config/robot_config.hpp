@@ -66,6 +66,17 @@ struct ForceTorqueConfig {
   double torque_noise = 0.0;  // σ [N·m]
 };
 
+// Which joints have a joint-torque sensor ("joint_torque_sensors:"). A robot
+// publishes a joint torque only for those (idl/sensors.idl, SensorSample).
+struct JointTorqueSensors {
+  // kAll: every joint (the default); kNone: no joint; kListed: the joints of `joints`.
+  enum class Which { kAll, kNone, kListed } which = Which::kAll;
+  std::vector<std::string> joints;  // kListed: movable joints of the URDF, each once
+
+  // Whether `joint` has a sensor.
+  bool has(const std::string& joint) const;
+};
+
 // An external force for a while (a scenario, the same in every engine).
 struct PushConfig {
   std::string link;                                 // URDF link (frame) the force acts on
@@ -162,6 +173,7 @@ struct RobotConfig {
   // Every model joint after complete_from_urdf() (load/parse call it): the
   // "joints:" entry, else "joints: default:", else URDF <dynamics> (armature 0).
   std::map<std::string, JointDynamics> joints;
+  JointTorqueSensors joint_torque_sensors;
   std::vector<ImuConfig> imus;
   std::vector<ForceTorqueConfig> force_torque;
   std::vector<PushConfig> pushes;

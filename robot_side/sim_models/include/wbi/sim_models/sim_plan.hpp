@@ -44,6 +44,7 @@ struct SimPlan {
 
   // ---- pushes: a force on a link over [start, end) of simulation time ----
   struct Push {
+    std::string link;                                 // the config's link (or frame)
     int frame = 0;                                    // model frame of the link
     double start = 0.0, end = 0.0;                    // [s]
     Eigen::Vector3d force = Eigen::Vector3d::Zero();  // [N], world axes
