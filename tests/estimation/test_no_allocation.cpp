@@ -42,6 +42,9 @@ TEST(NoAllocation, EveryEstimatorUpdate) {
         }
         // Regular samples, plus every kind of anomaly on the way.
         const std::int64_t stamp = k * 1'000'000 + (k % 5 == 4 ? 1'000'000 : 0);
+        if (estimator->takes_model_acceleration()) {
+          estimator->set_model_acceleration(k % 97 == 0 ? bad : q);
+        }
         estimator->update(stamp, q);
         if (k % 97 == 0) {
           estimator->update(stamp, q);              // duplicated
