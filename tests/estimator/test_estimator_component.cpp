@@ -5,12 +5,16 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <limits>
+#include <numbers>
 #include <optional>
 
 #include <wbi/dds/publisher.hpp>
 #include <wbi/dds/subscriber.hpp>
 #include <wbi/dds/topics.hpp>
+#include <wbi/estimation/estimator_factory.hpp>
 #include <wbi/estimator/estimator_component.hpp>
 #include <wbi/model/algorithms.hpp>
 #include <wbi/runtime/runner.hpp>
@@ -452,6 +456,110 @@ TEST(EstimatorComponent, LeggedBaseWithoutAnImuIsReported) {
   EXPECT_FALSE(fixture.next_estimate(100ms).has_value());
 }
 
+// method: model-kalman on the project's arm, driven in torque control by the
+// test: each tick the test sends the torques (gravity, damping and a sine per
+// joint, ~18 rad/s² RMS) on the commands topic, integrates the arm's dynamics over the tick
+// and sends the quantised encoder positions. The estimator's accelerations
+// come from those torques through the model, corrected by the encoders: their
+// error is at most half the adaptive window's on the same samples. Before the
+// first command the joints without a torque are named.
+TEST(EstimatorComponent, ModelKalmanFollowsTheCommandedTorques) {
+  const auto urdf = wbi::test::project_model("arm7.urdf");
+  wbi::model::LoadOptions load;
+  load.fixed_base = true;
+  const wbi::model::Model m = wbi::model::load_urdf_file(urdf.string(), load);
+  wbi::model::Data data(m);
+  const int n = m.n_joints;
+  EstimatorFixture fixture("mk", m.joint_name,
+                           "robot: mk\nurdf: " + urdf.string() + "\nmethod: model-kalman\n");
+  wbi::dds::Publisher<wbi::msg::ActuatorCommand> commands(fixture.participant(),
+                                                          topics::commands("mk"), qos::kCommand);
+  const Eigen::Vector3d gravity(0.0, 0.0, -9.81);
+  const double step = 2.0 * std::numbers::pi / 16384.0;  // 14-bit encoders
+  Eigen::VectorXd q = Eigen::VectorXd::Constant(n, 0.2);
+  Eigen::VectorXd dq = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd quantised(n);
+  const auto encoders = [&] {
+    for (int j = 0; j < n; ++j) {
+      quantised[j] = step * std::round(q[j] / step);
+    }
+    return quantised;
+  };
+  // No command yet: the model cannot predict, the estimator says which joints lack a torque.
+  fixture.step(0, encoders());
+  EXPECT_NE(fixture.status_error("no torque command for").find(m.joint_name[0]), std::string::npos);
+
+  // Damping and sine amplitude scaled by each joint's inertia (0.0006-3.5 kg m²):
+  // ~20 rad/s² on every joint, and stable at the integration's 0.1 ms.
+  const Eigen::VectorXd inertia = wbi::model::mass_matrix(m, data, q).diagonal();
+  const auto window = wbi::estimation::make_estimator("adaptive-window", n);
+  wbi::msg::ActuatorCommand command;
+  command.header().robot("mk");
+  command.controller("test");
+  for (int j = 0; j < n; ++j) {
+    command.joints().push_back(static_cast<unsigned short>(j));
+    command.modes().push_back(wbi::msg::ControlMode::TORQUE);
+  }
+  command.references().assign(static_cast<std::size_t>(n), 0.0);
+  double sum_model = 0.0;
+  double sum_window = 0.0;
+  double sum_truth = 0.0;
+  for (std::uint64_t k = 1; k <= 1500; ++k) {
+    const double t = 1e-3 * static_cast<double>(k);
+    // The torques of this tick, from the state at its start; the true
+    // acceleration at the sample is the forward dynamics of them.
+    Eigen::VectorXd tau =
+        wbi::model::gravity_forces(m, data, q, gravity) - 20.0 * inertia.cwiseProduct(dq);
+    for (int j = 0; j < n; ++j) {
+      tau[j] += 20.0 * inertia[j] * std::sin(2.0 * std::numbers::pi * (1.0 + 0.7 * j) * t);
+    }
+    const Eigen::VectorXd ddq_true = wbi::model::forward_dynamics(m, data, q, dq, tau, gravity);
+    std::copy(tau.data(), tau.data() + n, command.references().begin());
+    commands.publish(command);  // reliable: before the sample, in order from this participant
+    const auto state = fixture.step(k, encoders());
+    window->update(static_cast<std::int64_t>(k) * 1'000'000, quantised);
+    if (k > 300) {  // after the filters' start
+      for (int j = 0; j < n; ++j) {
+        const double e = state.ddq()[static_cast<std::size_t>(j)] - ddq_true[j];
+        const double w = window->acceleration()[j] - ddq_true[j];
+        sum_model += e * e;
+        sum_window += w * w;
+        sum_truth += ddq_true[j] * ddq_true[j];
+      }
+    }
+    for (int sub = 0; sub < 10; ++sub) {  // the tick, semi-implicit Euler at 0.1 ms
+      dq += 1e-4 * wbi::model::forward_dynamics(m, data, q, dq, tau, gravity);
+      q += 1e-4 * dq;
+    }
+  }
+  const double count = 1200.0 * n;
+  const double rms_model = std::sqrt(sum_model / count);
+  const double rms_window = std::sqrt(sum_window / count);
+  const double rms_truth = std::sqrt(sum_truth / count);
+  std::printf("model-kalman %.3f rad/s², adaptive window %.3f rad/s², signal %.3f rad/s² RMS\n",
+              rms_model, rms_window, rms_truth);
+  EXPECT_LE(rms_model, 0.5 * rms_window)
+      << "model-kalman " << rms_model << " rad/s², adaptive window " << rms_window
+      << " rad/s², signal " << rms_truth << " rad/s²";
+  EXPECT_GT(rms_truth, 5.0 * rms_model) << "the motion is too slow to tell";
+  EXPECT_GE(fixture.status_counter("samples_without_model_acceleration", 1).value_or(0), 1u);
+}
+
+// A floating-base robot's accelerations depend on its contact wrenches: without
+// joint_torques: force_torque to estimate them, model-kalman is refused by name.
+TEST(EstimatorComponent, ModelKalmanOnAFloatingBaseNeedsTheContactWrenches) {
+  const auto urdf = wbi::test::project_model("humanoid.urdf");
+  const wbi::model::Model m = wbi::model::load_urdf_file(urdf.string());
+  EstimatorFixture fixture("mk_float", m.joint_name,
+                           "robot: mk_float\nurdf: " + urdf.string() + "\nmethod: model-kalman\n",
+                           0, {}, {}, /*floating_base=*/true);
+  fixture.send(0, Eigen::VectorXd::Zero(m.n_joints));
+  EXPECT_NE(
+      fixture.status_error("model-kalman")
+          .find("method: model-kalman on a floating-base robot needs joint_torques: force_torque"),
+      std::string::npos);
+}
+
 TEST(EstimatorComponent, BadParametersAreNamed) {
   wbi::dds::Participant participant("bad");
   wbi::runtime::SystemClock clock;
@@ -483,6 +591,9 @@ TEST(EstimatorComponent, BadParametersAreNamed) {
                 .find("joint_torques must be sensors or force_torque, got 'guessed'"),
             std::string::npos);
   EXPECT_NE(configure("robot: r\njoint_torques: force_torque\n").find("needs the robot's urdf"),
+            std::string::npos);
+  EXPECT_NE(configure("robot: r\nmethod: model-kalman\n")
+                .find("method: model-kalman needs the robot's urdf"),
             std::string::npos);
   EXPECT_NE(
       configure("robot: r\njoint_torques: force_torque\nurdf: x.urdf\n").find("contact_links"),

@@ -98,9 +98,18 @@ void EstimatorComponent::on_configure(const runtime::Parameters& parameters,
                 parameters.get<std::vector<double>>("base_quaternion", {1.0, 0.0, 0.0, 0.0}));
   const auto base_topic =
       parameters.get<std::string>("base_topic", dds::topics::ground_truth(robot_));
-  torque_config_ = TorqueEstimationConfig::from(parameters, urdf_.empty() && parameters.has("urdf")
-                                                                ? file_parameter(parameters, "urdf")
-                                                                : urdf_);
+  const std::string urdf =
+      urdf_.empty() && parameters.has("urdf") ? file_parameter(parameters, "urdf") : urdf_;
+  torque_config_ = TorqueEstimationConfig::from(parameters, urdf);
+  model_urdf_.clear();
+  if (estimation::make_estimator(method_, 1, method_parameters_)->takes_model_acceleration()) {
+    if (urdf.empty()) {
+      throw runtime::ParameterError(parameters.where("method") + ": method: " + method_ +
+                                    " needs the robot's urdf (its model predicts the "
+                                    "accelerations)");
+    }
+    model_urdf_ = urdf;
+  }
 
   // The stamp monitor's counts, on the status topic (also summed in StateEstimate.warnings).
   dropped_ = &report().counter("dropped_samples");
@@ -112,6 +121,7 @@ void EstimatorComponent::on_configure(const runtime::Parameters& parameters,
   new_producers_ = &report().counter("new_producers");
   invalid_torque_estimates_ = &report().counter("invalid_torque_estimates");
   missing_force_torque_ = &report().counter("missing_force_torque_samples");
+  without_model_acceleration_ = &report().counter("samples_without_model_acceleration");
   // The robot's streams come from one writer each: a second robot of the same
   // name, or a rogue, is dropped and counted, not mixed into the estimate.
   // Its sensors come from the participant whose description was taken.
@@ -139,6 +149,17 @@ void EstimatorComponent::on_configure(const runtime::Parameters& parameters,
       [this](const wbi::msg::EstimatorParameter& p, const dds::detail::SampleInfo&) {
         on_parameter(p);
       });
+  if (!model_urdf_.empty()) {
+    // Every controller's commands: the torques the model's accelerations come from.
+    commands_ = std::make_unique<dds::Subscriber<wbi::msg::ActuatorCommand>>(
+        participant, dds::topics::commands(robot_), dds::qos::kCommand,
+        [this](const wbi::msg::ActuatorCommand& command, const dds::detail::SampleInfo&) {
+          std::lock_guard lock(mutex_);
+          if (model_acceleration_) {
+            model_acceleration_->on_command(command);
+          }
+        });
+  }
   sensors_ = std::make_unique<dds::Subscriber<wbi::msg::SensorSample>>(
       participant, dds::topics::sensors(robot_), dds::qos::kStream,
       [this](const wbi::msg::SensorSample& s, const dds::detail::SampleInfo& info) {
@@ -157,6 +178,7 @@ void EstimatorComponent::on_activate() {
 void EstimatorComponent::on_cleanup() {
   active_ = false;
   sensors_.reset();  // first: no callback runs after this
+  commands_.reset();
   parameter_subscriber_.reset();
   ground_truth_.reset();
   state_publisher_.reset();
@@ -166,6 +188,7 @@ void EstimatorComponent::on_cleanup() {
   base_estimator_.reset();
   legged_estimator_.reset();
   torque_estimation_.reset();
+  model_acceleration_.reset();
   have_base_sample_ = false;
   failed_ = false;
 }

@@ -16,6 +16,7 @@
 #include <wbi/estimation/estimator_factory.hpp>
 #include <wbi/estimation/low_pass_filter.hpp>
 
+#include "accelerations_from_model.hpp"
 #include "torques_from_force_torque.hpp"
 #include "wbi/estimator/base_estimator.hpp"
 #include "wbi/estimator/estimator_component.hpp"
@@ -55,6 +56,9 @@ class EstimatorComponent final : public runtime::Component {
   const Eigen::Matrix3Xd& foot_forces();
   void fill_base(const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq);
   void estimate_torques(const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq);
+  void feed_model_acceleration(const Eigen::VectorXd& dq);
+  void prepare_model_acceleration(const wbi::msg::RobotDescription& description,
+                                  const std::vector<std::string>& joints);
   void on_parameter(const wbi::msg::EstimatorParameter& parameter);
   void apply_parameter(const wbi::msg::EstimatorParameter& parameter);
 
@@ -96,6 +100,11 @@ class EstimatorComponent final : public runtime::Component {
   // sensor, 0 where it has none (its NaN never reaches the estimate).
   Eigen::VectorXd tau_in_;
   std::vector<bool> torque_sensor_;  // [joints] from the description
+  // method: model-kalman: the model's accelerations from the torque commands
+  std::string model_urdf_;
+  std::unique_ptr<AccelerationsFromModel> model_acceleration_;
+  Eigen::VectorXd ddq_model_;
+  bool sample_used_ = false;  // the last sample entered the joint estimator
   std::uint32_t ignored_ = 0;
   runtime::StatusCounter* dropped_ = nullptr;  // the report's counters (on_configure)
   runtime::StatusCounter* duplicated_ = nullptr;
@@ -106,6 +115,7 @@ class EstimatorComponent final : public runtime::Component {
   runtime::StatusCounter* new_producers_ = nullptr;
   runtime::StatusCounter* invalid_torque_estimates_ = nullptr;  // samples with some invalid
   runtime::StatusCounter* missing_force_torque_ = nullptr;      // samples without every F/T reading
+  runtime::StatusCounter* without_model_acceleration_ = nullptr;  // model-kalman: a joint untorqued
   dds::detail::Guid producer_{};              // the writer of the last sensor sample
   estimation::StampCounters earlier_counts_;  // of the filters before a new producer
   wbi::msg::StateEstimate state_;
@@ -115,6 +125,7 @@ class EstimatorComponent final : public runtime::Component {
   std::unique_ptr<dds::Publisher<wbi::msg::StateEstimate>> state_publisher_;
   std::unique_ptr<dds::Subscriber<wbi::msg::GroundTruth>> ground_truth_;
   std::unique_ptr<dds::Subscriber<wbi::msg::EstimatorParameter>> parameter_subscriber_;
+  std::unique_ptr<dds::Subscriber<wbi::msg::ActuatorCommand>> commands_;  // model-kalman
   std::unique_ptr<dds::Subscriber<wbi::msg::SensorSample>> sensors_;
 };
 

@@ -112,7 +112,8 @@ void EstimatorComponent::estimate(const wbi::msg::SensorSample& sample) {
     return;
   }
   q_ = Eigen::Map<const Eigen::VectorXd>(positions.data(), q_.size());
-  estimator_->update(sample.header().stamp_ns(), q_);
+  const auto status = estimator_->update(sample.header().stamp_ns(), q_);
+  sample_used_ = estimation::used(status);
   // Joint torques: none when the array is empty (tau stays 0); a joint without
   // a sensor (NaN on the wire, idl/sensors.idl) enters as 0.
   const auto& tau_in = sample.joint_torque();
@@ -170,6 +171,7 @@ void EstimatorComponent::publish(const wbi::msg::SensorSample& sample) {
   current_sample_ = &sample;
   fill_base(dq, ddq);
   estimate_torques(dq, ddq);
+  feed_model_acceleration(dq);
   current_sample_ = nullptr;
   std::copy(tau_.data(), tau_.data() + tau_.size(), state.tau().begin());
   auto counters = earlier_counts_;
@@ -205,6 +207,34 @@ void EstimatorComponent::estimate_torques(const Eigen::VectorXd& dq, const Eigen
   torque_filter_->update(current_sample_->header().stamp_ns(), torque_estimation_->torques());
   tau_ = torque_filter_->value();
   torque_estimation_->write_wrenches(state_);
+}
+
+// method: model-kalman — the model's accelerations at this sample (its base
+// and external wrenches estimated above) enter the joint estimator, whose
+// acceleration then replaces the state's ddq. The base estimators used the
+// acceleration before it.
+void EstimatorComponent::feed_model_acceleration(const Eigen::VectorXd& dq) {
+  if (!model_acceleration_ || !sample_used_) {
+    return;
+  }
+  const auto wrenches = torque_estimation_ ? torque_estimation_->estimator().link_wrenches()
+                                           : std::span<const model::ExternalWrench>{};
+  if (!model_acceleration_->compute(q_, dq, state_, wrenches, ddq_model_)) {
+    if (without_model_acceleration_->value() == 0) {  // the first one: allocates, once
+      const std::string text = "estimator of robot '" + robot_ + "': method: " + method_ +
+                               ": no torque command for " +
+                               model_acceleration_->joints_without_torque() +
+                               " (the model's acceleration needs every joint's torque); the "
+                               "last one is held";
+      report().set_error(text);
+      runtime::print_line(stderr, text);
+    }
+    without_model_acceleration_->add();
+    return;
+  }
+  estimator_->set_model_acceleration(ddq_model_);
+  const auto& ddq = estimator_->acceleration();
+  std::copy(ddq.data(), ddq.data() + ddq.size(), state_.ddq().begin());
 }
 
 void EstimatorComponent::write_base(const BaseState& base) {

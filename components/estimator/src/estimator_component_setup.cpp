@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include <wbi/model/urdf.hpp>
 #include <wbi/msg/joint_torque_sensors.hpp>
 #include <wbi/runtime/console_line.hpp>
 
@@ -127,7 +128,33 @@ bool EstimatorComponent::prepare_sized(std::size_t joints) {
         std::make_unique<TorquesFromForceTorque>(*torque_config_, description->sample, names);
     torque_estimation_->write_wrenches(state);
   }
+  prepare_model_acceleration(description->sample, names);
   return true;
+}
+
+// method: model-kalman: the model of the torque estimation when there is one
+// (its link wrenches are at that model's frames), else the URDF's.
+void EstimatorComponent::prepare_model_acceleration(const wbi::msg::RobotDescription& description,
+                                                    const std::vector<std::string>& joints) {
+  model_acceleration_.reset();
+  if (model_urdf_.empty()) {
+    return;
+  }
+  if (torque_estimation_) {
+    model_acceleration_ =
+        std::make_unique<AccelerationsFromModel>(torque_estimation_->estimator().model());
+  } else if (description.floating_base()) {
+    throw std::invalid_argument("method: " + method_ +
+                                " on a floating-base robot needs joint_torques: force_torque "
+                                "(the estimated contact wrenches enter the model)");
+  } else {
+    model::LoadOptions load;
+    load.joints = joints;
+    load.fixed_base = true;
+    model_acceleration_ =
+        std::make_unique<AccelerationsFromModel>(model::load_urdf_file(model_urdf_, load));
+  }
+  ddq_model_.setZero(static_cast<Eigen::Index>(joints.size()));
 }
 
 }  // namespace detail

@@ -62,6 +62,8 @@ class TorquesFromForceTorque {
   // Joints and hypotheses whose estimate the last update could not make.
   int invalid_joints() const { return invalid_joints_; }
   int invalid_wrenches() const { return invalid_wrenches_; }
+  // The wrench estimator, its model and its link wrenches (method: model-kalman).
+  const estimation::WrenchEstimator& estimator() const { return *estimator_; }
   // The external wrenches, written into the state (sized once, here).
   void write_wrenches(wbi::msg::StateEstimate& state) const;
 

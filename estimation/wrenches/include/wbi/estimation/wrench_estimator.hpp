@@ -101,6 +101,8 @@ class WrenchEstimator {
   // Wrench the environment exerts on hypothesis link h: (force, moment about
   // the link origin), world axes.
   const Vector6d& link_wrench(int h) const { return wrenches_[h].wrench; }
+  // Every hypothesis' wrench at its link frame, as model::forward_dynamics takes them.
+  std::span<const model::ExternalWrench> link_wrenches() const { return wrenches_; }
   bool link_wrench_valid(int h) const { return hypothesis_valid_[h] != 0; }
   bool loaded(int h) const { return loaded_[h] != 0; }
   bool reading_valid(int s) const { return reading_valid_[s] != 0; }
