@@ -43,20 +43,6 @@ SampleStatus DerivativeEstimator::update(std::int64_t stamp_ns,
   return status;
 }
 
-void DerivativeEstimator::set_model_acceleration(
-    const Eigen::Ref<const Eigen::VectorXd>& model_ddq) {
-  if (!takes_model_acceleration()) {
-    throw std::logic_error(std::string("estimation method '") + method() +
-                           "' takes no model acceleration (model-kalman does)");
-  }
-  if (model_ddq.size() != joints()) {
-    throw std::invalid_argument(std::string(method()) + ": the model acceleration has " +
-                                std::to_string(model_ddq.size()) + " values, expected " +
-                                std::to_string(joints()));
-  }
-  apply_model_acceleration(model_ddq, ddq_);
-}
-
 void DerivativeEstimator::reset() {
   stamps_.reset();
   dq_.setZero();

@@ -7,7 +7,6 @@
 #include "wbi/estimation/adaptive_window.hpp"
 #include "wbi/estimation/backward_difference.hpp"
 #include "wbi/estimation/kalman_derivative.hpp"
-#include "wbi/estimation/model_kalman.hpp"
 #include "wbi/estimation/split_kalman.hpp"
 
 namespace wbi::estimation {
@@ -24,7 +23,6 @@ std::vector<ParameterSpec> with_stream_parameters(std::vector<ParameterSpec> spe
 
 std::vector<MethodInfo> build_methods() {
   const KalmanParameters kalman;
-  const ModelKalmanParameters model_kalman;
   const SplitKalmanParameters split;
   const AdaptiveWindowParameters window;
   const BackwardDifferenceParameters difference;
@@ -77,19 +75,6 @@ std::vector<MethodInfo> build_methods() {
             "encoder counts per revolution (quantisation noise)"},
            {"process-noise", "SIGMA", kalman.process_noise, 1e-12, 1e15, false,
             "density of the white noise driving the highest derivative, rad/s^(M+1)/sqrt(Hz)"},
-       })},
-      {"model-kalman",
-       "a Kalman filter that follows the acceleration a model predicts (set each sample, e.g. "
-       "the forward dynamics of the commanded torques and estimated contact wrenches) and "
-       "finds the model's error in the encoders",
-       with_stream_parameters({
-           {"model-order", "M", static_cast<double>(model_kalman.model_order), 2, 4, true,
-            "model order of the model's error: 2 random walk, 3 integrated random walk"},
-           {"resolution", "COUNTS", model_kalman.resolution_counts, 2, 1e12, false,
-            "encoder counts per revolution (quantisation noise)"},
-           {"process-noise", "SIGMA", model_kalman.process_noise, 1e-12, 1e15, false,
-            "density of the white noise driving the model error's highest derivative, "
-            "rad/s^(M+1)/sqrt(Hz)"},
        })},
       {"adaptive-window",
        "least-squares fits over an adaptive window (Janabi-Sharifi, Hayward and Chen 2000)",
@@ -205,11 +190,6 @@ std::unique_ptr<DerivativeEstimator> make_estimator(const std::string& method, E
     const KalmanParameters params{static_cast<int>(p.at("model-order")), p.at("resolution"),
                                   p.at("process-noise")};
     return std::make_unique<KalmanEstimator>(joints, params, stream);
-  }
-  if (method == "model-kalman") {
-    const ModelKalmanParameters params{static_cast<int>(p.at("model-order")), p.at("resolution"),
-                                       p.at("process-noise")};
-    return std::make_unique<ModelKalmanEstimator>(joints, params, stream);
   }
   if (method == "adaptive-window") {
     const AdaptiveWindowParameters params{static_cast<int>(p.at("velocity-window")),

@@ -1,6 +1,8 @@
 #include "wbi/estimation/model_kalman.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace wbi::estimation {
 
@@ -24,8 +26,13 @@ void ModelKalmanEstimator::step(double dt_s, const Eigen::Ref<const Eigen::Vecto
   filters_.acceleration(ddq);
 }
 
-void ModelKalmanEstimator::apply_model_acceleration(
-    const Eigen::Ref<const Eigen::VectorXd>& model_ddq, Eigen::VectorXd& ddq) {
+void ModelKalmanEstimator::set_model_acceleration(
+    const Eigen::Ref<const Eigen::VectorXd>& model_ddq) {
+  if (model_ddq.size() != joints()) {
+    throw std::invalid_argument("model-kalman: the model acceleration has " +
+                                std::to_string(model_ddq.size()) + " values, expected " +
+                                std::to_string(joints()));
+  }
   for (Eigen::Index j = 0; j < model_ddq.size(); ++j) {
     if (!std::isfinite(model_ddq[j])) {
       ++non_finite_inputs_;
@@ -33,7 +40,7 @@ void ModelKalmanEstimator::apply_model_acceleration(
     }
     filters_.add_acceleration(j, model_ddq[j] - applied_[j]);
     applied_[j] = model_ddq[j];
-    ddq[j] = filters_.acceleration(j);
+    set_acceleration(j, filters_.acceleration(j));
   }
 }
 

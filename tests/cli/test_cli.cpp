@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -98,21 +97,6 @@ TEST(Cli, EventsNamesABadKindOrSeverity) {
   const auto severity = wbi_cli({"events", "--severity", "loud"});
   EXPECT_EQ(severity.code, 1);
   EXPECT_TRUE(contains(severity.output, "unknown severity 'loud'")) << severity.output;
-}
-
-// `wbi estimate`: model-kalman needs a model acceleration per sample, which a
-// CSV of positions does not carry: refused with the reason, no output written.
-TEST(Cli, EstimateRefusesAMethodThatNeedsTheModel) {
-  const auto input = wbi::test::binary_dir() / "tests" / "cli_positions.csv";
-  const auto output = wbi::test::binary_dir() / "tests" / "cli_model_kalman.csv";
-  std::filesystem::remove(output);
-  std::ofstream(input) << "t,q0\n0,0\n0.001,0.001\n";
-  const auto run = wbi_cli({"estimate", "--method", "model-kalman", "--input", input.string(),
-                            "--output", output.string()});
-  EXPECT_EQ(run.code, 1);
-  EXPECT_TRUE(contains(run.output, "method 'model-kalman' needs the model's acceleration"))
-      << run.output;
-  EXPECT_FALSE(std::filesystem::exists(output));
 }
 
 TEST(Cli, UnknownOptionIsNamed) {

@@ -57,12 +57,13 @@ struct ModelError {
 struct Trace {
   std::vector<double> estimate;  // ddq per sample
   std::vector<double> truth;
-  std::vector<double> model;  // the model's acceleration given (takes_model_acceleration())
+  std::vector<double> model;  // the model's acceleration given (fused only)
 };
 
-// Feeds the quantised trajectory for 5 s at 1 kHz; a method that takes a model
-// acceleration gets the model's at each sample, after it.
-Trace trace_of(DerivativeEstimator& estimator, const ModelError& model) {
+// Feeds the quantised trajectory for 5 s at 1 kHz to `estimator`; `fused`, when
+// it is the estimator, gets the model's acceleration at each sample, after it.
+Trace trace_of(DerivativeEstimator& estimator, ModelKalmanEstimator* fused = nullptr,
+               const ModelError& model = {}) {
   std::mt19937 random(7);
   std::normal_distribution<double> noise(0.0, model.noise);
   Eigen::VectorXd q(1);
@@ -72,10 +73,10 @@ Trace trace_of(DerivativeEstimator& estimator, const ModelError& model) {
     const double t = seconds(stamp_at(k));
     q[0] = kStep * std::round(position(t) / kStep);
     estimator.update(stamp_at(k), q);
-    if (estimator.takes_model_acceleration()) {
+    if (fused != nullptr) {
       u[0] = model.gain * acceleration(t) + model.offset +
              model.drift * std::sin(kTwoPi * 0.3 * t) + noise(random);
-      estimator.set_model_acceleration(u);
+      fused->set_model_acceleration(u);
       out.model.push_back(u[0]);
     }
     out.estimate.push_back(estimator.acceleration()[0]);
@@ -114,22 +115,22 @@ const ModelError kRealisticModel{1.05, 0.5, 0.5, 0.3};
 
 TEST(ModelKalman, HalvesTheAdaptiveWindowErrorWithAnImperfectModel) {
   const auto window = make_estimator("adaptive-window", 1);
-  const auto fused = make_estimator("model-kalman", 1);
-  const Trace w = trace_of(*window, {});
-  const Trace m = trace_of(*fused, kRealisticModel);
+  ModelKalmanEstimator fused(1, {});
+  const Trace w = trace_of(*window);
+  const Trace m = trace_of(fused, &fused, kRealisticModel);
   EXPECT_LE(rmse(m), 0.5 * rmse(w)) << "adaptive-window " << rmse(w);
   EXPECT_EQ(lag(m), 0) << "adaptive-window's lag " << lag(w) << " samples";
 }
 
 TEST(ModelKalman, TheEncodersCorrectTheModelsSlowErrors) {
-  const auto fused = make_estimator("model-kalman", 1);
-  const Trace m = trace_of(*fused, {1.0, 0.5, 0.5, 0.3});  // offset, drift and noise
+  ModelKalmanEstimator fused(1, {});
+  const Trace m = trace_of(fused, &fused, {1.0, 0.5, 0.5, 0.3});  // offset, drift and noise
   EXPECT_LE(rmse(m), 0.7 * rmse(m.model, m.truth)) << "the model alone";
 }
 
 TEST(ModelKalman, ExactModelIsFollowedWithoutLag) {
-  const auto fused = make_estimator("model-kalman", 1);
-  const Trace m = trace_of(*fused, {});
+  ModelKalmanEstimator fused(1, {});
+  const Trace m = trace_of(fused, &fused);
   double rms = 0.0;
   for (std::size_t k = 1000; k < m.truth.size(); ++k) {
     rms += m.truth[k] * m.truth[k];
@@ -172,20 +173,6 @@ TEST(ModelKalman, BadInputIsNamed) {
     FAIL() << "no error";
   } catch (const std::invalid_argument& error) {
     EXPECT_STREQ(error.what(), "model-kalman: the model acceleration has 2 values, expected 3");
-  }
-  for (const auto& method : all_methods()) {
-    const auto estimator = make_estimator(method, 3);
-    if (estimator->takes_model_acceleration()) {
-      continue;
-    }
-    try {
-      estimator->set_model_acceleration(Eigen::VectorXd::Zero(3));
-      FAIL() << method << ": no error";
-    } catch (const std::logic_error& error) {
-      EXPECT_NE(std::string(error.what()).find("'" + method + "' takes no model acceleration"),
-                std::string::npos)
-          << error.what();
-    }
   }
 }
 

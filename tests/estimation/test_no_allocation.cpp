@@ -14,6 +14,7 @@
 #include "allocation_counter.hpp"
 #include "wbi/estimation/estimator_factory.hpp"
 #include "wbi/estimation/low_pass_filter.hpp"
+#include "wbi/estimation/model_kalman.hpp"
 
 namespace wbi::estimation {
 namespace {
@@ -42,9 +43,6 @@ TEST(NoAllocation, EveryEstimatorUpdate) {
         }
         // Regular samples, plus every kind of anomaly on the way.
         const std::int64_t stamp = k * 1'000'000 + (k % 5 == 4 ? 1'000'000 : 0);
-        if (estimator->takes_model_acceleration()) {
-          estimator->set_model_acceleration(k % 97 == 0 ? bad : q);
-        }
         estimator->update(stamp, q);
         if (k % 97 == 0) {
           estimator->update(stamp, q);              // duplicated
@@ -59,6 +57,25 @@ TEST(NoAllocation, EveryEstimatorUpdate) {
     EXPECT_EQ(count, 0) << method;
     EXPECT_GT(estimator->stamp_counters().dropped, 0u) << method;
   }
+}
+
+TEST(NoAllocation, ModelKalmanWithItsInput) {
+  ModelKalmanEstimator fused(kJoints, {});
+  Eigen::VectorXd q(kJoints);
+  Eigen::VectorXd input(kJoints);
+  Eigen::VectorXd bad = Eigen::VectorXd::Constant(kJoints, std::nan(""));
+  const long count = allocations_during([&] {
+    for (std::int64_t k = 0; k < 3000; ++k) {
+      for (Eigen::Index j = 0; j < kJoints; ++j) {
+        q(j) = 0.3 * std::sin(0.004 * static_cast<double>(k * (j + 1)));
+      }
+      fused.update(k * 1'000'000, q);
+      input = -0.000016 * q;
+      fused.set_model_acceleration(k % 97 == 0 ? bad : input);
+    }
+  });
+  EXPECT_EQ(count, 0);
+  EXPECT_GT(fused.non_finite_inputs(), 0u);
 }
 
 TEST(NoAllocation, LowPassUpdate) {

@@ -103,11 +103,6 @@ int run_estimate(Args args) {
   } catch (const std::invalid_argument& error) {
     throw UsageError(error.what());  // unknown method, option or value
   }
-  if (estimator->takes_model_acceleration()) {  // a CSV of positions has no model acceleration
-    throw UsageError("method '" + method +
-                     "' needs the model's acceleration at each sample, which a CSV of positions "
-                     "does not have: use it in the estimator component (components/estimator)");
-  }
   const estimation::JointDerivatives derivatives =
       estimation::estimate_offline(*estimator, samples);
   estimation::write_derivatives_csv(output, derivatives);

@@ -47,24 +47,14 @@ class DerivativeEstimator {
   // The method name, as given to make_estimator().
   virtual const char* method() const = 0;
 
-  // Methods that use the acceleration a model predicts (model-kalman) return
-  // true; they take it through set_model_acceleration().
-  virtual bool takes_model_acceleration() const { return false; }
-  // The model's joint acceleration (rad/s², size joints()) at the last
-  // update()'s sample: acceleration() follows it at once, and it is held over
-  // the interval to the next sample. Throws std::logic_error for a method that
-  // takes none, std::invalid_argument for a wrong size. Never allocates.
-  void set_model_acceleration(const Eigen::Ref<const Eigen::VectorXd>& model_ddq);
-
  protected:
   // Restart from q alone (history forgotten). dq and ddq are already zero.
   virtual void start(const Eigen::Ref<const Eigen::VectorXd>& q) = 0;
   // The next sample, dt_s > 0 seconds after the previous used one. Writes dq and ddq.
   virtual void step(double dt_s, const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::VectorXd& dq,
                     Eigen::VectorXd& ddq) = 0;
-  // A model acceleration of the right size (takes_model_acceleration() only). Writes ddq.
-  virtual void apply_model_acceleration(const Eigen::Ref<const Eigen::VectorXd>& /*model_ddq*/,
-                                        Eigen::VectorXd& /*ddq*/) {}
+  // For an input between samples (model_kalman.hpp): joint j's acceleration estimate.
+  void set_acceleration(Eigen::Index j, double ddq) { ddq_[j] = ddq; }
 
  private:
   StampMonitor stamps_;

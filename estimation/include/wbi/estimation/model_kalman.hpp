@@ -1,7 +1,8 @@
-// model-kalman: joint velocity and acceleration from the encoders fused with
-// the acceleration a model predicts, e.g. the forward dynamics
+// Joint velocity and acceleration from the encoders fused with the
+// acceleration a model predicts, e.g. the forward dynamics
 // q̈_model = [M⁻¹(Bτ − h + Σ Jᵀf)]_joints with τ the commanded torques and f
-// the estimated contact wrenches (components/estimator, `method: model-kalman`).
+// the estimated contact wrenches (components/estimator, `accelerations: model`).
+// Not one of make_estimator()'s methods: it needs that input at every sample.
 //
 // Per joint the Kalman filter of integrator_chain.hpp runs on the model's
 // error instead of the acceleration itself:
@@ -31,12 +32,12 @@ namespace wbi::estimation {
 
 struct ModelKalmanParameters {
   // Of the model's error: 2 a random walk, 3 (default) an integrated one, so
-  // that a drifting error is followed without a steady lag. Defaults tuned on
-  // tests/estimation/test_model_kalman.cpp's multi-sine (quantised 14-bit
-  // encoder, 1 kHz): σ_w 0.3-100 gave 0.21-1.0 rad/s² with an exact model.
+  // that a drifting error is followed without a steady lag. σ_w tuned on iCub 3
+  // balancing in MuJoCo (components/estimator/README.md): 0.3, 1, 3, 10 gave
+  // 0.240, 0.253, 0.279, 0.322 rad/s² of q̈ error (legs and torso, below 20 Hz).
   int model_order = 3;
   double resolution_counts = 16384.0;  // encoder counts per revolution (2^14)
-  double process_noise = 3.0;          // σ_w of the model's error, rad/s^(order+1)/√Hz
+  double process_noise = 0.3;          // σ_w of the model's error, rad/s^(order+1)/√Hz
 };
 
 class ModelKalmanEstimator final : public DerivativeEstimator {
@@ -44,17 +45,19 @@ class ModelKalmanEstimator final : public DerivativeEstimator {
   ModelKalmanEstimator(Eigen::Index joints, const ModelKalmanParameters& params,
                        const StreamParameters& stream = {});
   const char* method() const override { return "model-kalman"; }
-  bool takes_model_acceleration() const override { return true; }
-  // Entries of set_model_acceleration() that were not finite: each leaves
-  // that joint's last input.
+  // The model's joint acceleration (rad/s², size joints()) at the last
+  // update()'s sample: acceleration() follows it at once, and it is held over
+  // the interval to the next sample. A non-finite entry leaves that joint's
+  // last input (counted). Throws std::invalid_argument for a wrong size.
+  // Never allocates.
+  void set_model_acceleration(const Eigen::Ref<const Eigen::VectorXd>& model_ddq);
+  // Entries of set_model_acceleration() that were not finite.
   std::uint64_t non_finite_inputs() const { return non_finite_inputs_; }
 
  private:
   void start(const Eigen::Ref<const Eigen::VectorXd>& q) override;
   void step(double dt_s, const Eigen::Ref<const Eigen::VectorXd>& q, Eigen::VectorXd& dq,
             Eigen::VectorXd& ddq) override;
-  void apply_model_acceleration(const Eigen::Ref<const Eigen::VectorXd>& model_ddq,
-                                Eigen::VectorXd& ddq) override;
 
   JointKalmanFilters filters_;
   Eigen::VectorXd applied_;  // u in the filters' acceleration state, rad/s²
