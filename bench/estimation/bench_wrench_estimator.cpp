@@ -3,6 +3,9 @@
 // joints, 8 F/T sensors, 9 hypotheses) and the project's humanoid (2
 // sensors, 3 hypotheses; "humanoid_shared" puts 3 hypotheses on one submodel,
 // the least-squares path). Target (issue 38): ≤ 50 µs per tick on iCub 3.
+// Also the model's accelerations from commanded torques (model_accelerations.hpp)
+// with both feet held and friction on every joint, at rest (every joint may
+// stick: the largest constraint system) and moving (none sticks).
 // Run: build/bin/wbi_bench_wrench_estimation --benchmark_format=json
 #include <benchmark/benchmark.h>
 
@@ -11,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "wbi/estimation/model_accelerations.hpp"
 #include "wbi/estimation/wrench_estimator.hpp"
 #include "wbi/model/configuration.hpp"
 #include "wbi/model/urdf.hpp"
@@ -89,6 +93,55 @@ void BM_WrenchEstimatorHumanoidShared(benchmark::State& state) {
   update(state, kSource / "models/humanoid.urdf", humanoid_options(true));
 }
 
+// feet: the contact frames held; moving: every joint faster than the stick velocity.
+void model_accelerations(benchmark::State& state, const std::filesystem::path& urdf,
+                         const std::vector<std::string>& feet, bool moving) {
+  if (!std::filesystem::exists(urdf)) {
+    state.SkipWithError(("skipped: " + urdf.string() + " not found").c_str());
+    return;
+  }
+  const wbi::model::Model model = wbi::model::load_urdf_file(urdf.string());
+  std::vector<int> frames;
+  for (const auto& foot : feet) {
+    frames.push_back(model.frame_id(foot));
+  }
+  const Eigen::VectorXd friction = Eigen::VectorXd::Constant(model.n_joints, 1.0);
+  wbi::estimation::ModelAccelerations accelerations(model, {0.5 * friction, friction}, frames);
+  constexpr int kStates = 64;
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> d(-1.0, 1.0);
+  std::vector<Eigen::VectorXd> q, nu, tau;
+  for (int i = 0; i < kStates; ++i) {
+    q.push_back(wbi::model::random_configuration(model, rng));
+    nu.push_back(moving ? Eigen::VectorXd::Constant(model.nv, 0.5)
+                        : Eigen::VectorXd::Zero(model.nv));
+    tau.push_back(Eigen::VectorXd::NullaryExpr(model.n_joints, [&] { return 5.0 * d(rng); }));
+  }
+  const std::vector<char> held(frames.size(), 1);
+  int i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(accelerations.update(q[i], nu[i], tau[i], held).data());
+    i = (i + 1) % kStates;
+  }
+  state.counters["joints"] = model.n_joints;
+  state.counters["stuck"] = accelerations.stuck_joints();
+}
+
+void BM_ModelAccelerationsICub3AtRest(benchmark::State& state) {
+  model_accelerations(state, kSource.parent_path() / "shared/models/iCubGenova09/model.urdf",
+                      {"l_foot_front", "l_foot_rear", "r_foot_front", "r_foot_rear"}, false);
+}
+void BM_ModelAccelerationsICub3Moving(benchmark::State& state) {
+  model_accelerations(state, kSource.parent_path() / "shared/models/iCubGenova09/model.urdf",
+                      {"l_foot_front", "l_foot_rear", "r_foot_front", "r_foot_rear"}, true);
+}
+void BM_ModelAccelerationsHumanoidAtRest(benchmark::State& state) {
+  model_accelerations(state, kSource / "models/humanoid.urdf", {"l_sole", "r_sole"}, false);
+}
+
+BENCHMARK(BM_ModelAccelerationsICub3AtRest)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ModelAccelerationsICub3Moving)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ModelAccelerationsHumanoidAtRest)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_WrenchEstimatorICub3)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_WrenchEstimatorHumanoid)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_WrenchEstimatorHumanoidShared)->Unit(benchmark::kMicrosecond);

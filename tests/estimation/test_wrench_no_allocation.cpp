@@ -11,6 +11,7 @@
 
 #include "allocation_counter.hpp"
 #include "test_support.hpp"
+#include "wbi/estimation/model_accelerations.hpp"
 #include "wbi/estimation/wrench_estimator.hpp"
 #include "wbi/model/configuration.hpp"
 #include "wbi/model/urdf.hpp"
@@ -41,6 +42,28 @@ TEST(WrenchEstimatorNoAllocation, UpdateWithOneAndSeveralHypothesesPerSubmodel) 
   Eigen::internal::set_is_malloc_allowed(true);
   EXPECT_EQ(allocation_count() - before, 0);
   EXPECT_TRUE(estimator.joint_torques().allFinite());
+}
+
+// ModelAccelerations::update() with both feet held and stuck joints to release.
+TEST(ModelAccelerationsNoAllocation, UpdateWithContactsAndFriction) {
+  const model::Model m = model::load_urdf_file(project_model("humanoid.urdf").string());
+  const Eigen::VectorXd friction = Eigen::VectorXd::Constant(m.n_joints, 0.3);
+  estimation::ModelAccelerations accelerations(m, {friction * 2.0, friction},
+                                               {m.frame_id("l_sole"), m.frame_id("r_sole")});
+  std::mt19937 rng(4);
+  const Eigen::VectorXd q = model::random_configuration(m, rng);
+  Eigen::VectorXd nu = Eigen::VectorXd::Zero(m.nv);
+  nu.tail(5).setConstant(0.5);  // some joints slide, the others may stick
+  const Eigen::VectorXd tau = Eigen::VectorXd::Constant(m.n_joints, 3.0);
+  const std::vector<std::vector<char>> held = {{1, 1}, {1, 0}, {0, 0}};
+  accelerations.update(q, nu, tau, held[0]);
+  const long before = allocation_count();
+  Eigen::internal::set_is_malloc_allowed(false);
+  for (int k = 0; k < 30; ++k) {
+    accelerations.update(q, nu, tau, held[static_cast<std::size_t>(k % 3)]);
+  }
+  Eigen::internal::set_is_malloc_allowed(true);
+  EXPECT_EQ(allocation_count() - before, 0);
 }
 
 }  // namespace
