@@ -456,7 +456,7 @@ TEST(EstimatorComponent, LeggedBaseWithoutAnImuIsReported) {
   EXPECT_FALSE(fixture.next_estimate(100ms).has_value());
 }
 
-// method: model-kalman on the project's arm, driven in torque control by the
+// accelerations: model on the project's arm, driven in torque control by the
 // test: each tick the test sends the torques (gravity, damping and a sine per
 // joint, ~18 rad/s² RMS) on the commands topic, integrates the arm's dynamics over the tick
 // and sends the quantised encoder positions. The estimator's accelerations
@@ -471,7 +471,7 @@ TEST(EstimatorComponent, ModelKalmanFollowsTheCommandedTorques) {
   wbi::model::Data data(m);
   const int n = m.n_joints;
   EstimatorFixture fixture("mk", m.joint_name,
-                           "robot: mk\nurdf: " + urdf.string() + "\nmethod: model-kalman\n");
+                           "robot: mk\nurdf: " + urdf.string() + "\naccelerations: model\n");
   wbi::dds::Publisher<wbi::msg::ActuatorCommand> commands(fixture.participant(),
                                                           topics::commands("mk"), qos::kCommand);
   const Eigen::Vector3d gravity(0.0, 0.0, -9.81);
@@ -536,28 +536,29 @@ TEST(EstimatorComponent, ModelKalmanFollowsTheCommandedTorques) {
   const double rms_model = std::sqrt(sum_model / count);
   const double rms_window = std::sqrt(sum_window / count);
   const double rms_truth = std::sqrt(sum_truth / count);
-  std::printf("model-kalman %.3f rad/s², adaptive window %.3f rad/s², signal %.3f rad/s² RMS\n",
-              rms_model, rms_window, rms_truth);
+  std::printf(
+      "accelerations: model %.3f rad/s², adaptive window %.3f rad/s², signal %.3f rad/s² RMS\n",
+      rms_model, rms_window, rms_truth);
   EXPECT_LE(rms_model, 0.5 * rms_window)
-      << "model-kalman " << rms_model << " rad/s², adaptive window " << rms_window
+      << "accelerations: model " << rms_model << " rad/s², adaptive window " << rms_window
       << " rad/s², signal " << rms_truth << " rad/s²";
   EXPECT_GT(rms_truth, 5.0 * rms_model) << "the motion is too slow to tell";
   EXPECT_GE(fixture.status_counter("samples_without_model_acceleration", 1).value_or(0), 1u);
 }
 
 // A floating-base robot's accelerations depend on its contact wrenches: without
-// joint_torques: force_torque to estimate them, model-kalman is refused by name.
+// joint_torques: force_torque to estimate them, accelerations: model is refused by name.
 TEST(EstimatorComponent, ModelKalmanOnAFloatingBaseNeedsTheContactWrenches) {
   const auto urdf = wbi::test::project_model("humanoid.urdf");
   const wbi::model::Model m = wbi::model::load_urdf_file(urdf.string());
   EstimatorFixture fixture("mk_float", m.joint_name,
-                           "robot: mk_float\nurdf: " + urdf.string() + "\nmethod: model-kalman\n",
+                           "robot: mk_float\nurdf: " + urdf.string() + "\naccelerations: model\n",
                            0, {}, {}, /*floating_base=*/true);
   fixture.send(0, Eigen::VectorXd::Zero(m.n_joints));
-  EXPECT_NE(
-      fixture.status_error("model-kalman")
-          .find("method: model-kalman on a floating-base robot needs joint_torques: force_torque"),
-      std::string::npos);
+  EXPECT_NE(fixture.status_error("accelerations: model")
+                .find("accelerations: model on a floating-base robot needs joint_torques: "
+                      "force_torque"),
+            std::string::npos);
 }
 
 TEST(EstimatorComponent, BadParametersAreNamed) {
@@ -592,8 +593,14 @@ TEST(EstimatorComponent, BadParametersAreNamed) {
             std::string::npos);
   EXPECT_NE(configure("robot: r\njoint_torques: force_torque\n").find("needs the robot's urdf"),
             std::string::npos);
-  EXPECT_NE(configure("robot: r\nmethod: model-kalman\n")
-                .find("method: model-kalman needs the robot's urdf"),
+  EXPECT_NE(configure("robot: r\naccelerations: model\n")
+                .find("accelerations: model needs the robot's urdf"),
+            std::string::npos);
+  EXPECT_NE(configure("robot: r\naccelerations: guessed\n")
+                .find("accelerations must be method or model, got 'guessed'"),
+            std::string::npos);
+  EXPECT_NE(configure("robot: r\nurdf: x.urdf\naccelerations: model\nacceleration_model_order: 7\n")
+                .find("model-kalman"),
             std::string::npos);
   EXPECT_NE(
       configure("robot: r\njoint_torques: force_torque\nurdf: x.urdf\n").find("contact_links"),

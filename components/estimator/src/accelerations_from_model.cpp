@@ -1,18 +1,41 @@
 #include "accelerations_from_model.hpp"
 
-#include <wbi/model/aba.hpp>
-
 namespace wbi::estimator::detail {
 
-AccelerationsFromModel::AccelerationsFromModel(model::Model model)
-    : model_(std::move(model)), data_(model_) {
-  q_model_.setZero(model_.nq);
-  if (model_.floating_base) {
+namespace {
+
+std::vector<int> contact_frames(const estimation::WrenchEstimator* wrenches,
+                                std::vector<int>& hypotheses) {
+  std::vector<int> frames;
+  if (wrenches == nullptr) {
+    return frames;
+  }
+  const auto links = wrenches->link_wrenches();
+  for (std::size_t h = 0; h < links.size(); ++h) {
+    if (wrenches->is_contact_link(static_cast<int>(h))) {
+      hypotheses.push_back(static_cast<int>(h));
+      frames.push_back(links[h].frame);
+    }
+  }
+  return frames;
+}
+
+}  // namespace
+
+AccelerationsFromModel::AccelerationsFromModel(model::Model model, estimation::JointLosses losses,
+                                               const estimation::WrenchEstimator* wrenches)
+    : wrenches_(wrenches) {
+  auto frames = contact_frames(wrenches, contact_hypotheses_);
+  held_.assign(contact_hypotheses_.size(), 0);
+  q_model_.setZero(model.nq);
+  if (model.floating_base) {
     q_model_[3] = 1.0;  // identity orientation (w first) until a state gives one
   }
-  nu_.setZero(model_.nv);
-  tau_.setZero(model_.nv);
-  torque_known_.assign(static_cast<std::size_t>(model_.n_joints), 0);
+  nu_.setZero(model.nv);
+  tau_.setZero(model.n_joints);
+  torque_known_.assign(static_cast<std::size_t>(model.n_joints), 0);
+  accelerations_ = std::make_unique<estimation::ModelAccelerations>(
+      std::move(model), std::move(losses), std::move(frames));
 }
 
 void AccelerationsFromModel::on_command(const wbi::msg::ActuatorCommand& command) {
@@ -23,7 +46,7 @@ void AccelerationsFromModel::on_command(const wbi::msg::ActuatorCommand& command
   }
   for (std::size_t i = 0; i < joints.size(); ++i) {
     const int j = joints[i];
-    if (j >= model_.n_joints) {
+    if (j >= tau_.size()) {
       ++malformed_commands_;
       continue;
     }
@@ -31,37 +54,38 @@ void AccelerationsFromModel::on_command(const wbi::msg::ActuatorCommand& command
     auto& known = torque_known_[static_cast<std::size_t>(j)];
     known_ += static_cast<int>(torque) - static_cast<int>(known);
     known = torque ? 1 : 0;
-    tau_[model_.base_nv + j] = torque ? command.references()[i] : 0.0;
+    tau_[j] = torque ? command.references()[i] : 0.0;
   }
 }
 
 bool AccelerationsFromModel::compute(const Eigen::VectorXd& q, const Eigen::VectorXd& dq,
-                                     const wbi::msg::StateEstimate& state,
-                                     std::span<const model::ExternalWrench> wrenches,
-                                     Eigen::VectorXd& ddq) {
-  if (known_ < model_.n_joints) {
+                                     const wbi::msg::StateEstimate& state, Eigen::VectorXd& ddq) {
+  const model::Model& m = accelerations_->model();
+  if (known_ < m.n_joints) {
     return false;
   }
-  if (model_.floating_base) {
+  if (m.floating_base) {
     const auto& pose = state.base_pose();
     q_model_.head<7>() << pose.position().x(), pose.position().y(), pose.position().z(),
         pose.orientation().w(), pose.orientation().x(), pose.orientation().y(),
         pose.orientation().z();
     nu_.head<6>() = Eigen::Map<const model::Vector6d>(state.base_velocity().data());
   }
-  q_model_.tail(model_.n_joints) = q;
-  nu_.tail(model_.n_joints) = dq;
-  const Eigen::Vector3d gravity(0.0, 0.0, -9.81);
-  const auto& dnu = model::forward_dynamics(model_, data_, q_model_, nu_, tau_, gravity, wrenches);
-  ddq = dnu.tail(model_.n_joints);
+  q_model_.tail(m.n_joints) = q;
+  nu_.tail(m.n_joints) = dq;
+  for (std::size_t c = 0; c < contact_hypotheses_.size(); ++c) {
+    held_[c] = wrenches_->loaded(contact_hypotheses_[c]) ? 1 : 0;
+  }
+  ddq = accelerations_->update(q_model_, nu_, tau_, held_).tail(m.n_joints);
   return true;
 }
 
 std::string AccelerationsFromModel::joints_without_torque() const {
+  const model::Model& m = accelerations_->model();
   std::string names;
-  for (int j = 0; j < model_.n_joints; ++j) {
+  for (int j = 0; j < m.n_joints; ++j) {
     if (torque_known_[static_cast<std::size_t>(j)] == 0) {
-      names += (names.empty() ? "" : ", ") + model_.joint_name[static_cast<std::size_t>(j)];
+      names += (names.empty() ? "" : ", ") + m.joint_name[static_cast<std::size_t>(j)];
     }
   }
   return names;

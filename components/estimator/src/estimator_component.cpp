@@ -101,15 +101,7 @@ void EstimatorComponent::on_configure(const runtime::Parameters& parameters,
   const std::string urdf =
       urdf_.empty() && parameters.has("urdf") ? file_parameter(parameters, "urdf") : urdf_;
   torque_config_ = TorqueEstimationConfig::from(parameters, urdf);
-  model_urdf_.clear();
-  if (estimation::make_estimator(method_, 1, method_parameters_)->takes_model_acceleration()) {
-    if (urdf.empty()) {
-      throw runtime::ParameterError(parameters.where("method") + ": method: " + method_ +
-                                    " needs the robot's urdf (its model predicts the "
-                                    "accelerations)");
-    }
-    model_urdf_ = urdf;
-  }
+  configure_model_accelerations(parameters, urdf);
 
   // The stamp monitor's counts, on the status topic (also summed in StateEstimate.warnings).
   dropped_ = &report().counter("dropped_samples");
@@ -193,6 +185,46 @@ void EstimatorComponent::on_cleanup() {
   failed_ = false;
 }
 
+// accelerations: method (the derivative estimator's ddq) or model (model_kalman.hpp).
+void EstimatorComponent::configure_model_accelerations(const runtime::Parameters& parameters,
+                                                       const std::string& urdf) {
+  model_urdf_.clear();
+  const auto source = parameters.get<std::string>("accelerations", "method");
+  if (source == "method") {
+    return;
+  }
+  if (source != "model") {
+    throw runtime::ParameterError(parameters.where("accelerations") +
+                                  ": accelerations must be method or model, got '" + source + "'");
+  }
+  if (urdf.empty()) {
+    throw runtime::ParameterError(parameters.where("accelerations") +
+                                  ": accelerations: model needs the robot's urdf");
+  }
+  model_urdf_ = urdf;
+  // The motors' armature and the joints' losses, by joint name or `default`
+  // (checked against the joints at the first sample): a URDF has none of them.
+  joint_armature_ = parameters.get<std::map<std::string, double>>("joint_armature", {});
+  joint_damping_ = parameters.get<std::map<std::string, double>>("joint_damping", {});
+  joint_friction_ = parameters.get<std::map<std::string, double>>("joint_friction", {});
+  stick_velocity_ =
+      parameters.get<double>("stick_velocity", estimation::JointLosses{}.stick_velocity);
+  if (!(stick_velocity_ > 0.0)) {
+    throw runtime::ParameterError(parameters.where("stick_velocity") +
+                                  ": stick_velocity must be > 0 rad/s");
+  }
+  model_kalman_ = estimation::ModelKalmanParameters{};
+  model_kalman_.model_order =
+      parameters.get<int>("acceleration_model_order", model_kalman_.model_order);
+  model_kalman_.process_noise =
+      parameters.get<double>("acceleration_process_noise", model_kalman_.process_noise);
+  const auto resolution = method_parameters_.find("resolution");
+  if (resolution != method_parameters_.end()) {
+    model_kalman_.resolution_counts = resolution->second;
+  }
+  estimation::ModelKalmanEstimator(1, model_kalman_);  // validates now, names the bad one
+}
+
 void EstimatorComponent::configure_legged(const runtime::Parameters& parameters) {
   legged_options_ = LeggedBaseOptions{};
   const auto feet = parameters.get<std::vector<std::string>>("feet", {"l_sole", "r_sole"});
@@ -246,6 +278,9 @@ void EstimatorComponent::apply_parameter(const wbi::msg::EstimatorParameter& par
   if (name == "reset") {
     if (estimator_) {
       estimator_->reset();
+    }
+    if (model_ddq_) {
+      model_ddq_->reset();
     }
   } else if (name == "fixed_link") {
     if (base_estimator_) {

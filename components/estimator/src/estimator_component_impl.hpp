@@ -4,6 +4,7 @@
 
 #include <array>
 #include <atomic>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -15,6 +16,7 @@
 #include <wbi/dds/subscriber.hpp>
 #include <wbi/estimation/estimator_factory.hpp>
 #include <wbi/estimation/low_pass_filter.hpp>
+#include <wbi/estimation/model_kalman.hpp>
 
 #include "accelerations_from_model.hpp"
 #include "torques_from_force_torque.hpp"
@@ -37,6 +39,8 @@ class EstimatorComponent final : public runtime::Component {
 
  private:
   void configure_legged(const runtime::Parameters& parameters);
+  void configure_model_accelerations(const runtime::Parameters& parameters,
+                                     const std::string& urdf);
   void prepare_legged(const wbi::msg::RobotDescription& description,
                       const std::vector<std::string>& joints);
   bool prepare(std::size_t joints);
@@ -56,7 +60,8 @@ class EstimatorComponent final : public runtime::Component {
   const Eigen::Matrix3Xd& foot_forces();
   void fill_base(const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq);
   void estimate_torques(const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq);
-  void feed_model_acceleration(const Eigen::VectorXd& dq);
+  void feed_model_acceleration();
+  estimation::StreamParameters estimator_stream() const;
   void prepare_model_acceleration(const wbi::msg::RobotDescription& description,
                                   const std::vector<std::string>& joints);
   void on_parameter(const wbi::msg::EstimatorParameter& parameter);
@@ -100,9 +105,14 @@ class EstimatorComponent final : public runtime::Component {
   // sensor, 0 where it has none (its NaN never reaches the estimate).
   Eigen::VectorXd tau_in_;
   std::vector<bool> torque_sensor_;  // [joints] from the description
-  // method: model-kalman: the model's accelerations from the torque commands
-  std::string model_urdf_;
+  // accelerations: model — the model's accelerations from the torque commands,
+  // fused with the encoders by a filter of their own (the method keeps dq)
+  std::string model_urdf_;  // empty: accelerations: method
+  std::map<std::string, double> joint_armature_, joint_damping_, joint_friction_;
+  double stick_velocity_ = 0.005;
+  estimation::ModelKalmanParameters model_kalman_;
   std::unique_ptr<AccelerationsFromModel> model_acceleration_;
+  std::unique_ptr<estimation::ModelKalmanEstimator> model_ddq_;
   Eigen::VectorXd ddq_model_;
   bool sample_used_ = false;  // the last sample entered the joint estimator
   std::uint32_t ignored_ = 0;
@@ -115,7 +125,7 @@ class EstimatorComponent final : public runtime::Component {
   runtime::StatusCounter* new_producers_ = nullptr;
   runtime::StatusCounter* invalid_torque_estimates_ = nullptr;  // samples with some invalid
   runtime::StatusCounter* missing_force_torque_ = nullptr;      // samples without every F/T reading
-  runtime::StatusCounter* without_model_acceleration_ = nullptr;  // model-kalman: a joint untorqued
+  runtime::StatusCounter* without_model_acceleration_ = nullptr;  // a joint without a torque
   dds::detail::Guid producer_{};              // the writer of the last sensor sample
   estimation::StampCounters earlier_counts_;  // of the filters before a new producer
   wbi::msg::StateEstimate state_;
@@ -125,7 +135,7 @@ class EstimatorComponent final : public runtime::Component {
   std::unique_ptr<dds::Publisher<wbi::msg::StateEstimate>> state_publisher_;
   std::unique_ptr<dds::Subscriber<wbi::msg::GroundTruth>> ground_truth_;
   std::unique_ptr<dds::Subscriber<wbi::msg::EstimatorParameter>> parameter_subscriber_;
-  std::unique_ptr<dds::Subscriber<wbi::msg::ActuatorCommand>> commands_;  // model-kalman
+  std::unique_ptr<dds::Subscriber<wbi::msg::ActuatorCommand>> commands_;  // accelerations: model
   std::unique_ptr<dds::Subscriber<wbi::msg::SensorSample>> sensors_;
 };
 

@@ -112,8 +112,10 @@ void EstimatorComponent::estimate(const wbi::msg::SensorSample& sample) {
     return;
   }
   q_ = Eigen::Map<const Eigen::VectorXd>(positions.data(), q_.size());
-  const auto status = estimator_->update(sample.header().stamp_ns(), q_);
-  sample_used_ = estimation::used(status);
+  estimator_->update(sample.header().stamp_ns(), q_);
+  if (model_ddq_) {
+    sample_used_ = estimation::used(model_ddq_->update(sample.header().stamp_ns(), q_));
+  }
   // Joint torques: none when the array is empty (tau stays 0); a joint without
   // a sensor (NaN on the wire, idl/sensors.idl) enters as 0.
   const auto& tau_in = sample.joint_torque();
@@ -171,7 +173,7 @@ void EstimatorComponent::publish(const wbi::msg::SensorSample& sample) {
   current_sample_ = &sample;
   fill_base(dq, ddq);
   estimate_torques(dq, ddq);
-  feed_model_acceleration(dq);
+  feed_model_acceleration();
   current_sample_ = nullptr;
   std::copy(tau_.data(), tau_.data() + tau_.size(), state.tau().begin());
   auto counters = earlier_counts_;
@@ -209,31 +211,32 @@ void EstimatorComponent::estimate_torques(const Eigen::VectorXd& dq, const Eigen
   torque_estimation_->write_wrenches(state_);
 }
 
-// method: model-kalman — the model's accelerations at this sample (its base
-// and external wrenches estimated above) enter the joint estimator, whose
-// acceleration then replaces the state's ddq. The base estimators used the
-// acceleration before it.
-void EstimatorComponent::feed_model_acceleration(const Eigen::VectorXd& dq) {
-  if (!model_acceleration_ || !sample_used_) {
+// accelerations: model — the model's accelerations at this sample (its base
+// and external wrenches estimated above) enter their filter, whose estimate
+// replaces the method's ddq in the state. Without them (a joint without a
+// torque command) the method's ddq stays. The base estimators and the torque
+// estimation used the method's. The model takes that filter's velocity: it
+// tells stuck joints (below stick_velocity) better than a noisier method's
+// (iCub 3: 0.28 rad/s² of q̈ error with it, 1.06 with backward differences).
+void EstimatorComponent::feed_model_acceleration() {
+  if (!model_ddq_ || !sample_used_) {
     return;
   }
-  const auto wrenches = torque_estimation_ ? torque_estimation_->estimator().link_wrenches()
-                                           : std::span<const model::ExternalWrench>{};
-  if (!model_acceleration_->compute(q_, dq, state_, wrenches, ddq_model_)) {
+  if (!model_acceleration_->compute(q_, model_ddq_->velocity(), state_, ddq_model_)) {
     if (without_model_acceleration_->value() == 0) {  // the first one: allocates, once
-      const std::string text = "estimator of robot '" + robot_ + "': method: " + method_ +
-                               ": no torque command for " +
+      const std::string text = "estimator of robot '" + robot_ +
+                               "': accelerations: model: no torque command for " +
                                model_acceleration_->joints_without_torque() +
                                " (the model's acceleration needs every joint's torque); the "
-                               "last one is held";
+                               "method's acceleration is published meanwhile";
       report().set_error(text);
       runtime::print_line(stderr, text);
     }
     without_model_acceleration_->add();
     return;
   }
-  estimator_->set_model_acceleration(ddq_model_);
-  const auto& ddq = estimator_->acceleration();
+  model_ddq_->set_model_acceleration(ddq_model_);
+  const auto& ddq = model_ddq_->acceleration();
   std::copy(ddq.data(), ddq.data() + ddq.size(), state_.ddq().begin());
 }
 

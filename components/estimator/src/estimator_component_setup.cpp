@@ -132,29 +132,75 @@ bool EstimatorComponent::prepare_sized(std::size_t joints) {
   return true;
 }
 
-// method: model-kalman: the model of the torque estimation when there is one
-// (its link wrenches are at that model's frames), else the URDF's.
+// The stream parameters the method was given (sample-rate, max-gap), else their defaults.
+estimation::StreamParameters EstimatorComponent::estimator_stream() const {
+  estimation::StreamParameters stream;
+  if (const auto rate = method_parameters_.find("sample-rate"); rate != method_parameters_.end()) {
+    stream.sample_rate_hz = rate->second;
+  }
+  if (const auto gap = method_parameters_.find("max-gap"); gap != method_parameters_.end()) {
+    stream.max_gap_s = gap->second;
+  }
+  return stream;
+}
+
+namespace {
+
+// `values` (joint name or "default" to a number) per joint; an unknown name throws, named.
+Eigen::VectorXd per_joint(const std::map<std::string, double>& values, const char* parameter,
+                          const std::vector<std::string>& joints) {
+  const auto fallback = values.find("default");
+  Eigen::VectorXd out = Eigen::VectorXd::Constant(
+      static_cast<Eigen::Index>(joints.size()), fallback == values.end() ? 0.0 : fallback->second);
+  for (const auto& [name, value] : values) {
+    const auto at = std::find(joints.begin(), joints.end(), name);
+    if (name != "default" && at == joints.end()) {
+      throw std::invalid_argument(std::string(parameter) + ": the robot has no joint '" + name +
+                                  "'");
+    }
+    if (!(value >= 0.0)) {
+      throw std::invalid_argument(std::string(parameter) + ": '" + name + "' must be ≥ 0");
+    }
+    if (name != "default") {
+      out[at - joints.begin()] = value;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+// accelerations: model: the URDF's model with the configured armature (the
+// torque estimation's model has the same frames: same URDF, joints and base).
 void EstimatorComponent::prepare_model_acceleration(const wbi::msg::RobotDescription& description,
                                                     const std::vector<std::string>& joints) {
   model_acceleration_.reset();
+  model_ddq_.reset();
   if (model_urdf_.empty()) {
     return;
   }
-  if (torque_estimation_) {
-    model_acceleration_ =
-        std::make_unique<AccelerationsFromModel>(torque_estimation_->estimator().model());
-  } else if (description.floating_base()) {
-    throw std::invalid_argument("method: " + method_ +
-                                " on a floating-base robot needs joint_torques: force_torque "
-                                "(the estimated contact wrenches enter the model)");
-  } else {
-    model::LoadOptions load;
-    load.joints = joints;
-    load.fixed_base = true;
-    model_acceleration_ =
-        std::make_unique<AccelerationsFromModel>(model::load_urdf_file(model_urdf_, load));
+  if (description.floating_base() && !torque_estimation_) {
+    throw std::invalid_argument(
+        "accelerations: model on a floating-base robot needs joint_torques: force_torque "
+        "(the estimated contact wrenches enter the model)");
   }
-  ddq_model_.setZero(static_cast<Eigen::Index>(joints.size()));
+  model::LoadOptions load;
+  load.joints = joints;
+  load.fixed_base = !description.floating_base();
+  const Eigen::VectorXd armature = per_joint(joint_armature_, "joint_armature", joints);
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    load.armature[joints[j]] = armature[static_cast<Eigen::Index>(j)];
+  }
+  estimation::JointLosses losses{per_joint(joint_damping_, "joint_damping", joints),
+                                 per_joint(joint_friction_, "joint_friction", joints),
+                                 stick_velocity_};
+  model_acceleration_ = std::make_unique<AccelerationsFromModel>(
+      model::load_urdf_file(model_urdf_, load), std::move(losses),
+      torque_estimation_ ? &torque_estimation_->estimator() : nullptr);
+  const auto n = static_cast<Eigen::Index>(joints.size());
+  ddq_model_.setZero(n);
+  model_ddq_ =
+      std::make_unique<estimation::ModelKalmanEstimator>(n, model_kalman_, estimator_stream());
 }
 
 }  // namespace detail

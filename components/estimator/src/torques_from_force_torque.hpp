@@ -62,7 +62,7 @@ class TorquesFromForceTorque {
   // Joints and hypotheses whose estimate the last update could not make.
   int invalid_joints() const { return invalid_joints_; }
   int invalid_wrenches() const { return invalid_wrenches_; }
-  // The wrench estimator, its model and its link wrenches (method: model-kalman).
+  // The wrench estimator, its model and its link wrenches (accelerations: model).
   const estimation::WrenchEstimator& estimator() const { return *estimator_; }
   // The external wrenches, written into the state (sized once, here).
   void write_wrenches(wbi::msg::StateEstimate& state) const;
