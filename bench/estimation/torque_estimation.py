@@ -16,13 +16,19 @@ beside a `wbi launch`). Prints one Markdown table per run:
 - contact forces: the RMS of |f_estimated − f_true| per contact link, as a
   percentage of the body weight (the mean total vertical contact force);
 - a push LINK:START:DURATION:FORCE: the estimated peak force on LINK during the
-  push against FORCE, and the delay from START to the link's first `loaded`.
+  push against FORCE, and the delay from START to the link's first `loaded`;
+- joint accelerations of the same joints against the ground truth's ddq: the
+  RMSE below 20 Hz (the error's spectrum cut there) and the lag (the delay that
+  best aligns estimate and truth), for the state's ddq and for the adaptive
+  window run offline (`wbi estimate`) on the state's encoder positions.
 """
 
 import argparse
 import os
 import re
+import subprocess
 import sys
+import tempfile
 
 import numpy as np
 
@@ -69,6 +75,35 @@ def link_column(state, rows, link):
 def forces(data, rows, prefix, column):
     return np.column_stack([np.asarray(data[f"{prefix}.force.{axis}"], dtype=float)[rows, column]
                             for axis in "xyz"])
+
+
+def below(signal, hz, rate_hz=1000.0):
+    """`signal` (samples × columns) with its spectrum above `hz` removed."""
+    spectrum = np.fft.rfft(signal, axis=0)
+    spectrum[np.fft.rfftfreq(signal.shape[0], 1.0 / rate_hz) > hz] = 0.0
+    return np.fft.irfft(spectrum, n=signal.shape[0], axis=0)
+
+
+def acceleration_figures(estimate, truth, band_hz=20.0, max_lag=40):
+    """(RMSE below band_hz, lag in samples) of estimate against truth (samples × joints)."""
+    def rmse(lag):
+        e = estimate[lag:] - truth[:truth.shape[0] - lag]
+        return float(np.sqrt(np.mean(below(e, band_hz) ** 2)))
+    lag = min(range(max_lag + 1), key=rmse)
+    return rmse(0), lag
+
+
+def adaptive_window(t, q):
+    """ddq of the adaptive window run offline on positions q (samples × joints)."""
+    wbi = os.path.join(BUILD, "bin", "wbi")
+    with tempfile.TemporaryDirectory() as folder:
+        given, out = os.path.join(folder, "q.csv"), os.path.join(folder, "d.csv")
+        header = "t," + ",".join(f"q{j}" for j in range(q.shape[1]))
+        np.savetxt(given, np.column_stack([t, q]), delimiter=",", header=header, comments="",
+                   fmt="%.17g")
+        subprocess.run([wbi, "estimate", "--method", "adaptive-window", "--input", given,
+                        "--output", out], check=True)
+        return np.loadtxt(out, delimiter=",", skiprows=1)[:, 1 + q.shape[1]:]
 
 
 def main():
@@ -140,6 +175,17 @@ def main():
                   f"{np.sqrt(np.mean(f_est[before] ** 2)):.2f} N |")
             print(f"| {link} loaded before the push (false alarms) | "
                   f"{100 * np.mean(loaded[before]):.2f} % of the estimates |")
+
+        if "ddq" in truth.fields:
+            ddq_true = np.asarray(truth["ddq"], dtype=float)[in_truth][keep][:, chosen]
+            ddq = np.asarray(state["ddq"], dtype=float)[in_state][keep][:, chosen]
+            q = np.asarray(state["q"], dtype=float)[in_state]
+            window = adaptive_window(t - t[0], q)[keep][:, chosen]
+            rms = np.sqrt(np.mean(below(ddq_true, 20.0) ** 2))
+            for label, estimate in (("state", ddq), ("adaptive window (offline)", window)):
+                rmse, lag = acceleration_figures(estimate, ddq_true)
+                print(f"| ddq RMSE below 20 Hz, {label} | {rmse:.3f} rad/s² "
+                      f"({100 * rmse / rms:.1f} % of the truth's {rms:.2f}), lag {lag} ms |")
     return 0
 
 
