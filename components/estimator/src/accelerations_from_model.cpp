@@ -1,5 +1,7 @@
 #include "accelerations_from_model.hpp"
 
+#include "base_from_state.hpp"
+
 namespace wbi::estimator::detail {
 
 namespace {
@@ -65,11 +67,7 @@ bool AccelerationsFromModel::compute(const Eigen::VectorXd& q, const Eigen::Vect
     return false;
   }
   if (m.floating_base) {
-    const auto& pose = state.base_pose();
-    q_model_.head<7>() << pose.position().x(), pose.position().y(), pose.position().z(),
-        pose.orientation().w(), pose.orientation().x(), pose.orientation().y(),
-        pose.orientation().z();
-    nu_.head<6>() = Eigen::Map<const model::Vector6d>(state.base_velocity().data());
+    base_from_state(state, q_model_, nu_);
   }
   q_model_.tail(m.n_joints) = q;
   nu_.tail(m.n_joints) = dq;

@@ -6,6 +6,8 @@
 
 #include <wbi/model/urdf.hpp>
 
+#include "base_from_state.hpp"
+
 namespace wbi::estimator::detail {
 
 std::optional<TorqueEstimationConfig> TorqueEstimationConfig::from(
@@ -97,11 +99,7 @@ bool TorquesFromForceTorque::update(const wbi::msg::SensorSample& sample, const 
   }
   const model::Model& m = estimator_->model();
   if (m.floating_base) {
-    const auto& pose = state.base_pose();
-    q_model_.head<7>() << pose.position().x(), pose.position().y(), pose.position().z(),
-        pose.orientation().w(), pose.orientation().x(), pose.orientation().y(),
-        pose.orientation().z();
-    nu_.head<6>() = Eigen::Map<const model::Vector6d>(state.base_velocity().data());
+    base_from_state(state, q_model_, nu_);
     if (use_accelerations_) {
       dnu_.head<6>() = Eigen::Map<const model::Vector6d>(state.base_acceleration().data());
     }

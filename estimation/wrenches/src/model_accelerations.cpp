@@ -55,14 +55,17 @@ ModelAccelerations::ModelAccelerations(model::Model model, JointLosses losses,
   tau_net_.setZero(model_.nv);
   ddq_.setZero(model_.nv);
   delta_tau_.setZero(model_.nv);
-  const auto rows = static_cast<Eigen::Index>(6 * contact_frames_.size()) + n;
+  const auto contact_rows = static_cast<Eigen::Index>(6 * contact_frames_.size());
+  const Eigen::Index rows = contact_rows + n;  // at most: every contact held, every joint stuck
+  contact_J_.setZero(contact_rows, model_.nv);
+  contact_bias_.setZero(contact_rows);
   J_.setZero(rows, model_.nv);
   bias_.setZero(rows);
   MinvJt_.setZero(model_.nv, rows);
   A_.setZero(rows, rows);
   lambda_.setZero(rows);
+  joint_row_.assign(static_cast<std::size_t>(n), -1);
   mass_llt_ = Eigen::LLT<Eigen::MatrixXd>(model_.nv);
-  constraint_ldlt_ = Eigen::LDLT<Eigen::MatrixXd>(rows);
 }
 
 const Eigen::VectorXd& ModelAccelerations::update(const Eigen::VectorXd& q,
@@ -99,14 +102,12 @@ const Eigen::VectorXd& ModelAccelerations::update(const Eigen::VectorXd& q,
   if (!contact_frames_.empty()) {
     model::forward_velocity_kinematics(model_, data_, q, nu);
     for (std::size_t c = 0; c < contact_frames_.size(); ++c) {
-      const auto row = static_cast<Eigen::Index>(6 * c);
       if (body_held_[c] != 0) {
-        J_.middleRows<6>(row) = model::frame_jacobian(model_, data_, contact_frames_[c]);
-        bias_.segment<6>(row) = model::frame_bias_acceleration(model_, data_, contact_frames_[c]);
+        const auto row = static_cast<Eigen::Index>(6 * c);
+        contact_J_.middleRows<6>(row) = model::frame_jacobian(model_, data_, contact_frames_[c]);
+        contact_bias_.segment<6>(row) =
+            model::frame_bias_acceleration(model_, data_, contact_frames_[c]);
         constrained = true;
-      } else {
-        J_.middleRows<6>(row).setZero();
-        bias_.segment<6>(row).setZero();
       }
     }
   }
@@ -118,11 +119,11 @@ const Eigen::VectorXd& ModelAccelerations::update(const Eigen::VectorXd& q,
   mass_llt_.compute(model::mass_matrix(model_, data_, q));
   solve_constraints();
   // A stuck joint whose hold needs more than its friction slides, pushed by that friction.
-  const auto joint_rows = static_cast<Eigen::Index>(6 * contact_frames_.size());
   bool released = false;
   for (int j = 0; j < n; ++j) {
-    const double hold = lambda_[joint_rows + j];
-    if (stuck_[static_cast<std::size_t>(j)] != 0 && std::abs(hold) > losses_.friction[j]) {
+    const int row = joint_row_[static_cast<std::size_t>(j)];
+    const double hold = row >= 0 ? lambda_[row] : 0.0;
+    if (row >= 0 && std::abs(hold) > losses_.friction[j]) {
       stuck_[static_cast<std::size_t>(j)] = 0;
       --stuck_count_;
       delta_tau_[b + j] = std::copysign(losses_.friction[j], hold);
@@ -135,31 +136,51 @@ const Eigen::VectorXd& ModelAccelerations::update(const Eigen::VectorXd& q,
     delta_tau_.setZero();
     solve_constraints();
   }
-  ddq_.noalias() += MinvJt_ * lambda_;
+  ddq_.noalias() += MinvJt_.leftCols(active_rows_) * lambda_.head(active_rows_);
   return ddq_;
 }
 
 void ModelAccelerations::solve_constraints() {
-  const auto joint_rows = static_cast<Eigen::Index>(6 * contact_frames_.size());
+  // The active rows at the top: held contacts' blocks, then stuck joints.
+  Eigen::Index m = 0;
+  for (std::size_t c = 0; c < contact_frames_.size(); ++c) {
+    if (body_held_[c] != 0) {
+      const auto from = static_cast<Eigen::Index>(6 * c);
+      J_.middleRows<6>(m) = contact_J_.middleRows<6>(from);
+      bias_.segment<6>(m) = contact_bias_.segment<6>(from);
+      m += 6;
+    }
+  }
   const int b = model_.base_nv;
   for (int j = 0; j < model_.n_joints; ++j) {
-    J_.row(joint_rows + j).setZero();
+    auto& row = joint_row_[static_cast<std::size_t>(j)];
+    row = -1;
     if (stuck_[static_cast<std::size_t>(j)] != 0) {
-      J_(joint_rows + j, b + j) = 1.0;
+      J_.row(m).setZero();
+      J_(m, b + j) = 1.0;
+      bias_[m] = 0.0;
+      row = static_cast<int>(m++);
     }
   }
-  MinvJt_ = J_.transpose();
-  mass_llt_.solveInPlace(MinvJt_);
-  A_.noalias() = J_ * MinvJt_;
-  lambda_.noalias() = -J_ * ddq_;
-  lambda_ -= bias_;
-  for (Eigen::Index row = 0; row < A_.rows(); ++row) {
-    if (J_.row(row).isZero(0.0)) {
-      A_(row, row) = 1.0;
-    }
+  active_rows_ = m;
+  if (m == 0) {
+    return;
   }
-  constraint_ldlt_.compute(A_);
-  constraint_ldlt_.solveInPlace(lambda_);
+  const auto J = J_.topRows(m);
+  auto MinvJt = MinvJt_.leftCols(m);
+  MinvJt = J.transpose();
+  mass_llt_.solveInPlace(MinvJt);
+  auto A = A_.topLeftCorner(m, m);
+  A.noalias() = J * MinvJt;
+  // Rows can be dependent (a leg's joints stuck while both its feet are held):
+  // each diagonal 1e-12 larger, relative to itself (joint rows are M⁻¹'s
+  // diagonal, up to 10⁴ apart), keeps A positive definite; q̈ moves by ~1e-9.
+  A.diagonal() *= 1.0 + 1e-12;
+  auto lambda = lambda_.head(m);
+  lambda.noalias() = -J * ddq_;
+  lambda -= bias_.head(m);
+  Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> factor(A);  // in place: nothing allocated
+  factor.solveInPlace(lambda);
 }
 
 }  // namespace wbi::estimation

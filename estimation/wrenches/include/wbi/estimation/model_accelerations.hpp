@@ -61,8 +61,8 @@ class ModelAccelerations {
   const model::Model& model() const { return model_; }
 
  private:
-  // λ of the active rows for ddq_ (ν̇_free); inactive rows are 0 with a unit
-  // diagonal, so their λ is 0 and no size ever changes.
+  // λ of the active rows (held contacts, stuck joints) for ddq_ (ν̇_free),
+  // gathered at the top of the preallocated matrices: only they are solved.
   void solve_constraints();
 
   model::Model model_;
@@ -73,16 +73,20 @@ class ModelAccelerations {
   std::vector<char> body_held_;      // per row block, this update
   std::vector<char> stuck_;          // per joint
   int stuck_count_ = 0;
-  Eigen::VectorXd tau_net_;    // [nv], the base's entries 0
-  Eigen::VectorXd ddq_;        // [nv]
-  Eigen::VectorXd delta_tau_;  // [nv] friction of released joints
-  Eigen::MatrixXd J_;          // [6 bodies + n_joints rows × nv]
-  Eigen::VectorXd bias_;       // J̇ ν (contacts; 0 for joints)
-  Eigen::MatrixXd MinvJt_;     // M⁻¹ Jᵀ
-  Eigen::MatrixXd A_;          // J M⁻¹ Jᵀ, 1 on inactive diagonals
+  Eigen::VectorXd tau_net_;       // [nv], the base's entries 0
+  Eigen::VectorXd ddq_;           // [nv]
+  Eigen::VectorXd delta_tau_;     // [nv] friction of released joints
+  Eigen::MatrixXd contact_J_;     // [6 bodies × nv], rows of held bodies current
+  Eigen::VectorXd contact_bias_;  // J̇ ν, likewise
+  // The active constraints in their leading rows (at most 6 bodies + n_joints).
+  Eigen::MatrixXd J_;
+  Eigen::VectorXd bias_;
+  Eigen::MatrixXd MinvJt_;  // M⁻¹ Jᵀ
+  Eigen::MatrixXd A_;       // J M⁻¹ Jᵀ
   Eigen::VectorXd lambda_;
+  Eigen::Index active_rows_ = 0;
+  std::vector<int> joint_row_;  // per joint, its row when stuck, else −1
   Eigen::LLT<Eigen::MatrixXd> mass_llt_;
-  Eigen::LDLT<Eigen::MatrixXd> constraint_ldlt_;
 };
 
 }  // namespace wbi::estimation

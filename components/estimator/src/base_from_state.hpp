@@ -1,0 +1,22 @@
+// The state's base, as the estimator has just written it, in a floating-base
+// model's configuration and velocity (the torque and acceleration estimates
+// through the model share it).
+#pragma once
+
+#include <wbi/msg/state.h>
+#include <Eigen/Core>
+
+namespace wbi::estimator::detail {
+
+// q_model's first 7 entries (position, quaternion w x y z) and nu's first 6
+// (mixed velocity: linear, then angular) from the state.
+inline void base_from_state(const wbi::msg::StateEstimate& state, Eigen::VectorXd& q_model,
+                            Eigen::VectorXd& nu) {
+  const auto& pose = state.base_pose();
+  q_model.head<7>() << pose.position().x(), pose.position().y(), pose.position().z(),
+      pose.orientation().w(), pose.orientation().x(), pose.orientation().y(),
+      pose.orientation().z();
+  nu.head<6>() = Eigen::Map<const Eigen::Matrix<double, 6, 1>>(state.base_velocity().data());
+}
+
+}  // namespace wbi::estimator::detail
