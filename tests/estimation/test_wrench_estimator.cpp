@@ -176,6 +176,35 @@ TEST(WrenchEstimator, ContactStatesHaveHysteresis) {
   EXPECT_FALSE(estimator.is_contact_link(2));
 }
 
+// A link's own thresholds (the chest, hypothesis 2, at 30 / 20 N); the others keep 10 / 5 N.
+TEST(WrenchEstimator, ALinkMayHaveItsOwnThresholds) {
+  const auto urdf = project_model("humanoid.urdf");
+  const model::Model m = model::load_urdf_file(urdf.string());
+  auto options = humanoid_options();
+  options.link_on_force = {{"chest", 30.0}};
+  options.link_off_force = {{"chest", 20.0}};
+  WrenchEstimator estimator(m, options);
+  SensorReference reference(urdf, options.sensors);
+  std::mt19937 rng(6);
+  DynamicState s = random_state(m, hypotheses(options), rng);
+  model::Data data(m);
+  Eigen::VectorXd tau = Eigen::VectorXd::Zero(m.nv);
+  tau.tail(m.n_joints) = s.tau;
+  const auto loaded_at = [&](double chest, double foot) {
+    s.wrenches[2].wrench << chest, 0.0, 0.0, 0.0, 0.0, 0.0;
+    s.wrenches[0].wrench << 0.0, 0.0, foot, 0.0, 0.0, 0.0;
+    // The motion these wrenches make: else the base's imbalance lands on the chest.
+    s.dnu =
+        model::forward_dynamics(m, data, s.q, s.nu, tau, Eigen::Vector3d(0, 0, -9.81), s.wrenches);
+    estimator.update(s.q, s.nu, s.dnu, reference.readings(m, s));
+    return std::make_pair(estimator.loaded(2), estimator.loaded(0));
+  };
+  EXPECT_EQ(loaded_at(25.0, 12.0), std::make_pair(false, true));
+  EXPECT_EQ(loaded_at(35.0, 12.0), std::make_pair(true, true));
+  EXPECT_EQ(loaded_at(22.0, 7.0), std::make_pair(true, true));
+  EXPECT_EQ(loaded_at(15.0, 4.0), std::make_pair(false, false));
+}
+
 std::string construction_error(const WrenchEstimatorOptions& options) {
   const model::Model m = model::load_urdf_file(project_model("humanoid.urdf").string());
   try {
@@ -212,6 +241,17 @@ TEST(WrenchEstimator, BadConfigurationsAreNamed) {
   o = humanoid_options();
   o.contact_off_force = 20.0;
   EXPECT_NE(construction_error(o).find("contact_off_force"), std::string::npos);
+
+  o = humanoid_options();
+  o.link_on_force = {{"chest", 3.0}, {"knee", 20.0}};
+  const std::string thresholds = construction_error(o);
+  EXPECT_NE(thresholds.find("contact threshold for 'knee', which is no wrench hypothesis"),
+            std::string::npos)
+      << thresholds;
+  EXPECT_NE(thresholds.find("'chest': its contact off force (5.000000 N) is above its on force "
+                            "(3.000000 N)"),
+            std::string::npos)
+      << thresholds;
 }
 
 TEST(WrenchEstimator, WrongReadingCountsAreRefused) {

@@ -31,6 +31,8 @@ std::optional<TorqueEstimationConfig> TorqueEstimationConfig::from(
   c.extra_links = parameters.get<std::vector<std::string>>("extra_links", {});
   c.contact_on_force = parameters.get<double>("contact_on_force", c.contact_on_force);
   c.contact_off_force = parameters.get<double>("contact_off_force", c.contact_off_force);
+  c.link_on_force = parameters.get<std::map<std::string, double>>("link_on_force", {});
+  c.link_off_force = parameters.get<std::map<std::string, double>>("link_off_force", {});
   c.force_limit = parameters.get<double>("force_limit", c.force_limit);
   c.torque_limit = parameters.get<double>("torque_limit", c.torque_limit);
   const auto accelerations = parameters.get<std::string>("torque_accelerations", "none");
@@ -74,6 +76,8 @@ TorquesFromForceTorque::TorquesFromForceTorque(const TorqueEstimationConfig& con
   options.extra_links = config.extra_links;
   options.contact_on_force = config.contact_on_force;
   options.contact_off_force = config.contact_off_force;
+  options.link_on_force = config.link_on_force;
+  options.link_off_force = config.link_off_force;
   const double inf = std::numeric_limits<double>::infinity();
   options.force_limit = config.force_limit > 0.0 ? config.force_limit : inf;
   options.torque_limit = config.torque_limit > 0.0 ? config.torque_limit : inf;

@@ -3,6 +3,7 @@
 // (wbi::estimation::WrenchEstimator), for robots without joint-torque sensors.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -24,6 +25,8 @@ struct TorqueEstimationConfig {
   std::vector<std::string> extra_links;
   double contact_on_force = 10.0;
   double contact_off_force = 5.0;
+  std::map<std::string, double> link_on_force;  // per link, instead of the two above
+  std::map<std::string, double> link_off_force;
   double force_limit = 0.0;   // 0: no limit
   double torque_limit = 0.0;  // 0: no limit
   // Whether the estimated q̈ and base acceleration enter the dynamics; without

@@ -92,6 +92,7 @@ WrenchEstimator::WrenchEstimator(const model::Model& model, WrenchEstimatorOptio
     hypothesis_body_.push_back(model_.frame_body[static_cast<std::size_t>(frame)]);
     hypothesis_submodel_.push_back(k);
   }
+  set_thresholds(errors);
   for (std::size_t k = 0; k < submodels_.size(); ++k) {
     const Submodel& sub = submodels_[k];
     const bool fixed_root = !model_.floating_base && k == 0;
@@ -263,15 +264,40 @@ void WrenchEstimator::mark_invalid_torques() {
   }
 }
 
+// The contact thresholds per hypothesis: the link's own, else the common ones.
+void WrenchEstimator::set_thresholds(std::vector<std::string>& errors) {
+  for (const auto* given : {&options_.link_on_force, &options_.link_off_force}) {
+    for (const auto& [link, force] : *given) {
+      if (std::find(link_names_.begin(), link_names_.end(), link) == link_names_.end()) {
+        errors.push_back("contact threshold for '" + link + "', which is no wrench hypothesis");
+      }
+    }
+  }
+  for (const auto& link : link_names_) {
+    const auto on = options_.link_on_force.find(link);
+    const auto off = options_.link_off_force.find(link);
+    on_force_.push_back(on != options_.link_on_force.end() ? on->second
+                                                           : options_.contact_on_force);
+    off_force_.push_back(off != options_.link_off_force.end() ? off->second
+                                                              : options_.contact_off_force);
+    const bool own = on != options_.link_on_force.end() || off != options_.link_off_force.end();
+    if (own && !(off_force_.back() <= on_force_.back())) {
+      errors.push_back("'" + link + "': its contact off force (" +
+                       std::to_string(off_force_.back()) + " N) is above its on force (" +
+                       std::to_string(on_force_.back()) + " N)");
+    }
+  }
+}
+
 void WrenchEstimator::update_contact_states() {
   for (std::size_t h = 0; h < wrenches_.size(); ++h) {
     if (hypothesis_valid_[h] == 0) {
       continue;  // unknown: keep the last state
     }
     const double force = wrenches_[h].wrench.head<3>().norm();
-    if (force > options_.contact_on_force) {
+    if (force > on_force_[h]) {
       loaded_[h] = 1;
-    } else if (force < options_.contact_off_force) {
+    } else if (force < off_force_[h]) {
       loaded_[h] = 0;
     }
   }

@@ -29,7 +29,8 @@
 //    rounding: base_residual()).
 //
 // A hypothesis is "loaded" once its force exceeds contact_on_force and until
-// it falls below contact_off_force (hysteresis). A NaN, infinite or saturated
+// it falls below contact_off_force (hysteresis); a link may have its own pair
+// (a chest whose estimate has a background of several newtons). A NaN, infinite or saturated
 // reading marks both submodels of its sensor invalid: their wrenches are
 // zeroed and flagged, and so is every joint torque whose subtree holds one of
 // them. Outputs never carry NaN.
@@ -37,6 +38,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <span>
 #include <string>
 #include <vector>
@@ -68,6 +70,9 @@ struct WrenchEstimatorOptions {
   Vector3d gravity{0.0, 0.0, -9.81};
   double contact_on_force = 10.0;  // [N] a hypothesis becomes loaded above this force
   double contact_off_force = 5.0;  // [N] and unloaded below this one
+  // Per hypothesis link, instead of the two above (either may be given alone).
+  std::map<std::string, double> link_on_force;
+  std::map<std::string, double> link_off_force;
   // A reading with a force (torque) component at or beyond these is saturated.
   double force_limit = std::numeric_limits<double>::infinity();   // [N]
   double torque_limit = std::numeric_limits<double>::infinity();  // [N·m]
@@ -86,7 +91,8 @@ class WrenchEstimator {
  public:
   // Throws std::invalid_argument with one message naming every problem: unknown
   // or movable sensor joints, unknown or repeated links, submodels with no
-  // hypothesis, contact_off_force > contact_on_force.
+  // hypothesis, contact_off_force > contact_on_force (also per link), a
+  // per-link threshold on a link that is no hypothesis.
   WrenchEstimator(const model::Model& model, WrenchEstimatorOptions options);
 
   // One tick. q [nq], nu [nv], dnu [nv] as in the model library; readings
@@ -136,6 +142,7 @@ class WrenchEstimator {
   void solve_submodel(int k);
   Vector3d link_position(std::size_t h) const;  // origin of hypothesis h's link, world
   void update_contact_states();
+  void set_thresholds(std::vector<std::string>& errors);
   void mark_invalid_torques();
 
   model::Model model_;
@@ -150,6 +157,7 @@ class WrenchEstimator {
   int n_contacts_ = 0;
   std::vector<int> hypothesis_body_;
   std::vector<int> hypothesis_submodel_;
+  std::vector<double> on_force_, off_force_;  // per hypothesis
 
   // per tick
   std::vector<Vector6d> balance_;  // b_k per submodel, world origin
