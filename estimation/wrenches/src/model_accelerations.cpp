@@ -30,7 +30,10 @@ Eigen::VectorXd checked(const Eigen::VectorXd& values, int joints, const char* w
 
 ModelAccelerations::ModelAccelerations(model::Model model, JointLosses losses,
                                        std::vector<int> contact_frames)
-    : model_(std::move(model)), data_(model_), losses_(std::move(losses)) {
+    : model_(std::move(model)),
+      data_(model_),
+      losses_(std::move(losses)),
+      mass_llt_(model_.nv) {  // sized here: an assigned LLT copies its unset info (UBSan)
   const int n = model_.n_joints;
   losses_.damping = checked(losses_.damping, n, "damping");
   losses_.friction = checked(losses_.friction, n, "friction");
@@ -65,7 +68,6 @@ ModelAccelerations::ModelAccelerations(model::Model model, JointLosses losses,
   A_.setZero(rows, rows);
   lambda_.setZero(rows);
   joint_row_.assign(static_cast<std::size_t>(n), -1);
-  mass_llt_ = Eigen::LLT<Eigen::MatrixXd>(model_.nv);
 }
 
 const Eigen::VectorXd& ModelAccelerations::update(const Eigen::VectorXd& q,
