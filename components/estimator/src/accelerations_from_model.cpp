@@ -43,13 +43,11 @@ AccelerationsFromModel::AccelerationsFromModel(model::Model model, estimation::J
 void AccelerationsFromModel::on_command(const wbi::msg::ActuatorCommand& command) {
   const auto& joints = command.joints();
   if (command.modes().size() != joints.size() || command.references().size() != joints.size()) {
-    ++malformed_commands_;
     return;
   }
   for (std::size_t i = 0; i < joints.size(); ++i) {
     const int j = joints[i];
     if (j >= tau_.size()) {
-      ++malformed_commands_;
       continue;
     }
     const bool torque = command.modes()[i] == wbi::msg::ControlMode::TORQUE;

@@ -30,8 +30,9 @@ class AccelerationsFromModel {
                          const estimation::WrenchEstimator* wrenches);
 
   // A command of any controller: its TORQUE joints' references are their
-  // torques from now on, its other joints' torques unknown. Indices out of
-  // range and mismatched sizes are ignored (counted). Never allocates.
+  // torques from now on, its other joints' torques unknown. A malformed one
+  // (sizes that differ, an index out of range) is skipped: the robot refuses
+  // it and reports it on its status. Never allocates.
   void on_command(const wbi::msg::ActuatorCommand& command);
 
   // The joints' accelerations at q, dq and the base of `state` (pose and
@@ -43,7 +44,6 @@ class AccelerationsFromModel {
   // The joints without a torque command, for the one message saying why
   // compute() returned false (allocates).
   std::string joints_without_torque() const;
-  std::uint64_t malformed_commands() const { return malformed_commands_; }
 
  private:
   std::unique_ptr<estimation::ModelAccelerations> accelerations_;
@@ -53,7 +53,6 @@ class AccelerationsFromModel {
   Eigen::VectorXd q_model_, nu_, tau_;   // tau_: [n_joints] commanded
   std::vector<char> torque_known_;       // per joint
   int known_ = 0;                        // joints with a torque
-  std::uint64_t malformed_commands_ = 0;
 };
 
 }  // namespace wbi::estimator::detail

@@ -109,7 +109,7 @@ class EstimatorComponent final : public runtime::Component {
   // fused with the encoders by a filter of their own (the method keeps dq)
   std::string model_urdf_;  // empty: accelerations: method
   std::map<std::string, double> joint_armature_, joint_damping_, joint_friction_;
-  double stick_velocity_ = 0.005;
+  double stick_velocity_ = estimation::JointLosses{}.stick_velocity;
   estimation::ModelKalmanParameters model_kalman_;
   std::unique_ptr<AccelerationsFromModel> model_acceleration_;
   std::unique_ptr<estimation::ModelKalmanEstimator> model_ddq_;

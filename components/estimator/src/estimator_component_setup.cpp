@@ -182,7 +182,7 @@ void EstimatorComponent::prepare_model_acceleration(const wbi::msg::RobotDescrip
   if (description.floating_base() && !torque_estimation_) {
     throw std::invalid_argument(
         "accelerations: model on a floating-base robot needs joint_torques: force_torque "
-        "(the estimated contact wrenches enter the model)");
+        "(its contact states tell which feet the model holds)");
   }
   model::LoadOptions load;
   load.joints = joints;

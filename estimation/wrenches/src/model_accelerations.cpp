@@ -58,10 +58,8 @@ ModelAccelerations::ModelAccelerations(model::Model model, JointLosses losses,
   tau_net_.setZero(model_.nv);
   ddq_.setZero(model_.nv);
   delta_tau_.setZero(model_.nv);
-  const auto contact_rows = static_cast<Eigen::Index>(6 * contact_frames_.size());
-  const Eigen::Index rows = contact_rows + n;  // at most: every contact held, every joint stuck
-  contact_J_.setZero(contact_rows, model_.nv);
-  contact_bias_.setZero(contact_rows);
+  // At most every contact held and every joint stuck.
+  const Eigen::Index rows = static_cast<Eigen::Index>(6 * contact_frames_.size()) + n;
   J_.setZero(rows, model_.nv);
   bias_.setZero(rows);
   MinvJt_.setZero(model_.nv, rows);
@@ -74,6 +72,11 @@ const Eigen::VectorXd& ModelAccelerations::update(const Eigen::VectorXd& q,
                                                   const Eigen::VectorXd& nu,
                                                   const Eigen::VectorXd& tau,
                                                   std::span<const char> held) {
+  if (held.size() != contact_of_.size()) {
+    throw std::invalid_argument("model accelerations: " + std::to_string(held.size()) +
+                                " contact states for " + std::to_string(contact_of_.size()) +
+                                " contact frames");
+  }
   const int n = model_.n_joints;
   const int b = model_.base_nv;
   // Losses: damping always; friction opposes a sliding joint, a slow one may be stuck.
@@ -88,34 +91,29 @@ const Eigen::VectorXd& ModelAccelerations::update(const Eigen::VectorXd& q,
       tau_net_[b + j] -= std::copysign(losses_.friction[j], v);
     }
   }
-  bool constrained = stuck_count_ > 0;
-  if (held.size() != contact_of_.size()) {
-    throw std::invalid_argument("model accelerations: " + std::to_string(held.size()) +
-                                " contact states for " + std::to_string(contact_of_.size()) +
-                                " contact frames");
-  }
   std::fill(body_held_.begin(), body_held_.end(), 0);
   for (std::size_t c = 0; c < held.size(); ++c) {
     if (held[c] != 0) {
       body_held_[static_cast<std::size_t>(contact_of_[c])] = 1;
     }
   }
-  // The contacts' rows before forward dynamics, which overwrites the bias accelerations.
-  if (!contact_frames_.empty()) {
+  // The held contacts' rows, at the top of J_, before forward dynamics, which
+  // overwrites the bias accelerations; the stuck joints' rows follow them.
+  contact_rows_ = 0;
+  if (std::find(body_held_.begin(), body_held_.end(), 1) != body_held_.end()) {
     model::forward_velocity_kinematics(model_, data_, q, nu);
     for (std::size_t c = 0; c < contact_frames_.size(); ++c) {
       if (body_held_[c] != 0) {
-        const auto row = static_cast<Eigen::Index>(6 * c);
-        contact_J_.middleRows<6>(row) = model::frame_jacobian(model_, data_, contact_frames_[c]);
-        contact_bias_.segment<6>(row) =
+        J_.middleRows<6>(contact_rows_) = model::frame_jacobian(model_, data_, contact_frames_[c]);
+        bias_.segment<6>(contact_rows_) =
             model::frame_bias_acceleration(model_, data_, contact_frames_[c]);
-        constrained = true;
+        contact_rows_ += 6;
       }
     }
   }
   const Eigen::Vector3d gravity(0.0, 0.0, -9.81);
   ddq_ = model::forward_dynamics(model_, data_, q, nu, tau_net_, gravity);
-  if (!constrained) {
+  if (contact_rows_ == 0 && stuck_count_ == 0) {
     return ddq_;
   }
   mass_llt_.compute(model::mass_matrix(model_, data_, q));
@@ -124,11 +122,10 @@ const Eigen::VectorXd& ModelAccelerations::update(const Eigen::VectorXd& q,
   bool released = false;
   for (int j = 0; j < n; ++j) {
     const int row = joint_row_[static_cast<std::size_t>(j)];
-    const double hold = row >= 0 ? lambda_[row] : 0.0;
-    if (row >= 0 && std::abs(hold) > losses_.friction[j]) {
+    if (row >= 0 && std::abs(lambda_[row]) > losses_.friction[j]) {
       stuck_[static_cast<std::size_t>(j)] = 0;
       --stuck_count_;
-      delta_tau_[b + j] = std::copysign(losses_.friction[j], hold);
+      delta_tau_[b + j] = std::copysign(losses_.friction[j], lambda_[row]);
       released = true;
     }
   }
@@ -143,16 +140,8 @@ const Eigen::VectorXd& ModelAccelerations::update(const Eigen::VectorXd& q,
 }
 
 void ModelAccelerations::solve_constraints() {
-  // The active rows at the top: held contacts' blocks, then stuck joints.
-  Eigen::Index m = 0;
-  for (std::size_t c = 0; c < contact_frames_.size(); ++c) {
-    if (body_held_[c] != 0) {
-      const auto from = static_cast<Eigen::Index>(6 * c);
-      J_.middleRows<6>(m) = contact_J_.middleRows<6>(from);
-      bias_.segment<6>(m) = contact_bias_.segment<6>(from);
-      m += 6;
-    }
-  }
+  // The stuck joints' rows after the held contacts' (update() wrote those).
+  Eigen::Index m = contact_rows_;
   const int b = model_.base_nv;
   for (int j = 0; j < model_.n_joints; ++j) {
     auto& row = joint_row_[static_cast<std::size_t>(j)];

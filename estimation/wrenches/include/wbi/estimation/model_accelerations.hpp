@@ -73,14 +73,14 @@ class ModelAccelerations {
   std::vector<char> body_held_;      // per row block, this update
   std::vector<char> stuck_;          // per joint
   int stuck_count_ = 0;
-  Eigen::VectorXd tau_net_;       // [nv], the base's entries 0
-  Eigen::VectorXd ddq_;           // [nv]
-  Eigen::VectorXd delta_tau_;     // [nv] friction of released joints
-  Eigen::MatrixXd contact_J_;     // [6 bodies × nv], rows of held bodies current
-  Eigen::VectorXd contact_bias_;  // J̇ ν, likewise
-  // The active constraints in their leading rows (at most 6 bodies + n_joints).
+  Eigen::VectorXd tau_net_;    // [nv], the base's entries 0
+  Eigen::VectorXd ddq_;        // [nv]
+  Eigen::VectorXd delta_tau_;  // [nv] friction of released joints
+  // The active constraints in the leading rows (at most 6 bodies + n_joints):
+  // the held contacts' (contact_rows_ of them), then the stuck joints'.
   Eigen::MatrixXd J_;
-  Eigen::VectorXd bias_;
+  Eigen::VectorXd bias_;  // J̇ ν (0 for joints)
+  Eigen::Index contact_rows_ = 0;
   Eigen::MatrixXd MinvJt_;  // M⁻¹ Jᵀ
   Eigen::MatrixXd A_;       // J M⁻¹ Jᵀ
   Eigen::VectorXd lambda_;
