@@ -6,6 +6,7 @@
 namespace wbi::cli {
 
 int run_bag(Args args);
+int run_bridge(Args args);
 int run_controller(Args args);
 int run_estimate(Args args);
 int run_events(Args args);

@@ -9,7 +9,7 @@
 
 #include "sample_queue.hpp"
 #include "topic_filter.hpp"
-#include "topic_subscriptions.hpp"
+#include <wbi/recording/topic_subscriptions.hpp>
 
 namespace wbi::recording {
 

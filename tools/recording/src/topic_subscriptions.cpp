@@ -1,4 +1,4 @@
-#include "topic_subscriptions.hpp"
+#include <wbi/recording/topic_subscriptions.hpp>
 
 #include <chrono>
 #include <stdexcept>

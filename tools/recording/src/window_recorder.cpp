@@ -22,7 +22,7 @@
 
 #include "event_cdr.hpp"
 #include "topic_filter.hpp"
-#include "topic_subscriptions.hpp"
+#include <wbi/recording/topic_subscriptions.hpp>
 #include "window_files.hpp"
 #include "window_ring.hpp"
 
