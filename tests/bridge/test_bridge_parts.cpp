@@ -95,7 +95,7 @@ TEST(BridgeProtocol, ParsesTheClientRequests) {
   EXPECT_TRUE(std::holds_alternative<protocol::GetParameters>(
       protocol::parse_client_text(R"({"op":"getParameters","parameterNames":[]})")));
   EXPECT_TRUE(std::holds_alternative<protocol::Unsupported>(
-      protocol::parse_client_text(R"({"op":"advertise","channels":[]})")));
+      protocol::parse_client_text(R"({"op":"subscribeConnectionGraph"})")));
 }
 
 // Each malformed message is refused with a line that says what is wrong.
@@ -122,6 +122,49 @@ TEST(BridgeProtocol, RefusesMalformedRequestsNamingTheProblem) {
           << text << " → " << error.what();
     }
   }
+}
+
+TEST(BridgeProtocol, ParsesBinaryClientFramesAndRefusesShortOnes) {
+  const std::vector<std::uint8_t> data{0x01, 7, 0, 0, 0, 0xaa, 0xbb};
+  const auto message = std::get<protocol::ClientMessageData>(protocol::parse_client_binary(data));
+  EXPECT_EQ(message.channel_id, 7u);
+  EXPECT_EQ(message.payload.size(), 2u);
+  const std::vector<std::uint8_t> call{0x02, 3, 0, 0,   0,   9,   0,   0,   0,  4,
+                                       0,    0, 0, 'j', 's', 'o', 'n', '{', '}'};
+  const auto request = std::get<protocol::ServiceCallRequest>(protocol::parse_client_binary(call));
+  EXPECT_EQ(request.service_id, 3u);
+  EXPECT_EQ(request.call_id, 9u);
+  EXPECT_EQ(request.encoding, "json");
+  EXPECT_EQ(std::string(request.payload.begin(), request.payload.end()), "{}");
+  for (const auto& bad :
+       std::vector<std::vector<std::uint8_t>>{{},
+                                              {0x01, 1, 0},
+                                              {0x02, 1, 0, 0, 0, 1, 0, 0, 0, 200, 0, 0, 0, 'j'},
+                                              {0x09, 0, 0, 0, 0}}) {
+    EXPECT_THROW(protocol::parse_client_binary(bad), protocol::ProtocolError);
+  }
+}
+
+TEST(BridgeProtocol, ServiceMessagesAreTheSpecs) {
+  const std::string body = R"({"result":"ok"})";
+  const auto response = protocol::service_call_response(
+      2, 5, "json", std::span(reinterpret_cast<const std::uint8_t*>(body.data()), body.size()));
+  EXPECT_EQ(response[0], 0x03);
+  EXPECT_EQ(read_le(&response[1], 4), 2u);
+  EXPECT_EQ(read_le(&response[5], 4), 5u);
+  EXPECT_EQ(read_le(&response[9], 4), 4u);
+  EXPECT_EQ(std::string(response.begin() + 13, response.end()), "json" + body);
+  const protocol::Service service{4,   "/arm/controllers/list", "wbi.ListControllers", "json", "{}",
+                                  "{}"};
+  const auto advertised = json::parse(protocol::advertise_services(std::vector{service}));
+  EXPECT_EQ(advertised["op"], "advertiseServices");
+  EXPECT_EQ(advertised["services"][0]["id"], 4);
+  EXPECT_EQ(advertised["services"][0]["request"]["encoding"], "json");
+  const auto failure = json::parse(protocol::service_call_failure(4, 8, "refused"));
+  EXPECT_EQ(failure["callId"], 8);
+  const auto client_advertise = std::get<protocol::ClientAdvertise>(protocol::parse_client_text(
+      R"({"op":"advertise","channels":[{"id":2,"topic":"wbi/arm/references/c/i","encoding":"json","schemaName":"x"}]})"));
+  EXPECT_EQ(client_advertise.channels.at(0).topic, "wbi/arm/references/c/i");
 }
 
 OutgoingMessage data_message(std::uint32_t channel, std::size_t bytes) {

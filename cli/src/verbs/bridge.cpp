@@ -56,6 +56,7 @@ bridge::BridgeOptions bridge_options(const Options& options) {
   out.mesh_paths = split_paths(options.get_optional("mesh-path").value_or(""));
   out.transforms_rate_hz = positive(options, "transforms-rate");
   out.transforms_from_ground_truth = options.has("ground-truth");
+  out.allow_commands = options.has("allow-commands");
   out.client_queue_bytes = static_cast<std::size_t>(positive(options, "client-buffer") * 1e6);
   out.call_timeout = std::chrono::duration_cast<std::chrono::nanoseconds>(
       std::chrono::duration<double>(positive(options, "timeout")));
@@ -71,7 +72,8 @@ int run_bridge(Args args) {
       "subprotocol foxglove.websocket.v1): open ws://ADDRESS:PORT in the app. Every wbi\n"
       "topic is a channel (CDR with its OMG IDL schema), wbi/<robot>/transforms moves\n"
       "the robot in the 3D panel (its URDF is the /robot_description parameter), and the\n"
-      "hosted controllers' parameters can be read and set. A slow client loses its oldest\n"
+      "hosted controllers' parameters can be read and set, controllers listed and switched\n"
+      "(services), and references published to their inputs. A slow client loses its oldest\n"
       "messages and is told so; it never slows the robot or the other clients.\n"
       "See README.md, \"Watch a run live\". Runs until Ctrl-C, SIGTERM or --duration.");
   options.option("address", "IP",
@@ -87,6 +89,9 @@ int run_bridge(Args args) {
                  "is looked up as DIR/PKG/... then DIR/...); the URDF's folder is always served");
   options.option("transforms-rate", "HZ", "at most this many transforms messages per second", "30");
   options.flag("ground-truth", "draw the simulation's ground truth instead of the state estimate");
+  options.flag("allow-commands",
+               "let clients publish raw actuator commands (wbi/<robot>/commands; "
+               "each such client is logged); without it, only controllers' reference inputs");
   options.option("client-buffer", "MB",
                  "each client's send queue; a slow client loses its oldest "
                  "messages beyond it",

@@ -9,9 +9,11 @@
 
 #include "assets.hpp"
 #include "channel_table.hpp"
-#include "parameter_service.hpp"
+#include "client_publish.hpp"
+#include "controller_hosts.hpp"
 #include "protocol.hpp"
 #include "robot_feed.hpp"
+#include "services.hpp"
 #include "websocket_server.hpp"
 
 namespace wbi::bridge {
@@ -68,11 +70,16 @@ struct Bridge::Impl {
   void handle(ClientId client, const protocol::SubscribeParameterUpdates& request);
   void handle(ClientId client, const protocol::UnsubscribeParameterUpdates& request);
   void handle(ClientId client, const protocol::FetchAsset& request);
+  void handle(ClientId client, const protocol::ClientAdvertise& request);
+  void handle(ClientId client, const protocol::ClientUnadvertise& request);
   void handle(ClientId client, const protocol::Unsupported& request);
+  void binary(ClientId client, std::span<const std::uint8_t> frame);
   void parameters_changed(const std::vector<protocol::Parameter>& changed);
   void report_drops();
   void on_sample(std::uint32_t index, const recording::RecordedTopic& topic, std::uint64_t log_time,
-                 std::span<const std::uint8_t> cdr);
+                 std::uint64_t publish_time, std::span<const std::uint8_t> cdr);
+  std::int64_t newest_state_stamp(const std::string& robot);
+  void follow_hosts();
   void add_robots();
   void follow_robots();
   void follow_topics();
@@ -84,14 +91,17 @@ struct Bridge::Impl {
   Log log;
   ChannelTable channels;
   AssetFolders assets;
-  std::unique_ptr<ParameterService> parameters;
+  std::unique_ptr<ControllerHosts> parameters;
   std::unique_ptr<WebSocketServer> server;
+  std::unique_ptr<Services> services;
+  std::unique_ptr<ClientPublish> publish;
   std::unique_ptr<recording::TopicSubscriptions> subscriptions;
 
   std::mutex robots_mutex;  // robots is read on DDS threads
   std::map<std::string, std::unique_ptr<RobotFeed>> robots;
   std::map<std::string, RobotFeed*> robot_by_topic;  // description and pose topics
   std::set<std::string> robots_announced;
+  std::map<std::string, std::int64_t> state_stamps;  // newest Header.stamp_ns of each robot's state
 
   std::mutex clients_mutex;
   // Per client, the parameters it follows (an empty set with the flag: all).
@@ -108,7 +118,7 @@ Bridge::Impl::Impl(dds::Participant& participant_, BridgeOptions options_, Log l
   for (const auto& path : options.mesh_paths) {
     assets.add(path);
   }
-  parameters = std::make_unique<ParameterService>(
+  parameters = std::make_unique<ControllerHosts>(
       participant.options(), options.call_timeout,
       [this](const std::vector<protocol::Parameter>& changed) { parameters_changed(changed); });
   ServerOptions server_options;
@@ -121,19 +131,20 @@ Bridge::Impl::Impl(dds::Participant& participant_, BridgeOptions options_, Log l
       ServerHandlers{
           [this](ClientId client, const std::string& peer) { opened(client, peer); },
           [this](ClientId client, const std::string& message) { text(client, message); },
-          [this](ClientId client, std::span<const std::uint8_t>) {
-            status(client, protocol::StatusLevel::error,
-                   "binary client messages (client publishing, service calls) are not offered by "
-                   "this bridge");
-          },
+          [this](ClientId client, std::span<const std::uint8_t> frame) { binary(client, frame); },
           [this](ClientId client) { closed(client); }});
   channels.attach(server.get());
+  services = std::make_unique<Services>(*parameters, *server);
+  publish = std::make_unique<ClientPublish>(
+      participant, options.allow_commands,
+      [this](const std::string& robot) { return newest_state_stamp(robot); });
   server->every(std::chrono::milliseconds(1000), [this] { report_drops(); });
   subscriptions = std::make_unique<recording::TopicSubscriptions>(
       participant, [](const std::string&) { return true; },
       [this](std::uint32_t index, const recording::RecordedTopic& topic, std::uint64_t log_time,
-             std::uint64_t,
-             std::span<const std::uint8_t> cdr) { on_sample(index, topic, log_time, cdr); },
+             std::uint64_t publish_time, std::span<const std::uint8_t> cdr) {
+        on_sample(index, topic, log_time, publish_time, cdr);
+      },
       [this](const std::string& line) {
         // TopicSubscriptions speaks as the recorder it was written for.
         log(line.rfind("recording ", 0) == 0 ? "channel " + line.substr(10) : line);
@@ -142,7 +153,9 @@ Bridge::Impl::Impl(dds::Participant& participant_, BridgeOptions options_, Log l
 
 Bridge::Impl::~Impl() {
   subscriptions->unsubscribe_all();  // no DDS callback after this
-  parameters.reset();
+  publish.reset();
+  parameters.reset();  // its worker ends: no service call after this
+  services.reset();
   channels.attach(nullptr);
   server.reset();
 }
@@ -161,19 +174,25 @@ void Bridge::Impl::broadcast(const std::string& json) {
 
 void Bridge::Impl::opened(ClientId client, const std::string& peer) {
   log("client " + std::to_string(client) + " connected from " + peer);
-  server->send(client, OutgoingMessage::json(protocol::server_info(
-                           "wbi bridge", {"parameters", "parametersSubscribe", "assets"},
-                           std::to_string(participant.info().start_ns))));
+  server->send(client,
+               OutgoingMessage::json(protocol::server_info(
+                   "wbi bridge",
+                   {"parameters", "parametersSubscribe", "assets", "clientPublish", "services"},
+                   {"cdr", "json"}, std::to_string(participant.info().start_ns))));
   {
     std::lock_guard lock(clients_mutex);
     clients.insert(client);
   }
   const auto advertised = channels.advertised();
   server->send(client, OutgoingMessage::json(protocol::advertise(advertised)));
+  if (const auto offered = services->all(); !offered.empty()) {
+    server->send(client, OutgoingMessage::json(protocol::advertise_services(offered)));
+  }
 }
 
 void Bridge::Impl::closed(ClientId client) {
   channels.forget(client);
+  publish->forget(client);
   {
     std::lock_guard lock(clients_mutex);
     clients.erase(client);
@@ -271,11 +290,39 @@ void Bridge::Impl::handle(ClientId client, const protocol::FetchAsset& request) 
   }
 }
 
+void Bridge::Impl::handle(ClientId client, const protocol::ClientAdvertise& request) {
+  for (const auto& channel : request.channels) {
+    if (const auto refusal = publish->advertise(client, channel, log); !refusal.empty()) {
+      status(client, protocol::StatusLevel::error, "advertise: " + refusal);
+    }
+  }
+}
+
+void Bridge::Impl::handle(ClientId client, const protocol::ClientUnadvertise& request) {
+  for (const auto id : request.channel_ids) {
+    publish->unadvertise(client, id);
+  }
+}
+
 void Bridge::Impl::handle(ClientId client, const protocol::Unsupported& request) {
   status(client, protocol::StatusLevel::error,
-         "'" + request.op +
-             "' is not offered by this bridge (its capabilities: parameters, "
-             "parametersSubscribe, assets)");
+         "'" + request.op + "' is not offered by this bridge (no connection graph)");
+}
+
+void Bridge::Impl::binary(ClientId client, std::span<const std::uint8_t> frame) {
+  try {
+    const auto message = protocol::parse_client_binary(frame);
+    if (const auto* data = std::get_if<protocol::ClientMessageData>(&message)) {
+      if (const auto refusal = publish->publish(client, data->channel_id, data->payload);
+          !refusal.empty()) {
+        status(client, protocol::StatusLevel::error, refusal);
+      }
+    } else {
+      services->call(client, std::get<protocol::ServiceCallRequest>(message));
+    }
+  } catch (const protocol::ProtocolError& error) {
+    status(client, protocol::StatusLevel::error, error.what());
+  }
 }
 
 void Bridge::Impl::parameters_changed(const std::vector<protocol::Parameter>& changed) {
@@ -308,7 +355,8 @@ void Bridge::Impl::report_drops() {
 }
 
 void Bridge::Impl::on_sample(std::uint32_t index, const recording::RecordedTopic& topic,
-                             std::uint64_t log_time, std::span<const std::uint8_t> cdr) {
+                             std::uint64_t log_time, std::uint64_t publish_time,
+                             std::span<const std::uint8_t> cdr) {
   channels.deliver(index + 1, log_time, cdr);
   RobotFeed* robot = nullptr;
   {
@@ -318,13 +366,44 @@ void Bridge::Impl::on_sample(std::uint32_t index, const recording::RecordedTopic
       return;
     }
     robot = found->second;
+    if (topic.topic.name == dds::topics::state(robot->robot())) {
+      state_stamps[robot->robot()] = static_cast<std::int64_t>(publish_time);
+    }
   }
   if (topic.topic.name == dds::topics::description(robot->robot())) {
     if (const auto problem = robot->on_description(cdr)) {
       log("warning: " + *problem);
     }
-  } else {
+  } else if (topic.topic.name == robot->pose_topic()) {
     robot->on_pose_sample(log_time, cdr);
+  }
+}
+
+std::int64_t Bridge::Impl::newest_state_stamp(const std::string& robot) {
+  std::lock_guard lock(robots_mutex);
+  const auto found = state_stamps.find(robot);
+  return found == state_stamps.end() ? 0 : found->second;
+}
+
+// A robot whose controller host answers on the domain gets its services.
+void Bridge::Impl::follow_hosts() {
+  std::vector<std::string> names;
+  {
+    std::lock_guard lock(robots_mutex);
+    for (const auto& [name, feed] : robots) {
+      names.push_back(name);
+    }
+  }
+  for (const auto& topic : participant.discovered_topics()) {
+    for (const auto& robot : names) {
+      if (topic.name == dds::topics::controller_service(robot) + "/request" && topic.readers > 0) {
+        if (const auto added = services->add_robot(robot); !added.empty()) {
+          broadcast(protocol::advertise_services(added));
+          log("services of " + robot + "'s controller host: " + added[0].name + ", " +
+              added[1].name);
+        }
+      }
+    }
   }
 }
 
@@ -348,6 +427,7 @@ void Bridge::Impl::add_robots() {
                                     channels, id);
     robot_by_topic[topic.name] = feed.get();
     robot_by_topic[feed->pose_topic()] = feed.get();
+    robot_by_topic[dds::topics::state(*robot)] = feed.get();
     robots[*robot] = std::move(feed);
     parameters->add_robot(*robot);
   }
@@ -437,6 +517,7 @@ void Bridge::discover() {
   impl_->add_robots();
   impl_->follow_topics();
   impl_->follow_robots();
+  impl_->follow_hosts();
 }
 
 BridgeCounts Bridge::counts() const {

@@ -135,12 +135,49 @@ Subscribe parse_subscribe(const json& message) {
 }  // namespace
 
 std::string server_info(const std::string& name, const std::vector<std::string>& capabilities,
+                        const std::vector<std::string>& supported_encodings,
                         const std::string& session_id) {
-  return json{{"op", "serverInfo"},
-              {"name", name},
-              {"capabilities", capabilities},
-              {"metadata", json::object()},
-              {"sessionId", session_id}}
+  json out{{"op", "serverInfo"},
+           {"name", name},
+           {"capabilities", capabilities},
+           {"metadata", json::object()},
+           {"sessionId", session_id}};
+  if (!supported_encodings.empty()) {
+    out["supportedEncodings"] = supported_encodings;
+  }
+  return out.dump();
+}
+
+std::string advertise_services(std::span<const Service> services) {
+  json list = json::array();
+  for (const auto& service : services) {
+    // Both spellings of the spec: requestSchema/responseSchema (first
+    // version) and request/response objects (later clients read these).
+    list.push_back({{"id", service.id},
+                    {"name", service.name},
+                    {"type", service.type},
+                    {"requestSchema", service.request_schema},
+                    {"responseSchema", service.response_schema},
+                    {"request",
+                     {{"encoding", service.encoding},
+                      {"schemaName", service.type + "_Request"},
+                      {"schemaEncoding", "jsonschema"},
+                      {"schema", service.request_schema}}},
+                    {"response",
+                     {{"encoding", service.encoding},
+                      {"schemaName", service.type + "_Response"},
+                      {"schemaEncoding", "jsonschema"},
+                      {"schema", service.response_schema}}}});
+  }
+  return json{{"op", "advertiseServices"}, {"services", std::move(list)}}.dump();
+}
+
+std::string service_call_failure(std::uint32_t service_id, std::uint32_t call_id,
+                                 const std::string& message) {
+  return json{{"op", "serviceCallFailure"},
+              {"serviceId", service_id},
+              {"callId", call_id},
+              {"message", message}}
       .dump();
 }
 
@@ -207,6 +244,51 @@ std::vector<std::uint8_t> fetch_asset_response(std::uint32_t request_id,
   return out;
 }
 
+std::vector<std::uint8_t> service_call_response(std::uint32_t service_id, std::uint32_t call_id,
+                                                const std::string& encoding,
+                                                std::span<const std::uint8_t> payload) {
+  std::vector<std::uint8_t> out(1 + 4 + 4 + 4 + encoding.size() + payload.size());
+  out[0] = 0x03;
+  put_le(&out[1], service_id, 4);
+  put_le(&out[5], call_id, 4);
+  put_le(&out[9], encoding.size(), 4);
+  std::copy(encoding.begin(), encoding.end(), out.begin() + 13);
+  std::copy(payload.begin(), payload.end(),
+            out.begin() + 13 + static_cast<std::ptrdiff_t>(encoding.size()));
+  return out;
+}
+
+ClientBinary parse_client_binary(std::span<const std::uint8_t> frame) {
+  const auto u32_at = [&](std::size_t at) {
+    std::uint32_t value = 0;
+    for (int i = 0; i < 4; ++i) {
+      value |= static_cast<std::uint32_t>(frame[at + static_cast<std::size_t>(i)]) << (8 * i);
+    }
+    return value;
+  };
+  if (frame.empty()) {
+    throw ProtocolError("an empty binary message");
+  }
+  if (frame[0] == 0x01) {
+    if (frame.size() < 5) {
+      throw ProtocolError("client message data: shorter than its 5-byte header");
+    }
+    return ClientMessageData{u32_at(1), frame.subspan(5)};
+  }
+  if (frame[0] == 0x02) {
+    if (frame.size() < 13 || frame.size() < 13 + static_cast<std::size_t>(u32_at(9))) {
+      throw ProtocolError("service call request: shorter than its header and encoding");
+    }
+    const std::size_t encoding_size = u32_at(9);
+    return ServiceCallRequest{
+        u32_at(1), u32_at(5),
+        std::string(frame.begin() + 13,
+                    frame.begin() + 13 + static_cast<std::ptrdiff_t>(encoding_size)),
+        frame.subspan(13 + encoding_size)};
+  }
+  throw ProtocolError("unknown binary opcode " + std::to_string(frame[0]));
+}
+
 ClientRequest parse_client_text(const std::string& text) {
   const json message = json::parse(text, nullptr, /*allow_exceptions=*/false);
   if (message.is_discarded()) {
@@ -248,8 +330,29 @@ ClientRequest parse_client_text(const std::string& text) {
     request.request_id = as_u32(message.value("requestId", json()), "fetchAsset: 'requestId'");
     return request;
   }
-  if (op == "advertise" || op == "unadvertise" || op == "subscribeConnectionGraph" ||
-      op == "unsubscribeConnectionGraph") {
+  if (op == "advertise") {
+    ClientAdvertise request;
+    for (const auto& entry : field(message, "channels", is_array, "an array")) {
+      if (!entry.is_object()) {
+        throw ProtocolError("advertise: each channel must be an object");
+      }
+      ClientChannel channel;
+      channel.id = as_u32(entry.value("id", json()), "advertise: 'id'");
+      channel.topic = field(entry, "topic", is_string, "a string").get<std::string>();
+      channel.encoding = field(entry, "encoding", is_string, "a string").get<std::string>();
+      channel.schema_name = entry.value("schemaName", std::string());
+      request.channels.push_back(std::move(channel));
+    }
+    return request;
+  }
+  if (op == "unadvertise") {
+    ClientUnadvertise request;
+    for (const auto& id : field(message, "channelIds", is_array, "an array")) {
+      request.channel_ids.push_back(as_u32(id, "unadvertise: each channel id"));
+    }
+    return request;
+  }
+  if (op == "subscribeConnectionGraph" || op == "unsubscribeConnectionGraph") {
     return Unsupported{op};
   }
   throw ProtocolError("unknown op '" + op + "'");

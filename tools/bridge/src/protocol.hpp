@@ -36,9 +36,20 @@ struct Parameter {
   std::variant<double, std::vector<double>, std::string> value;
 };
 
+// A service the bridge offers; requests and responses in `encoding` (json).
+struct Service {
+  std::uint32_t id = 0;
+  std::string name, type, encoding, request_schema, response_schema;  // JSON schemas
+};
+
 // ---- server → client, JSON ----
+// supported_encodings: what clients may publish and call services with.
 std::string server_info(const std::string& name, const std::vector<std::string>& capabilities,
+                        const std::vector<std::string>& supported_encodings,
                         const std::string& session_id);
+std::string advertise_services(std::span<const Service> services);
+std::string service_call_failure(std::uint32_t service_id, std::uint32_t call_id,
+                                 const std::string& message);
 std::string status(StatusLevel level, const std::string& message);
 std::string advertise(std::span<const Channel> channels);
 std::string unadvertise(std::span<const std::uint32_t> channel_ids);
@@ -54,6 +65,11 @@ MessageDataHeader message_data_header(std::uint32_t subscription_id, std::uint64
 std::vector<std::uint8_t> fetch_asset_response(std::uint32_t request_id,
                                                const std::optional<std::string>& error,
                                                std::span<const std::uint8_t> data);
+
+// Opcode 0x03: a service's response, in the request's encoding.
+std::vector<std::uint8_t> service_call_response(std::uint32_t service_id, std::uint32_t call_id,
+                                                const std::string& encoding,
+                                                std::span<const std::uint8_t> payload);
 
 // ---- client → server ----
 struct Subscription {
@@ -87,17 +103,41 @@ struct FetchAsset {
   std::string uri;
   std::uint32_t request_id = 0;
 };
-// An op the bridge knows but does not offer (client publishing, services,
-// the connection graph): refused with a status naming it.
+struct ClientChannel {
+  std::uint32_t id = 0;
+  std::string topic, encoding, schema_name;
+};
+struct ClientAdvertise {
+  std::vector<ClientChannel> channels;
+};
+struct ClientUnadvertise {
+  std::vector<std::uint32_t> channel_ids;
+};
+// An op the bridge knows but does not offer (the connection graph): refused
+// with a status naming it.
 struct Unsupported {
   std::string op;
 };
 
-using ClientRequest =
-    std::variant<Subscribe, Unsubscribe, GetParameters, SetParameters, SubscribeParameterUpdates,
-                 UnsubscribeParameterUpdates, FetchAsset, Unsupported>;
+using ClientRequest = std::variant<Subscribe, Unsubscribe, GetParameters, SetParameters,
+                                   SubscribeParameterUpdates, UnsubscribeParameterUpdates,
+                                   FetchAsset, ClientAdvertise, ClientUnadvertise, Unsupported>;
 
 // Parses one text frame; throws ProtocolError naming what is wrong.
 ClientRequest parse_client_text(const std::string& text);
+
+// Binary client frames. The spans point into the frame.
+struct ClientMessageData {  // opcode 0x01
+  std::uint32_t channel_id = 0;
+  std::span<const std::uint8_t> payload;
+};
+struct ServiceCallRequest {  // opcode 0x02
+  std::uint32_t service_id = 0;
+  std::uint32_t call_id = 0;
+  std::string encoding;
+  std::span<const std::uint8_t> payload;
+};
+using ClientBinary = std::variant<ClientMessageData, ServiceCallRequest>;
+ClientBinary parse_client_binary(std::span<const std::uint8_t> frame);
 
 }  // namespace wbi::bridge::protocol

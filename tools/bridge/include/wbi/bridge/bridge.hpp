@@ -10,12 +10,13 @@
 //   URDF link) from the state estimate (or the ground truth), at most
 //   transforms_rate_hz; "/robot_description" carries the URDF for Foxglove's
 //   URDF layer and fetchAsset serves its meshes.
-// - Parameters: the hosted controllers' declared parameters (parameter_service.hpp).
+// - Parameters: the hosted controllers' declared parameters; services: list
+//   and switch controllers (controller_hosts.hpp, services.hpp).
+// - clientPublish on controllers' reference inputs only; raw actuator
+//   commands only with allow_commands (client_publish.hpp).
 // - Back-pressure: each client has a bounded queue; a slow client loses its
 //   oldest data messages, is told how many in a status message once a second,
 //   and never slows the DDS readers or the other clients.
-// Client publishing and service calls are not offered (yet): such requests
-// are refused with a status error.
 #pragma once
 
 #include <chrono>
@@ -39,6 +40,9 @@ struct BridgeOptions {
   std::vector<std::string> mesh_paths;
   double transforms_rate_hz = 30.0;
   bool transforms_from_ground_truth = false;
+  // Accept raw actuator commands from clients (wbi/<robot>/commands); off:
+  // clients publish only on controllers' reference inputs.
+  bool allow_commands = false;
   std::chrono::nanoseconds call_timeout = std::chrono::seconds(2);
 };
 

@@ -1,4 +1,4 @@
-#include "parameter_service.hpp"
+#include "controller_hosts.hpp"
 
 #include <exception>
 
@@ -37,7 +37,7 @@ std::vector<double> numbers_of(const protocol::Parameter& parameter) {
 
 }  // namespace
 
-struct ParameterService::Robot {
+struct ControllerHosts::Robot {
   std::string name;
   std::string urdf_text;
   std::map<std::string, protocol::Parameter> values;  // by full name
@@ -52,13 +52,13 @@ dds::ParticipantOptions named(dds::ParticipantOptions options) {
 }
 }  // namespace
 
-ParameterService::ParameterService(const dds::ParticipantOptions& options,
-                                   std::chrono::nanoseconds call_timeout, Changed changed)
+ControllerHosts::ControllerHosts(const dds::ParticipantOptions& options,
+                                 std::chrono::nanoseconds call_timeout, Changed changed)
     : participant_(named(options)), call_timeout_(call_timeout), changed_(std::move(changed)) {
   worker_ = std::thread([this] { work(); });
 }
 
-ParameterService::~ParameterService() {
+ControllerHosts::~ControllerHosts() {
   {
     std::lock_guard lock(mutex_);
     stopping_ = true;
@@ -71,20 +71,25 @@ ParameterService::~ParameterService() {
   }
 }
 
-void ParameterService::add_robot(const std::string& name) {
-  std::unique_lock lock(mutex_);
-  if (robots_.count(name) != 0) {
-    return;
+void ControllerHosts::add_robot(const std::string& name) {
+  {
+    std::lock_guard lock(mutex_);
+    if (robots_.count(name) != 0) {
+      return;
+    }
   }
   auto robot = std::make_unique<Robot>();
   robot->name = name;
+  robot->client = std::make_unique<controllers::HostClient>(participant_, name, call_timeout_);
   Robot& added = *robot;
-  robots_[name] = std::move(robot);
-  if (first_robot_.empty()) {
-    first_robot_ = name;
+  {
+    std::lock_guard lock(mutex_);
+    robots_[name] = std::move(robot);
+    if (first_robot_.empty()) {
+      first_robot_ = name;
+    }
   }
-  lock.unlock();  // the latched table's callback may run at once, and takes the lock
-  added.client = std::make_unique<controllers::HostClient>(participant_, name, call_timeout_);
+  // Outside the lock: the latched table's callback may run at once, and takes it.
   added.table = std::make_unique<dds::Subscriber<msg::ControllerParameters>>(
       participant_, dds::topics::controller_parameters(name), dds::qos::kLatched,
       [this, &added](const msg::ControllerParameters& message, const auto&) {
@@ -96,15 +101,15 @@ void ParameterService::add_robot(const std::string& name) {
       });
 }
 
-void ParameterService::set_robot_description(const std::string& robot,
-                                             const std::string& urdf_text) {
+void ControllerHosts::set_robot_description(const std::string& robot,
+                                            const std::string& urdf_text) {
   std::lock_guard lock(mutex_);
   if (const auto found = robots_.find(robot); found != robots_.end()) {
     found->second->urdf_text = urdf_text;
   }
 }
 
-void ParameterService::on_table(Robot& robot, std::vector<protocol::Parameter> table) {
+void ControllerHosts::on_table(Robot& robot, std::vector<protocol::Parameter> table) {
   std::vector<protocol::Parameter> changed;
   {
     std::lock_guard lock(mutex_);
@@ -121,8 +126,8 @@ void ParameterService::on_table(Robot& robot, std::vector<protocol::Parameter> t
   }
 }
 
-std::vector<protocol::Parameter> ParameterService::get(const std::vector<std::string>& names,
-                                                       std::vector<std::string>* unknown) const {
+std::vector<protocol::Parameter> ControllerHosts::get(const std::vector<std::string>& names,
+                                                      std::vector<std::string>* unknown) const {
   std::lock_guard lock(mutex_);
   std::map<std::string, protocol::Parameter> all;
   for (const auto& [name, robot] : robots_) {
@@ -151,7 +156,7 @@ std::vector<protocol::Parameter> ParameterService::get(const std::vector<std::st
   return out;
 }
 
-std::optional<ParameterService::Target> ParameterService::target_of(
+std::optional<ControllerHosts::Target> ControllerHosts::target_of(
     const std::string& parameter) const {
   // "/<robot>/<controller>/<name>"
   if (parameter.size() < 2 || parameter[0] != '/') {
@@ -170,7 +175,7 @@ std::optional<ParameterService::Target> ParameterService::target_of(
                 parameter.substr(third + 1)};
 }
 
-void ParameterService::set(std::vector<protocol::Parameter> parameters, SetDone done) {
+void ControllerHosts::set(std::vector<protocol::Parameter> parameters, SetDone done) {
   {
     std::lock_guard lock(mutex_);
     jobs_.push_back([this, parameters = std::move(parameters), done = std::move(done)] {
@@ -180,8 +185,22 @@ void ParameterService::set(std::vector<protocol::Parameter> parameters, SetDone 
   jobs_ready_.notify_one();
 }
 
-void ParameterService::apply(const std::vector<protocol::Parameter>& parameters,
-                             const SetDone& done) {
+bool ControllerHosts::run(const std::string& robot,
+                          std::function<void(controllers::HostClient& host)> job) {
+  {
+    std::lock_guard lock(mutex_);
+    const auto found = robots_.find(robot);
+    if (found == robots_.end()) {
+      return false;
+    }
+    jobs_.push_back([client = found->second->client.get(), job = std::move(job)] { job(*client); });
+  }
+  jobs_ready_.notify_one();
+  return true;
+}
+
+void ControllerHosts::apply(const std::vector<protocol::Parameter>& parameters,
+                            const SetDone& done) {
   std::vector<protocol::Parameter> applied;
   std::vector<std::string> refusals;
   for (const auto& parameter : parameters) {
@@ -209,7 +228,7 @@ void ParameterService::apply(const std::vector<protocol::Parameter>& parameters,
   done(std::move(applied), std::move(refusals));
 }
 
-void ParameterService::work() {
+void ControllerHosts::work() {
   std::unique_lock lock(mutex_);
   while (true) {
     jobs_ready_.wait(lock, [this] { return stopping_ || !jobs_.empty(); });

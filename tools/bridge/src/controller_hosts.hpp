@@ -1,10 +1,10 @@
-// The protocol's parameters mapped onto the robots' controller hosts: each
+// The robots' controller hosts as the protocol sees them. Parameters: each
 // hosted controller's declared parameter is "/<robot>/<controller>/<name>",
 // read from the host's latched table (wbi/<robot>/controllers/parameters, so a
 // get never waits) and set through the host's service (wbi param's call) on a
 // worker thread, so that a slow host never stalls the bridge's I/O thread.
 // Also "/robot_description" and "/<robot>/robot_description": the URDF text,
-// read only.
+// read only. Services (services.hpp) run their calls here too, one at a time.
 #pragma once
 
 #include <chrono>
@@ -23,9 +23,13 @@
 
 #include "protocol.hpp"
 
+namespace wbi::controllers {
+class HostClient;
+}
+
 namespace wbi::bridge {
 
-class ParameterService {
+class ControllerHosts {
  public:
   // Called on a DDS thread with the parameters whose value changed.
   using Changed = std::function<void(const std::vector<protocol::Parameter>& changed)>;
@@ -37,11 +41,11 @@ class ParameterService {
   // A participant of its own, joined like `options`': its typed endpoints must
   // not share topics with the bridge's raw readers (a participant's topic
   // has one type support: a typed reader would decode into a raw buffer).
-  ParameterService(const dds::ParticipantOptions& options, std::chrono::nanoseconds call_timeout,
-                   Changed changed);
-  ~ParameterService();
-  ParameterService(const ParameterService&) = delete;
-  ParameterService& operator=(const ParameterService&) = delete;
+  ControllerHosts(const dds::ParticipantOptions& options, std::chrono::nanoseconds call_timeout,
+                  Changed changed);
+  ~ControllerHosts();
+  ControllerHosts(const ControllerHosts&) = delete;
+  ControllerHosts& operator=(const ControllerHosts&) = delete;
 
   // Starts following a robot's host (idempotent); its URDF text, when known,
   // becomes its robot_description (the first robot's is also "/robot_description").
@@ -53,6 +57,9 @@ class ParameterService {
                                        std::vector<std::string>* unknown) const;
   // Queues the sets; `done` runs once all were tried.
   void set(std::vector<protocol::Parameter> parameters, SetDone done);
+  // Runs `job` on the worker with the robot's host client; false when the
+  // robot is not known.
+  bool run(const std::string& robot, std::function<void(controllers::HostClient& host)> job);
 
  private:
   struct Robot;
