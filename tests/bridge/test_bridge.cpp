@@ -12,10 +12,7 @@
 #include <string>
 #include <thread>
 
-#include <fastdds/rtps/common/SerializedPayload.h>
-#include <wbi/msg/commandsPubSubTypes.h>
-#include <wbi/msg/referencesPubSubTypes.h>
-#include <wbi/msg/sensorsPubSubTypes.h>
+#include <wbi/dds/cdr.hpp>
 #include <wbi/dds/participant.hpp>
 #include <wbi/dds/publisher.hpp>
 #include <wbi/dds/subscriber.hpp>
@@ -88,12 +85,9 @@ class BridgeBesideTheDemo : public ::testing::Test {
 };
 
 wbi::msg::SensorSample decode_sensor_sample(const std::string& cdr) {
-  wbi::msg::SensorSamplePubSubType type;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(cdr.size()));
-  std::memcpy(payload.data, cdr.data(), cdr.size());
-  payload.length = static_cast<std::uint32_t>(cdr.size());
   wbi::msg::SensorSample sample;
-  EXPECT_TRUE(type.deserialize(&payload, &sample));
+  EXPECT_TRUE(wbi::dds::decode_cdr(
+      std::span(reinterpret_cast<const std::uint8_t*>(cdr.data()), cdr.size()), sample));
   return sample;
 }
 
@@ -519,11 +513,10 @@ TEST_F(BridgeBesideTheDemo, RawCommandsPassOnlyWithAllowCommands) {
                        {"schemaName", "wbi::msg::ActuatorCommand"}}}}});
   wbi::msg::ActuatorCommand command;
   command.header().robot("ghost");
-  wbi::msg::ActuatorCommandPubSubType type;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(type.m_typeSize);
-  ASSERT_TRUE(type.serialize(&command, &payload));
+  const auto cdr = wbi::dds::encode_cdr(command);
+  ASSERT_FALSE(cdr.empty());
   std::vector<std::uint8_t> frame{0x01, 9, 0, 0, 0};
-  frame.insert(frame.end(), payload.data, payload.data + payload.length);
+  frame.insert(frame.end(), cdr.begin(), cdr.end());
   for (int n = 0; n < 200 && received == 0; ++n) {
     client.send_binary(frame);  // until the reader is matched: no event tells the client
     std::this_thread::sleep_for(20ms);

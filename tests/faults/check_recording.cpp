@@ -33,12 +33,12 @@
 #include <utility>
 #include <vector>
 
-#include <fastdds/rtps/common/SerializedPayload.h>
 #include <wbi/msg/descriptionPubSubTypes.h>
 #include <wbi/msg/sensorsPubSubTypes.h>
 #include <wbi/msg/signalsPubSubTypes.h>
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <wbi/dds/cdr.hpp>
 #include <wbi/mcap/reader.hpp>
 #include <wbi/model/com.hpp>
 #include <wbi/model/configuration.hpp>
@@ -52,16 +52,10 @@ constexpr double kLossSlackS = 1.0;          // [s] of samples a fault may cost 
 constexpr double kFrameJump = 0.01;          // [m] in a tick: a change of frame, not a motion
 constexpr std::int64_t kMatchNs = 10000000;  // [ns] a reference this much older still matches
 
-template <class TypeSupport, class T>
-bool decode(TypeSupport& type, std::span<const std::uint8_t> bytes, T& out) {
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(bytes.size()));
-  std::memcpy(payload.data, bytes.data(), bytes.size());
-  payload.length = static_cast<std::uint32_t>(bytes.size());
-  try {
-    return type.deserialize(&payload, &out);
-  } catch (const std::exception&) {
-    return false;  // a sample cut short (a killed recorder's last chunk is dropped whole)
-  }
+// A sample cut short (a killed recorder's last chunk is dropped whole) does not decode.
+template <class T>
+bool decode(std::span<const std::uint8_t> bytes, T& out) {
+  return wbi::dds::decode_cdr(bytes, out);
 }
 
 struct Truth {
@@ -131,9 +125,6 @@ int main(int argc, char** argv) {
       }
     }
 
-    wbi::msg::RobotDescriptionPubSubType description_type;
-    wbi::msg::GroundTruthPubSubType truth_type;
-    wbi::msg::SignalsPubSubType signals_type;
     wbi::msg::RobotDescription description;
     wbi::msg::GroundTruth truth;
     wbi::msg::Signals signals;
@@ -158,7 +149,7 @@ int main(int argc, char** argv) {
       while (const auto* m = cursor.next()) {
         const double t = 1e-9 * static_cast<double>(m->log_time);
         if (with_com && m->channel->topic == description_topic && model_joint.empty() &&
-            decode(description_type, m->data, description)) {
+            decode(m->data, description)) {
           for (const auto& name : description.joint_names()) {
             const auto it =
                 std::find(model->joint_name.begin(), model->joint_name.end(), name.to_string());
@@ -169,7 +160,7 @@ int main(int argc, char** argv) {
             }
             model_joint.push_back(static_cast<int>(it - model->joint_name.begin()));
           }
-        } else if (m->channel->topic == signals_topic && decode(signals_type, m->data, signals) &&
+        } else if (m->channel->topic == signals_topic && decode(m->data, signals) &&
                    signals.values().size() >= 6) {
           const auto& v = signals.values();
           const auto stamp = signals.header().stamp_ns();
@@ -180,7 +171,7 @@ int main(int argc, char** argv) {
           ref.estimate = {v[0], v[1], v[2]};
           ref.t = t;
           references.push_back(ref);
-        } else if (m->channel->topic == truth_topic && decode(truth_type, m->data, truth)) {
+        } else if (m->channel->topic == truth_topic && decode(m->data, truth)) {
           Truth sample;
           sample.t = t;
           sample.seq = truth.header().seq();

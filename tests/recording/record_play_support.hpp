@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include <fastdds/rtps/common/SerializedPayload.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
+#include <wbi/dds/cdr.hpp>
 
 #include <wbi/msg/sensorsPubSubTypes.h>
 #include <wbi/mcap/reader.hpp>
@@ -44,12 +44,11 @@ inline CliRun run_wbi(const std::vector<std::string>& args,
 inline std::vector<std::uint8_t> pattern_cdr(const std::string& robot, std::uint64_t seq) {
   msg::SensorSample sample;
   fill_pattern(sample, robot, seq);
-  msg::SensorSamplePubSubType type;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(type.getSerializedSizeProvider(&sample)());
-  if (!type.serialize(&sample, &payload)) {
+  auto cdr = dds::encode_cdr(sample);
+  if (cdr.empty()) {
     ADD_FAILURE() << "cannot serialize sample " << seq;
   }
-  return {payload.data, payload.data + payload.length};
+  return cdr;
 }
 
 // Per topic, the messages of a file in log-time order.

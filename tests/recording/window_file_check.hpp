@@ -19,9 +19,7 @@
 #include <string>
 #include <vector>
 
-#include <fastdds/rtps/common/SerializedPayload.h>
-#include <wbi/msg/eventsPubSubTypes.h>
-#include <wbi/msg/sensorsPubSubTypes.h>
+#include <wbi/dds/cdr.hpp>
 #include <wbi/mcap/reader.hpp>
 #include <wbi/msg/wire_vocabulary.hpp>
 
@@ -44,15 +42,6 @@ struct WindowFileReport {
   std::map<std::string, std::uint64_t> missing_by_topic;  // the topics with gaps
   std::string problem;  // empty: the file could be read and decoded
 };
-
-template <class TypeSupport, class T>
-bool decode_cdr(std::span<const std::uint8_t> bytes, T& out) {
-  TypeSupport type;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(bytes.size()));
-  std::memcpy(payload.data, bytes.data(), bytes.size());
-  payload.length = static_cast<std::uint32_t>(bytes.size());
-  return type.deserialize(&payload, &out);
-}
 
 // The first trigger's stamp, to the millisecond, from a window file's name
 // (window_file_name: "20261127-235513.123_KIND.mcap"); 0 when it is not one.
@@ -89,7 +78,7 @@ inline WindowFileReport check_window_file(const std::filesystem::path& file,
       const std::string& topic = message->channel->topic;
       if (topic == "wbi/events") {
         msg::Event event;
-        if (!decode_cdr<msg::EventPubSubType>(message->data, event)) {
+        if (!dds::decode_cdr(message->data, event)) {
           report.problem = "an event does not decode";
           return report;
         }
@@ -125,7 +114,7 @@ inline WindowFileReport check_window_file(const std::filesystem::path& file,
           seq = recording::header_seq(message->data);
         } else {
           msg::SensorSample sample;
-          if (decode_cdr<msg::SensorSamplePubSubType>(message->data, sample)) {
+          if (dds::decode_cdr(message->data, sample)) {
             seq = sample.header().seq();
           }
         }

@@ -2,9 +2,8 @@
 
 #include <regex>
 
-#include <fastdds/rtps/common/SerializedPayload.h>
-#include <wbi/msg/referencesPubSubTypes.h>
 #include <nlohmann/json.hpp>
+#include <wbi/dds/cdr.hpp>
 #include <wbi/dds/raw_publisher.hpp>
 #include <wbi/dds/topics.hpp>
 
@@ -66,12 +65,11 @@ std::vector<std::uint8_t> trajectory_point_cdr(std::span<const std::uint8_t> tex
   fill(position, message.position());
   fill(numbers(point, "velocity"), message.velocity());
   fill(numbers(point, "acceleration"), message.acceleration());
-  msg::TrajectoryPointPubSubType type;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(type.m_typeSize);
-  if (!type.serialize(&message, &payload)) {
+  auto cdr = dds::encode_cdr(message);
+  if (cdr.empty()) {
     throw std::invalid_argument("the point could not be serialized");
   }
-  return {payload.data, payload.data + payload.length};
+  return cdr;
 }
 
 }  // namespace

@@ -1,28 +1,15 @@
 #include "robot_feed.hpp"
 
 #include <cmath>
-#include <cstring>
 #include <fstream>
 #include <sstream>
 
-#include <fastdds/rtps/common/SerializedPayload.h>
-#include <wbi/msg/descriptionPubSubTypes.h>
-#include <wbi/msg/sensorsPubSubTypes.h>
-#include <wbi/msg/statePubSubTypes.h>
+#include <wbi/dds/cdr.hpp>
 #include <wbi/dds/topics.hpp>
 
 namespace wbi::bridge {
 
 namespace {
-
-template <class TypeSupport, class T>
-bool decode(std::span<const std::uint8_t> cdr, T& out) {
-  TypeSupport type;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(cdr.size()));
-  std::memcpy(payload.data, cdr.data(), cdr.size());
-  payload.length = static_cast<std::uint32_t>(cdr.size());
-  return type.deserialize(&payload, &out);
-}
 
 Eigen::Isometry3d isometry(const msg::Pose& pose) {
   Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
@@ -59,7 +46,7 @@ std::optional<std::string> RobotFeed::on_description(std::span<const std::uint8_
   }
   described_ = true;  // one attempt: a description does not change while its robot runs
   msg::RobotDescription description;
-  if (!decode<msg::RobotDescriptionPubSubType>(cdr, description)) {
+  if (!dds::decode_cdr(cdr, description)) {
     return robot_ + ": its description could not be decoded";
   }
   urdf_path_ = options_.urdf.empty() ? description.urdf_path().to_string() : options_.urdf;
@@ -93,15 +80,13 @@ void RobotFeed::on_pose_sample(std::uint64_t receive_ns, std::span<const std::ui
   std::string message;
   if (options_.from_ground_truth) {
     msg::GroundTruth truth;
-    if (!decode<msg::GroundTruthPubSubType>(cdr, truth) ||
-        truth.q().size() != transforms_->joint_count()) {
+    if (!dds::decode_cdr(cdr, truth) || truth.q().size() != transforms_->joint_count()) {
       return;
     }
     message = transforms_->message(receive_ns, truth.q(), isometry(truth.base_pose()));
   } else {
     msg::StateEstimate state;
-    if (!decode<msg::StateEstimatePubSubType>(cdr, state) ||
-        state.q().size() != transforms_->joint_count()) {
+    if (!dds::decode_cdr(cdr, state) || state.q().size() != transforms_->joint_count()) {
       return;
     }
     message = transforms_->message(receive_ns, state.q(), isometry(state.base_pose()));

@@ -8,10 +8,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include <fastdds/rtps/common/SerializedPayload.h>
-#include <wbi/msg/descriptionPubSubTypes.h>
-#include <wbi/msg/sensorsPubSubTypes.h>
-#include <wbi/msg/statePubSubTypes.h>
+#include <wbi/dds/cdr.hpp>
 #include <wbi/mcap/reader.hpp>
 
 namespace wbi::render {
@@ -34,22 +31,6 @@ std::string robot_of(const std::string& topic, const std::string& leaf) {
     return "";
   }
   return topic.substr(prefix.size(), topic.size() - prefix.size() - suffix.size());
-}
-
-// Decodes CDR bytes (encapsulation header included, as recorded) with the
-// generated type support.
-template <class TypeSupport, class T>
-bool decode(TypeSupport& type, eprosima::fastrtps::rtps::SerializedPayload_t& payload,
-            std::span<const std::uint8_t> bytes, T& out) {
-  payload.reserve(static_cast<std::uint32_t>(bytes.size()));
-  std::memcpy(payload.data, bytes.data(), bytes.size());
-  payload.length = static_cast<std::uint32_t>(bytes.size());
-  payload.pos = 0;
-  try {
-    return type.deserialize(&payload, &out);
-  } catch (const std::exception&) {
-    return false;  // Fast CDR throws on a sample cut short
-  }
 }
 
 PoseFrame to_frame(const msg::Pose& pose, const std::vector<double>& q) {
@@ -122,10 +103,6 @@ PoseTrack read_pose_track(const std::filesystem::path& file, PoseSource source,
   const std::uint16_t stream_id = streams.begin()->second;
   const std::string description_topic = "wbi/" + track.robot + "/description";
 
-  eprosima::fastrtps::rtps::SerializedPayload_t payload;
-  msg::RobotDescriptionPubSubType description_type;
-  msg::GroundTruthPubSubType truth_type;
-  msg::StateEstimatePubSubType state_type;
   msg::RobotDescription description;
   msg::GroundTruth truth;
   msg::StateEstimate state;
@@ -137,7 +114,7 @@ PoseTrack read_pose_track(const std::filesystem::path& file, PoseSource source,
   while (const auto* m = cursor.next()) {
     if (m->channel->topic == description_topic && m->schema != nullptr &&
         m->schema->name == kDescriptionType) {
-      if (!have_description && decode(description_type, payload, m->data, description)) {
+      if (!have_description && dds::decode_cdr(m->data, description)) {
         have_description = true;
       }
       continue;
@@ -148,7 +125,7 @@ PoseTrack read_pose_track(const std::filesystem::path& file, PoseSource source,
     PoseFrame frame;
     std::int64_t stamp = 0;
     if (source == PoseSource::kGroundTruth) {
-      if (!decode(truth_type, payload, m->data, truth)) {
+      if (!dds::decode_cdr(m->data, truth)) {
         ++undecodable;
         continue;
       }
@@ -161,7 +138,7 @@ PoseTrack read_pose_track(const std::filesystem::path& file, PoseSource source,
       }
       stamp = truth.header().stamp_ns();
     } else {
-      if (!decode(state_type, payload, m->data, state)) {
+      if (!dds::decode_cdr(m->data, state)) {
         ++undecodable;
         continue;
       }
