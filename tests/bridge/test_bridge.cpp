@@ -7,7 +7,6 @@
 #include <chrono>
 #include <map>
 #include <memory>
-#include <regex>
 #include <set>
 #include <string>
 #include <thread>
@@ -28,6 +27,15 @@ using nlohmann::json;
 using wbi::test::ChildProcess;
 using wbi::test::WsTestClient;
 
+// The port of a bridge's "listening on ws://127.0.0.1:PORT" line; 0: none yet.
+std::uint16_t listening_port(const std::string& output) {
+  const std::string prefix = "listening on ws://127.0.0.1:";
+  const auto at = output.find(prefix);
+  return at == std::string::npos ? 0
+                                 : static_cast<std::uint16_t>(std::strtoul(
+                                       output.c_str() + at + prefix.size(), nullptr, 10));
+}
+
 std::unique_ptr<ChildProcess> launch;
 std::unique_ptr<ChildProcess> bridge;
 std::uint16_t port = 0;
@@ -46,12 +54,9 @@ class BridgeBesideTheDemo : public ::testing::Test {
         wbi, std::vector<std::string>{"bridge", "--port", "0", "--client-buffer", "0.5"});
     ASSERT_TRUE(bridge->wait_for_output("transforms of arm on wbi/arm/transforms", 60s))
         << bridge->output();
-    std::smatch match;
     const std::string out = bridge->output();
-    ASSERT_TRUE(
-        std::regex_search(out, match, std::regex(R"(listening on ws://127\.0\.0\.1:(\d+))")))
-        << out;
-    port = static_cast<std::uint16_t>(std::stoi(match[1]));
+    port = listening_port(out);
+    ASSERT_NE(port, 0) << out;
     // The controller's parameters reach the bridge from the host's latched table.
     ASSERT_TRUE(bridge->wait_for_output("channel wbi/arm/controllers/parameters", 30s)) << out;
   }
@@ -495,16 +500,16 @@ TEST_F(BridgeBesideTheDemo, ClientsPublishOnlyOnReferenceInputs) {
 TEST_F(BridgeBesideTheDemo, RawCommandsPassOnlyWithAllowCommands) {
   ChildProcess permissive(wbi::test::binary_dir() / "bin" / "wbi",
                           {"bridge", "--port", "0", "--allow-commands", "--robot", "ghost"});
-  ASSERT_TRUE(permissive.wait_for_output("listening on", 30s)) << permissive.output();
-  std::smatch match;
-  std::string out = permissive.output();
-  ASSERT_TRUE(std::regex_search(out, match, std::regex(R"(ws://127\.0\.0\.1:(\d+) )"))) << out;
+  ASSERT_TRUE(permissive.wait_for_output(" (domain ", 30s))
+      << permissive.output();  // the whole line
+  const auto permissive_port = listening_port(permissive.output());
+  ASSERT_NE(permissive_port, 0) << permissive.output();
   wbi::dds::Participant participant("test_bridge_commands");
   std::atomic<int> received{0};
   wbi::dds::Subscriber<wbi::msg::ActuatorCommand> reader(
       participant, "wbi/ghost/commands", wbi::dds::qos::kCommand,
       [&](const wbi::msg::ActuatorCommand&, const auto&) { ++received; });
-  WsTestClient client(static_cast<std::uint16_t>(std::stoi(match[1])));
+  WsTestClient client(permissive_port);
   client.send_json({{"op", "advertise"},
                     {"channels",
                      {{{"id", 9},

@@ -1,6 +1,7 @@
 #include "client_publish.hpp"
 
-#include <regex>
+#include <sstream>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 #include <wbi/dds/cdr.hpp>
@@ -11,8 +12,26 @@ namespace wbi::bridge {
 
 namespace {
 
-const std::regex kReferenceTopic(R"(wbi/([A-Za-z0-9_]+)/references/[A-Za-z0-9_]+/[A-Za-z0-9_]+)");
-const std::regex kCommandTopic(R"(wbi/([A-Za-z0-9_]+)/commands)");
+std::vector<std::string> parts_of(const std::string& topic) {
+  std::vector<std::string> parts;
+  std::stringstream in(topic);
+  std::string part;
+  while (std::getline(in, part, '/')) {
+    parts.push_back(part);
+  }
+  return parts;
+}
+
+// wbi/<robot>/references/<controller>/<input>
+bool is_reference_topic(const std::vector<std::string>& parts) {
+  return parts.size() == 5 && parts[0] == "wbi" && parts[2] == "references" && !parts[1].empty() &&
+         !parts[3].empty() && !parts[4].empty();
+}
+
+// wbi/<robot>/commands
+bool is_command_topic(const std::vector<std::string>& parts) {
+  return parts.size() == 3 && parts[0] == "wbi" && parts[2] == "commands" && !parts[1].empty();
+}
 
 bool has_reader(const dds::Participant& participant, const std::string& topic) {
   for (const auto& known : participant.discovered_topics()) {
@@ -101,12 +120,12 @@ std::shared_ptr<dds::RawPublisher> ClientPublish::writer_for(const std::string& 
 
 std::string ClientPublish::advertise(ClientId client, const protocol::ClientChannel& channel,
                                      const std::function<void(const std::string&)>& log) {
-  std::smatch match;
+  const auto parts = parts_of(channel.topic);
   auto target = std::make_shared<Target>();
   target->topic = channel.topic;
   target->encoding = channel.encoding;
   std::string type;
-  if (std::regex_match(channel.topic, match, kReferenceTopic)) {
+  if (is_reference_topic(parts)) {
     if (channel.encoding != "cdr" && channel.encoding != "json") {
       return channel.topic + ": encoding '" + channel.encoding + "': a reference takes cdr or json";
     }
@@ -117,7 +136,7 @@ std::string ClientPublish::advertise(ClientId client, const protocol::ClientChan
     }
     target->reference = true;
     type = "wbi::msg::TrajectoryPoint";
-  } else if (std::regex_match(channel.topic, match, kCommandTopic)) {
+  } else if (is_command_topic(parts)) {
     if (!allow_commands_) {
       return channel.topic +
              ": raw actuator commands are refused unless the bridge runs with "
@@ -135,7 +154,7 @@ std::string ClientPublish::advertise(ClientId client, const protocol::ClientChan
            "(wbi/<robot>/references/<controller>/<input>)" +
            (allow_commands_ ? " or a robot's commands" : "");
   }
-  target->robot = match[1];
+  target->robot = parts[1];
   std::lock_guard lock(mutex_);
   if (channels_.count({client, channel.id}) != 0) {
     return "advertise: channel id " + std::to_string(channel.id) + " is already advertised";
