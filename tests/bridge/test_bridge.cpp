@@ -57,8 +57,12 @@ class BridgeBesideTheDemo : public ::testing::Test {
     const std::string out = bridge->output();
     port = listening_port(out);
     ASSERT_NE(port, 0) << out;
-    // The controller's parameters reach the bridge from the host's latched table.
-    ASSERT_TRUE(bridge->wait_for_output("channel wbi/arm/controllers/parameters", 30s)) << out;
+    // The streams the tests read, and the host's latched parameter table,
+    // each discovered (the processes' writers appear one by one).
+    for (const char* topic : {"wbi/arm/sensors", "wbi/arm/state", "wbi/arm/ground_truth",
+                              "wbi/arm/commands", "wbi/arm/controllers/parameters"}) {
+      ASSERT_TRUE(bridge->wait_for_output(std::string("channel ") + topic + " ", 30s)) << out;
+    }
   }
   static void TearDownTestSuite() {
     if (bridge) {
