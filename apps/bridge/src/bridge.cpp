@@ -80,6 +80,10 @@ struct Bridge::Impl {
                  std::uint64_t publish_time, std::span<const std::uint8_t> cdr);
   std::int64_t newest_state_stamp(const std::string& robot);
   void follow_hosts();
+  // A topic's reader is held while someone wants it (counted): a subscribed
+  // channel, a subscribed robot's transforms, a robot's description.
+  void want(const std::string& topic, bool wanted);
+  void channel_demand(std::uint32_t channel, bool wanted);
   void add_robots();
   void follow_robots();
   void follow_topics();
@@ -111,10 +115,18 @@ struct Bridge::Impl {
   };
   std::map<ClientId, ParameterFollow> parameter_follows;
   std::set<ClientId> clients;
+
+  std::mutex wants_mutex;
+  std::map<std::string, int> wants;                // by topic
+  std::map<std::string, std::size_t> topic_index;  // in subscriptions, once discovered
+  std::set<std::string> state_followed;            // robots whose state stamps JSON references
 };
 
 Bridge::Impl::Impl(dds::Participant& participant_, BridgeOptions options_, Log log_)
-    : participant(participant_), options(std::move(options_)), log(std::move(log_)) {
+    : participant(participant_),
+      options(std::move(options_)),
+      log(std::move(log_)),
+      channels([this](std::uint32_t channel, bool wanted) { channel_demand(channel, wanted); }) {
   for (const auto& path : options.mesh_paths) {
     assets.add(path);
   }
@@ -148,7 +160,8 @@ Bridge::Impl::Impl(dds::Participant& participant_, BridgeOptions options_, Log l
       [this](const std::string& line) {
         // TopicSubscriptions speaks as the recorder it was written for.
         log(line.rfind("recording ", 0) == 0 ? "channel " + line.substr(10) : line);
-      });
+      },
+      recording::TopicSubscriptions::Readers::on_demand);
 }
 
 Bridge::Impl::~Impl() {
@@ -294,6 +307,17 @@ void Bridge::Impl::handle(ClientId client, const protocol::ClientAdvertise& requ
   for (const auto& channel : request.channels) {
     if (const auto refusal = publish->advertise(client, channel, log); !refusal.empty()) {
       status(client, protocol::StatusLevel::error, "advertise: " + refusal);
+    } else if (channel.encoding == "json") {
+      // A JSON point without a stamp is for the robot's newest state: follow it.
+      const std::string robot = channel.topic.substr(4, channel.topic.find('/', 4) - 4);
+      bool first = false;
+      {
+        std::lock_guard lock(wants_mutex);
+        first = state_followed.insert(robot).second;
+      }
+      if (first) {
+        want(dds::topics::state(robot), true);
+      }
     }
   }
 }
@@ -379,6 +403,39 @@ void Bridge::Impl::on_sample(std::uint32_t index, const recording::RecordedTopic
   }
 }
 
+void Bridge::Impl::want(const std::string& topic, bool wanted) {
+  std::lock_guard lock(wants_mutex);
+  const int count = (wants[topic] += wanted ? 1 : -1);
+  const auto index = topic_index.find(topic);
+  if (index == topic_index.end()) {
+    return;  // opened when discovered
+  }
+  if (wanted && count == 1) {
+    subscriptions->open(index->second);
+  } else if (!wanted && count == 0) {
+    subscriptions->close(index->second);
+  }
+}
+
+void Bridge::Impl::channel_demand(std::uint32_t channel, bool wanted) {
+  if (channel < kFirstBridgeChannel) {
+    want((*subscriptions)[channel - 1].topic.name, wanted);
+    return;
+  }
+  std::string pose_topic;
+  {
+    std::lock_guard lock(robots_mutex);
+    for (const auto& [name, feed] : robots) {
+      if (feed->channel_id() == channel) {
+        pose_topic = feed->pose_topic();
+      }
+    }
+  }
+  if (!pose_topic.empty()) {
+    want(pose_topic, wanted);
+  }
+}
+
 std::int64_t Bridge::Impl::newest_state_stamp(const std::string& robot) {
   std::lock_guard lock(robots_mutex);
   const auto found = state_stamps.find(robot);
@@ -415,21 +472,25 @@ void Bridge::Impl::add_robots() {
     if (!robot || (!options.robot.empty() && *robot != options.robot)) {
       continue;
     }
-    std::lock_guard lock(robots_mutex);
-    if (robots.count(*robot) != 0) {
-      continue;
+    {
+      std::lock_guard lock(robots_mutex);
+      if (robots.count(*robot) != 0) {
+        continue;
+      }
+      const auto id = kFirstBridgeChannel + static_cast<std::uint32_t>(robots.size());
+      auto feed =
+          std::make_unique<RobotFeed>(*robot,
+                                      RobotFeedOptions{options.urdf, options.transforms_rate_hz,
+                                                       options.transforms_from_ground_truth},
+                                      channels, id);
+      robot_by_topic[topic.name] = feed.get();
+      robot_by_topic[feed->pose_topic()] = feed.get();
+      robot_by_topic[dds::topics::state(*robot)] = feed.get();
+      robots[*robot] = std::move(feed);
     }
-    const auto id = kFirstBridgeChannel + static_cast<std::uint32_t>(robots.size());
-    auto feed =
-        std::make_unique<RobotFeed>(*robot,
-                                    RobotFeedOptions{options.urdf, options.transforms_rate_hz,
-                                                     options.transforms_from_ground_truth},
-                                    channels, id);
-    robot_by_topic[topic.name] = feed.get();
-    robot_by_topic[feed->pose_topic()] = feed.get();
-    robot_by_topic[dds::topics::state(*robot)] = feed.get();
-    robots[*robot] = std::move(feed);
+    // Outside robots_mutex: a reader's close waits for its callbacks, which take it.
     parameters->add_robot(*robot);
+    want(topic.name, true);  // the description, for the model: held for the bridge's life
   }
 }
 
@@ -468,6 +529,13 @@ void Bridge::Impl::follow_topics() {
   subscriptions->discover();
   for (std::size_t index = added_from; index < subscriptions->size(); ++index) {
     const auto& recorded = (*subscriptions)[index];
+    {
+      std::lock_guard lock(wants_mutex);
+      topic_index[recorded.topic.name] = index;
+      if (wants[recorded.topic.name] > 0) {
+        subscriptions->open(index);
+      }
+    }
     if (recorded.idl_text.empty()) {
       continue;  // no schema a client could decode it with
     }

@@ -11,16 +11,29 @@ bool ChannelTable::add(protocol::Channel channel) {
   return channels_.emplace(id, Entry{std::move(channel), false, {}}).second;
 }
 
+void ChannelTable::tell(const std::vector<std::pair<std::uint32_t, bool>>& changes) const {
+  if (demand_) {
+    for (const auto& [id, wanted] : changes) {
+      demand_(id, wanted);
+    }
+  }
+}
+
 bool ChannelTable::set_advertised(std::uint32_t id, bool advertised) {
-  std::lock_guard lock(mutex_);
-  const auto found = channels_.find(id);
-  if (found == channels_.end() || found->second.advertised == advertised) {
-    return false;
+  std::vector<std::pair<std::uint32_t, bool>> changes;
+  {
+    std::lock_guard lock(mutex_);
+    const auto found = channels_.find(id);
+    if (found == channels_.end() || found->second.advertised == advertised) {
+      return false;
+    }
+    found->second.advertised = advertised;
+    if (!advertised && !found->second.subscribers.empty()) {
+      found->second.subscribers.clear();  // the protocol's unadvertise ends them
+      changes.emplace_back(id, false);
+    }
   }
-  found->second.advertised = advertised;
-  if (!advertised) {
-    found->second.subscribers.clear();
-  }
+  tell(changes);
   return true;
 }
 
@@ -43,7 +56,7 @@ std::optional<std::string> ChannelTable::topic_of(std::uint32_t id) const {
 
 std::optional<std::string> ChannelTable::subscribe(ClientId client,
                                                    const protocol::Subscription& subscription) {
-  std::lock_guard lock(mutex_);
+  std::unique_lock lock(mutex_);
   for (const auto& [id, entry] : channels_) {
     for (const auto& subscriber : entry.subscribers) {
       if (subscriber.client == client && subscriber.subscription == subscription.id) {
@@ -61,11 +74,16 @@ std::optional<std::string> ChannelTable::subscribe(ClientId client,
           ? static_cast<std::uint64_t>(std::llround(1e9 / subscription.max_rate_hz))
           : 0;
   found->second.subscribers.push_back({client, subscription.id, interval, 0});
+  const bool first = found->second.subscribers.size() == 1;
+  lock.unlock();
+  if (first) {
+    tell({{subscription.channel_id, true}});
+  }
   return std::nullopt;
 }
 
 bool ChannelTable::unsubscribe(ClientId client, std::uint32_t subscription_id) {
-  std::lock_guard lock(mutex_);
+  std::unique_lock lock(mutex_);
   for (auto& [id, entry] : channels_) {
     auto& list = entry.subscribers;
     const auto found = std::find_if(list.begin(), list.end(), [&](const Subscriber& s) {
@@ -73,6 +91,12 @@ bool ChannelTable::unsubscribe(ClientId client, std::uint32_t subscription_id) {
     });
     if (found != list.end()) {
       list.erase(found);
+      const bool last = list.empty();
+      const auto channel = id;
+      lock.unlock();
+      if (last) {
+        tell({{channel, false}});
+      }
       return true;
     }
   }
@@ -80,17 +104,18 @@ bool ChannelTable::unsubscribe(ClientId client, std::uint32_t subscription_id) {
 }
 
 void ChannelTable::forget(ClientId client) {
-  std::lock_guard lock(mutex_);
-  for (auto& [id, entry] : channels_) {
-    std::erase_if(entry.subscribers, [&](const Subscriber& s) { return s.client == client; });
+  std::vector<std::pair<std::uint32_t, bool>> changes;
+  {
+    std::lock_guard lock(mutex_);
+    for (auto& [id, entry] : channels_) {
+      if (std::erase_if(entry.subscribers,
+                        [&](const Subscriber& s) { return s.client == client; }) > 0 &&
+          entry.subscribers.empty()) {
+        changes.emplace_back(id, false);
+      }
+    }
   }
-}
-
-void ChannelTable::drop_subscriptions(std::uint32_t channel_id) {
-  std::lock_guard lock(mutex_);
-  if (const auto found = channels_.find(channel_id); found != channels_.end()) {
-    found->second.subscribers.clear();
-  }
+  tell(changes);
 }
 
 bool ChannelTable::has_subscribers(std::uint32_t id) const {

@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <optional>
@@ -20,6 +21,12 @@ namespace wbi::bridge {
 
 class ChannelTable {
  public:
+  // Told, outside the table's lock, when a channel gains its first subscriber
+  // (true) or loses its last (false): the bridge reads a topic only while
+  // someone watches it.
+  using Demand = std::function<void(std::uint32_t channel, bool wanted)>;
+  explicit ChannelTable(Demand demand) : demand_(std::move(demand)) {}
+
   // The server that carries deliveries (none before: nobody subscribed yet).
   void attach(WebSocketServer* server) {
     std::lock_guard lock(mutex_);
@@ -37,8 +44,6 @@ class ChannelTable {
   std::optional<std::string> subscribe(ClientId client, const protocol::Subscription& subscription);
   bool unsubscribe(ClientId client, std::uint32_t subscription_id);
   void forget(ClientId client);  // every subscription of a gone client
-  // Channels that lost their advertisement take their subscriptions with them.
-  void drop_subscriptions(std::uint32_t channel_id);
 
   bool has_subscribers(std::uint32_t id) const;
   // Queues `bytes` to every subscriber of the channel whose rate allows it.
@@ -59,6 +64,9 @@ class ChannelTable {
     std::vector<Subscriber> subscribers;
   };
 
+  void tell(const std::vector<std::pair<std::uint32_t, bool>>& changes) const;
+
+  const Demand demand_;
   WebSocketServer* server_ = nullptr;
   mutable std::mutex mutex_;
   std::map<std::uint32_t, Entry> channels_;

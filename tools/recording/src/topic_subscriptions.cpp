@@ -18,15 +18,17 @@ std::uint64_t system_now_ns() {
 }
 
 TopicSubscriptions::TopicSubscriptions(dds::Participant& participant, Accepts accepts, Sink sink,
-                                       Log log)
+                                       Log log, Readers readers)
     : participant_(participant),
       accepts_(std::move(accepts)),
       sink_(std::move(sink)),
-      log_(std::move(log)) {}
+      log_(std::move(log)),
+      readers_(readers) {}
 
 TopicSubscriptions::~TopicSubscriptions() { unsubscribe_all(); }
 
 std::size_t TopicSubscriptions::discover() {
+  std::lock_guard lock(mutex_);
   const std::size_t before = entries_.size();
   for (const auto& topic : participant_.discovered_topics()) {
     if (topic.writers == 0 || seen_topics_.count(topic.name) != 0) {
@@ -34,19 +36,50 @@ std::size_t TopicSubscriptions::discover() {
     }
     seen_topics_.insert(topic.name);
     if (accepts_(topic.name)) {
-      subscribe(topic);
+      add(topic);
+      if (readers_ == Readers::at_discovery) {
+        start_reader(entries_.back(), static_cast<std::uint32_t>(entries_.size() - 1));
+      }
     }
   }
   return entries_.size() - before;
 }
 
 void TopicSubscriptions::unsubscribe_all() {
+  std::lock_guard lock(mutex_);
   for (auto& entry : entries_) {
     entry.subscriber.reset();  // no callback runs after this
+    entry.opens = -1'000'000;  // and no open() starts one again
   }
 }
 
-void TopicSubscriptions::subscribe(const dds::TopicInfo& topic) {
+std::size_t TopicSubscriptions::size() const {
+  std::lock_guard lock(mutex_);
+  return entries_.size();
+}
+
+const RecordedTopic& TopicSubscriptions::operator[](std::size_t index) const {
+  std::lock_guard lock(mutex_);
+  return entries_.at(index).recorded;  // a deque: the reference stays valid as topics are added
+}
+
+void TopicSubscriptions::open(std::size_t index) {
+  std::lock_guard lock(mutex_);
+  Entry& entry = entries_.at(index);
+  if (++entry.opens == 1 && readers_ == Readers::on_demand) {
+    start_reader(entry, static_cast<std::uint32_t>(index));
+  }
+}
+
+void TopicSubscriptions::close(std::size_t index) {
+  std::lock_guard lock(mutex_);
+  Entry& entry = entries_.at(index);
+  if (--entry.opens == 0 && readers_ == Readers::on_demand) {
+    entry.subscriber.reset();  // waits for a running callback, which never takes mutex_
+  }
+}
+
+void TopicSubscriptions::add(const dds::TopicInfo& topic) {
   Entry& entry = entries_.emplace_back();
   RecordedTopic& recorded = entry.recorded;
   recorded.topic = topic;
@@ -61,9 +94,16 @@ void TopicSubscriptions::subscribe(const dds::TopicInfo& topic) {
   }
   recorded.has_header =
       !recorded.idl_text.empty() && starts_with_header(topic.type, recorded.idl_text);
-  const auto index = static_cast<std::uint32_t>(entries_.size() - 1);
+  if (log_) {
+    log_("recording " + topic.name + " [" + topic.type + "] " +
+         recorded.metadata.at("reliability") + ", " + recorded.metadata.at("durability"));
+  }
+}
+
+void TopicSubscriptions::start_reader(Entry& entry, std::uint32_t index) {
+  const RecordedTopic& recorded = entry.recorded;
   entry.subscriber = std::make_unique<dds::RawSubscriber>(
-      participant_, topic,
+      participant_, recorded.topic,
       [this, index, topic_entry = &recorded](const dds::RawSample& sample) {
         const std::uint64_t received = system_now_ns();
         std::uint64_t published = received;
@@ -74,11 +114,7 @@ void TopicSubscriptions::subscribe(const dds::TopicInfo& topic) {
         }
         sink_(index, *topic_entry, received, published, sample.cdr);
       },
-      producer_policy(topic.name));
-  if (log_) {
-    log_("recording " + topic.name + " [" + topic.type + "] " +
-         recorded.metadata.at("reliability") + ", " + recorded.metadata.at("durability"));
-  }
+      producer_policy(recorded.topic.name));
 }
 
 // A robot's stream is recorded from one writer; a restarted producer is

@@ -6,6 +6,11 @@
 // A topic's reader follows its writers' reliability and durability; a robot's
 // stream is taken from one producer (wbi/dds/producers.hpp), samples of a
 // second one counted in foreign().
+//
+// A recorder subscribes to every topic it finds (at_discovery). A viewer that
+// forwards only what its clients ask for (wbi bridge) lists the topics and
+// holds a reader only between open() and close() (on_demand), so that a topic
+// nobody watches costs its writers no extra reader.
 #pragma once
 
 #include <atomic>
@@ -13,6 +18,7 @@
 #include <deque>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <span>
 #include <string>
@@ -41,33 +47,45 @@ class TopicSubscriptions {
   using Accepts = std::function<bool(const std::string& topic)>;
   using Log = std::function<void(const std::string& line)>;
 
-  TopicSubscriptions(dds::Participant& participant, Accepts accepts, Sink sink, Log log);
+  enum class Readers { at_discovery, on_demand };
+
+  TopicSubscriptions(dds::Participant& participant, Accepts accepts, Sink sink, Log log,
+                     Readers readers = Readers::at_discovery);
   ~TopicSubscriptions();
   TopicSubscriptions(const TopicSubscriptions&) = delete;
   TopicSubscriptions& operator=(const TopicSubscriptions&) = delete;
 
-  // Subscribes to the accepted topics that have a writer and were not seen
-  // before; returns how many were added (their indexes follow the earlier ones).
+  // Adds the accepted topics that have a writer and were not seen before (and
+  // subscribes to them at_discovery); returns how many were added (their
+  // indexes follow the earlier ones).
   std::size_t discover();
+  // on_demand: the topic's reader exists while it is opened more often than
+  // closed (each open needs its close). Any thread.
+  void open(std::size_t index);
+  void close(std::size_t index);
   // No sink call runs once this returns.
   void unsubscribe_all();
 
-  std::size_t size() const { return entries_.size(); }
-  const RecordedTopic& operator[](std::size_t index) const { return entries_[index].recorded; }
+  std::size_t size() const;
+  const RecordedTopic& operator[](std::size_t index) const;
   std::uint64_t foreign() const { return foreign_.load(std::memory_order_relaxed); }
 
  private:
   struct Entry {
     RecordedTopic recorded;
     std::unique_ptr<dds::RawSubscriber> subscriber;
+    int opens = 0;
   };
-  void subscribe(const dds::TopicInfo& topic);
+  void add(const dds::TopicInfo& topic);
+  void start_reader(Entry& entry, std::uint32_t index);
   dds::ProducerPolicy producer_policy(const std::string& topic);
 
   dds::Participant& participant_;
   Accepts accepts_;
   Sink sink_;
   Log log_;
+  const Readers readers_;
+  mutable std::mutex mutex_;   // entries_ grows on discover() while others open and close
   std::deque<Entry> entries_;  // a deque: DDS callbacks hold indexes, never pointers that move
   std::set<std::string> seen_topics_;  // subscribed or not accepted
   std::atomic<std::uint64_t> foreign_{0};
