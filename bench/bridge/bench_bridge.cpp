@@ -5,13 +5,13 @@
 // sensor-to-command latency (bench/control_latency/latency_observer.hpp) in
 // windows of S seconds:
 //   no bridge → `wbi bridge` with no client → N clients subscribed to every
-//   channel (1 kHz sensors, state, commands…, 30 Hz transforms) → no client →
-//   no bridge.
-// During the clients' window it also measures, in the clients, DDS arrival →
-// WebSocket receipt of every sensor sample (the message's receive time, set
-// when the bridge got the sample from DDS, against the system clock when the
-// client has read it: arrival → send plus the loopback hop and the client's
-// read), and the bridge process's CPU time (/proc/PID/stat).
+//   channel (1 kHz sensors, state, commands…, 30 Hz transforms) → N clients on
+//   the sensors, the state and the transforms only → no client → no bridge.
+// With clients it also measures, in the clients, DDS arrival → WebSocket
+// receipt of every sensor sample (the message's receive time, set when the
+// bridge got the sample from DDS, against the system clock when the client has
+// read it: arrival → send plus the loopback hop and the client's read), and
+// the bridge process's CPU time (/proc/PID/stat).
 // The last line is one JSON object. Runs on WBI_DOMAIN_ID (default 79).
 #include <atomic>
 #include <chrono>
@@ -21,6 +21,7 @@
 #include <iostream>
 #include <mutex>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -84,7 +85,8 @@ class BridgeProcess {
     const auto end = std::chrono::steady_clock::now() + timeout;
     while (std::chrono::steady_clock::now() < end) {
       std::ifstream in(log_);
-      const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      const std::string text((std::istreambuf_iterator<char>(in)),
+                             std::istreambuf_iterator<char>());
       std::smatch match;
       if (text.find("transforms of arm") != std::string::npos &&
           std::regex_search(text, match, std::regex(R"(ws://127\.0\.0\.1:(\d+))"))) {
@@ -118,7 +120,8 @@ class BridgeProcess {
 // sensors it keeps arrival → receipt latencies.
 class ReadingClient {
  public:
-  explicit ReadingClient(std::uint16_t port) : client_(port) {
+  // topics: the channels to subscribe to; empty: all.
+  ReadingClient(std::uint16_t port, const std::set<std::string>& topics) : client_(port) {
     client_.next_json("serverInfo", 5s);
     const auto advertise = client_.next_json("advertise", 5s);
     if (!advertise) {
@@ -127,6 +130,9 @@ class ReadingClient {
     json subscriptions = json::array();
     std::uint32_t id = 1;
     for (const auto& channel : (*advertise)["channels"]) {
+      if (!topics.empty() && topics.count(channel["topic"]) == 0) {
+        continue;
+      }
       if (channel["topic"] == "wbi/arm/sensors") {
         sensors_ = id;
       }
@@ -194,12 +200,14 @@ int main(int argc, char** argv) {
     }
   }
   setenv("WBI_DOMAIN_ID", std::getenv("WBI_DOMAIN_ID") ? std::getenv("WBI_DOMAIN_ID") : "79", 1);
-  const auto scratch = std::filesystem::temp_directory_path() / ("wbi_bench_bridge_" + std::to_string(getpid()));
+  const auto scratch =
+      std::filesystem::temp_directory_path() / ("wbi_bench_bridge_" + std::to_string(getpid()));
   std::filesystem::create_directories(scratch);
 
   wbi::dds::Participant participant("wbi_bench_bridge");
   wbi::bench::LatencyObserver observer(participant, "arm", "pd_gravity", 1u << 20);
-  wbi::bench::LaunchProcess demo(kSource / "deploy" / "demo.yaml", 6 * window_s + 60, scratch / "demo.log");
+  wbi::bench::LaunchProcess demo(kSource / "deploy" / "demo.yaml", 6 * window_s + 60,
+                                 scratch / "demo.log");
   const auto started = std::chrono::steady_clock::now();
   while (observer.result().latencies_us.size() < 2000) {  // the loop runs: 2 s of commands seen
     if (std::chrono::steady_clock::now() - started > 60s) {
@@ -222,10 +230,18 @@ int main(int argc, char** argv) {
     BridgeProcess bridge(scratch / "bridge.log");
     const auto port = bridge.wait_ready(60s);
     window("bridge_no_client");
-    {
+    // N clients on every channel: the loop's latency, the forwarding latency, the CPU.
+    // Then N clients on the sensors, the state and the transforms: the CPU.
+    for (const bool every_channel : {true, false}) {
+      const std::set<std::string> topics =
+          every_channel
+              ? std::set<std::string>{}
+              : std::set<std::string>{"wbi/arm/sensors", "wbi/arm/state", "wbi/arm/transforms"};
+      const std::string key =
+          every_channel ? "clients_on_every_channel" : "clients_on_sensors_state_transforms";
       std::vector<std::unique_ptr<ReadingClient>> readers;
       for (int c = 0; c < clients; ++c) {
-        readers.push_back(std::make_unique<ReadingClient>(port));
+        readers.push_back(std::make_unique<ReadingClient>(port, topics));
       }
       std::this_thread::sleep_for(1s);  // let the subscriptions settle before measuring
       const double cpu_before = bridge.cpu_seconds();
@@ -234,8 +250,9 @@ int main(int argc, char** argv) {
       for (auto& reader : readers) {
         messages_before += reader->messages();
       }
-      window("bridge_with_clients");
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_before).count();
+      window(every_channel ? "bridge_with_clients" : "bridge_with_clients_on_three_channels");
+      const double wall =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_before).count();
       std::uint64_t messages = 0;
       std::vector<double> forward;
       for (auto& reader : readers) {
@@ -243,9 +260,10 @@ int main(int argc, char** argv) {
         const auto latencies = reader->latencies_us();
         forward.insert(forward.end(), latencies.begin(), latencies.end());
       }
-      out["bridge_cpu_percent_of_a_core"] = 100.0 * (bridge.cpu_seconds() - cpu_before) / wall;
-      out["messages_per_s_to_all_clients"] = static_cast<double>(messages - messages_before) / wall;
-      out["arrival_to_client_receipt"] = summary(forward);
+      out[key]["bridge_cpu_percent_of_a_core"] = 100.0 * (bridge.cpu_seconds() - cpu_before) / wall;
+      out[key]["messages_per_s_to_all_clients"] =
+          static_cast<double>(messages - messages_before) / wall;
+      out[key]["sensors_arrival_to_client_receipt"] = summary(forward);
     }
     window("bridge_no_client");
   }

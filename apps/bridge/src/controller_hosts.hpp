@@ -39,8 +39,8 @@ class ControllerHosts {
                                      std::vector<std::string> refusals)>;
 
   // A participant of its own, joined like `options`': its typed endpoints must
-  // not share topics with the bridge's raw readers (a participant's topic
-  // has one type support: a typed reader would decode into a raw buffer).
+  // not share topics with the bridge's raw readers (a participant's topic has
+  // one type support: dds/README.md, "One type per topic in a participant").
   ControllerHosts(const dds::ParticipantOptions& options, std::chrono::nanoseconds call_timeout,
                   Changed changed);
   ~ControllerHosts();
