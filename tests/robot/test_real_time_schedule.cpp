@@ -6,12 +6,15 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdio>
+#include <thread>
 
 #include <string>
 
 #include <wbi/msg/wire_vocabulary.hpp>
 #include <wbi/runtime/status_report.hpp>
 
+#include "duration_histogram.hpp"
 #include "tick_pacer.hpp"
 
 namespace {
@@ -122,8 +125,8 @@ TEST(RealTimePacer, CountsTheTicksBehindTheirDeadline) {
 TEST(LockstepPacer, ACommandWithNoTickAnswersNothing) {
   wbi::runtime::StatusCounter timeouts;
   wbi::runtime::EventLog events;
-  wbi::robot::LockstepPacer pacer({{"balance"}, 0.05, 0.05}, "sim_robot 'humanoid'", timeouts,
-                                  events);
+  wbi::robot::LockstepPacer pacer({{"balance"}, 0.05, 0.05}, std::chrono::milliseconds(1),
+                                  "sim_robot 'humanoid'", timeouts, events);
   pacer.start();
   wbi::msg::ActuatorCommand command;
   command.controller("balance");
@@ -145,3 +148,60 @@ TEST(LockstepPacer, ACommandWithNoTickAnswersNothing) {
 }
 
 }  // namespace
+
+// The end-of-run line of a lockstep run: simulated time from the ticks stepped
+// after the first (which waits for the controllers to start), the wall time
+// they took, and where a tick went: here the "robot's work" between ticks is a
+// 2 ms sleep, and the commands are in before each wait.
+TEST(LockstepPacer, ReportsTheRunsSpeedAndWhereATickWent) {
+  wbi::runtime::StatusCounter timeouts;
+  wbi::runtime::EventLog events;
+  wbi::robot::LockstepPacer pacer({{"balance"}, 1.0, 1.0}, std::chrono::milliseconds(1),
+                                  "sim_robot 'humanoid'", timeouts, events);
+  pacer.start();
+  EXPECT_EQ(pacer.summary(), "") << "no tick timed yet";
+  wbi::msg::ActuatorCommand command;
+  command.controller("balance");
+  for (std::uint64_t tick = 0; tick <= 10; ++tick) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));  // the work being timed
+    command.tick(tick);
+    pacer.observe(command);
+    pacer.wait(tick);
+  }
+  const std::string line = pacer.summary();
+  EXPECT_EQ(line.rfind("lockstep: simulated 0.010 s in ", 0), 0u) << line;
+  double wall_s = 0.0, speed = 0.0, tick_ms = 0.0, wait_ms = 0.0, wait_p99 = 0.0, work_ms = 0.0;
+  ASSERT_EQ(std::sscanf(line.c_str(),
+                        "lockstep: simulated 0.010 s in %lf s wall: %lfx real time; per tick %lf "
+                        "ms: waiting for the controllers' commands mean %lf ms (p99 %lf ms), the "
+                        "robot's own work mean %lf ms",
+                        &wall_s, &speed, &tick_ms, &wait_ms, &wait_p99, &work_ms),
+            6)
+      << line;
+  EXPECT_GE(work_ms, 2.0) << line;
+  EXPECT_LT(wait_ms, work_ms) << "the commands were in before each wait: " << line;
+  EXPECT_NEAR(tick_ms, wait_ms + work_ms, 0.01) << line;
+  EXPECT_LT(speed, 0.5) << "a 1 ms tick took over 2 ms: " << line;
+  EXPECT_EQ(timeouts.value(), 0u);
+  pacer.start();  // a new activation counts anew
+  EXPECT_EQ(pacer.summary(), "");
+}
+
+TEST(DurationHistogram, MeanAndQuantilesWithinABin) {
+  using std::chrono::microseconds;
+  wbi::robot::DurationHistogram histogram;
+  EXPECT_EQ(histogram.quantile(0.99).count(), 0) << "empty";
+  for (int i = 0; i < 100; ++i) {
+    histogram.add(microseconds(10 * i + 5));  // 5, 15, ..., 995 µs: one per 10 µs bin
+  }
+  EXPECT_EQ(histogram.count(), 100u);
+  EXPECT_EQ(histogram.mean(), microseconds(500));
+  EXPECT_EQ(histogram.quantile(0.0), microseconds(10));
+  EXPECT_EQ(histogram.quantile(0.5), microseconds(510));   // the 51st: 505 µs
+  EXPECT_EQ(histogram.quantile(0.99), microseconds(990));  // the 99th: 985 µs
+  histogram.add(std::chrono::seconds(1));                  // beyond the last bin's edge
+  EXPECT_EQ(histogram.quantile(1.0), std::chrono::milliseconds(100)) << "at least 100 ms";
+  histogram.clear();
+  EXPECT_EQ(histogram.count(), 0u);
+  EXPECT_EQ(histogram.mean().count(), 0);
+}

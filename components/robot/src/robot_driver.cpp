@@ -222,8 +222,8 @@ class RobotDriver final : public runtime::Component {
         participant, robot_, simulation_->step_period(), options.lockstep);
     auto& timeouts = report().counter("lockstep_timeouts");  // 0 unless lockstep
     if (options.lockstep) {
-      pacers_.push_back(
-          std::make_unique<LockstepPacer>(options.lockstep_options, who_, timeouts, events()));
+      pacers_.push_back(std::make_unique<LockstepPacer>(
+          options.lockstep_options, simulation_->step_period(), who_, timeouts, events()));
     }
     auto& stalls = report().counter("real_time_stalls");  // 0 unless real time
     if (options.real_time) {

@@ -91,9 +91,14 @@ void RealTimePacer::stop() {
   stopped_changed_.notify_all();
 }
 
-LockstepPacer::LockstepPacer(LockstepOptions options, std::string who,
-                             runtime::StatusCounter& timeouts, runtime::EventLog& events)
-    : options_(std::move(options)), who_(std::move(who)), timeouts_(timeouts), events_(events) {
+LockstepPacer::LockstepPacer(LockstepOptions options, std::chrono::nanoseconds period,
+                             std::string who, runtime::StatusCounter& timeouts,
+                             runtime::EventLog& events)
+    : options_(std::move(options)),
+      who_(std::move(who)),
+      timeouts_(timeouts),
+      events_(events),
+      period_(period) {
   for (const auto& name : options_.controllers) {
     answered_[name] = -1;
   }
@@ -102,6 +107,44 @@ LockstepPacer::LockstepPacer(LockstepOptions options, std::string who,
 void LockstepPacer::start() {
   std::lock_guard lock(mutex_);
   stopped_ = false;
+  timed_ticks_ = 0;
+  first_answered_ = last_answered_ = {};
+  waits_.clear();
+  work_.clear();
+}
+
+// The first tick after start() waits for the controllers to start: it sets
+// the origin and is not timed.
+void LockstepPacer::time_tick(std::chrono::steady_clock::time_point called,
+                              std::chrono::steady_clock::time_point answered) {
+  if (last_answered_ == std::chrono::steady_clock::time_point{}) {
+    first_answered_ = answered;
+  } else {
+    waits_.add(answered - called);
+    work_.add(called - last_answered_);
+    ++timed_ticks_;
+  }
+  last_answered_ = answered;
+}
+
+std::string LockstepPacer::summary() const {
+  if (timed_ticks_ == 0) {
+    return "";
+  }
+  using Ms = std::chrono::duration<double, std::milli>;
+  const double simulated_s =
+      std::chrono::duration<double>(period_).count() * static_cast<double>(timed_ticks_);
+  const double wall_s = std::chrono::duration<double>(last_answered_ - first_answered_).count();
+  const double tick_ms = 1e3 * wall_s / static_cast<double>(timed_ticks_);
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "lockstep: simulated %.3f s in %.1f s wall: %.2fx real time; per tick %.3f ms: "
+                "waiting for the controllers' commands mean %.3f ms (p99 %.2f ms), the robot's "
+                "own work mean %.3f ms (p99 %.2f ms)",
+                simulated_s, wall_s, wall_s > 0.0 ? simulated_s / wall_s : 0.0, tick_ms,
+                Ms(waits_.mean()).count(), Ms(waits_.quantile(0.99)).count(),
+                Ms(work_.mean()).count(), Ms(work_.quantile(0.99)).count());
+  return line;
 }
 
 // On a DDS thread, after the actuator side staged the command.
@@ -129,6 +172,7 @@ bool LockstepPacer::all_answered(std::uint64_t tick) const {
 }
 
 void LockstepPacer::wait(std::uint64_t tick) {
+  const auto called = std::chrono::steady_clock::now();
   std::unique_lock lock(mutex_);
   // The first tick waits for the controllers to start; later ticks for one control step.
   const double timeout_s = tick == 0 ? options_.start_timeout_s : options_.timeout_s;
@@ -141,6 +185,9 @@ void LockstepPacer::wait(std::uint64_t tick) {
     const std::string text = line.str();
     runtime::print_line(stderr, text);
     events_.emit(EventSeverity::warning, EventKind::loop_stall, text);
+  }
+  if (!stopped_) {  // the ticks stepped while stopping are not the run's
+    time_tick(called, std::chrono::steady_clock::now());
   }
 }
 

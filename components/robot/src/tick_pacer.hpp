@@ -33,6 +33,8 @@
 #include <wbi/runtime/event_log.hpp>
 #include <wbi/runtime/status_report.hpp>
 
+#include "duration_histogram.hpp"
+
 namespace wbi::robot {
 
 class TickPacer {
@@ -127,19 +129,29 @@ struct LockstepOptions {
 
 class LockstepPacer final : public TickPacer {
  public:
-  // who: names the robot in the timeout warning, e.g. "sim_robot 'arm'";
-  // timeouts: the status counter of ticks not answered in time; events: where
-  // a timeout's event goes.
-  LockstepPacer(LockstepOptions options, std::string who, runtime::StatusCounter& timeouts,
-                runtime::EventLog& events);
+  // period: the simulation's step; who: names the robot in the timeout warning,
+  // e.g. "sim_robot 'arm'"; timeouts: the status counter of ticks not answered in
+  // time; events: where a timeout's event goes.
+  LockstepPacer(LockstepOptions options, std::chrono::nanoseconds period, std::string who,
+                runtime::StatusCounter& timeouts, runtime::EventLog& events);
   void start() override;
   void wait(std::uint64_t tick) override;
   void stop() override;
   void observe(const wbi::msg::ActuatorCommand& command) override;
   bool lockstep() const override { return true; }
+  // The run's speed and where a tick went, from tick 1 on (tick 0 waits for the
+  // controllers to start): "lockstep: simulated 21.000 s in 24.3 s wall: 0.86×
+  // real time; per tick 1.16 ms: waiting for the controllers' commands mean
+  // 1.02 ms (p99 1.41 ms), the robot's own work mean 0.14 ms (p99 0.21 ms)".
+  // The wait is the round trip sensors → … → commands through every other
+  // process; the robot's work is its step, its sensors and ground truth out,
+  // and the commands in.
+  std::string summary() const override;
 
  private:
   bool all_answered(std::uint64_t tick) const;  // with mutex_ held
+  void time_tick(std::chrono::steady_clock::time_point called,
+                 std::chrono::steady_clock::time_point answered);  // the loop only
 
   const LockstepOptions options_;
   const std::string who_;
@@ -149,6 +161,12 @@ class LockstepPacer final : public TickPacer {
   std::condition_variable changed_;
   std::map<std::string, std::int64_t> answered_;  // newest tick answered per controller
   bool stopped_ = false;
+  // The loop's thread only: when the first and the previous tick were
+  // answered, the ticks timed, the waits and the robot's work between them.
+  const std::chrono::nanoseconds period_;
+  std::chrono::steady_clock::time_point first_answered_, last_answered_;
+  std::uint64_t timed_ticks_ = 0;
+  DurationHistogram waits_, work_;
 };
 
 }  // namespace wbi::robot
