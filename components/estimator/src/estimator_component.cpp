@@ -12,24 +12,13 @@
 #include <wbi/dds/topics.hpp>
 #include <wbi/runtime/console_line.hpp>
 #include <wbi/runtime/producer_counters.hpp>
+#include <wbi/vocabulary/joined_names.hpp>
 
 #include "estimator_component_impl.hpp"
 
 namespace wbi::estimator {
 
 namespace {
-
-// "a+b+c" → {a, b, c}; "a" → {a}.
-std::vector<std::string> split_at_plus(const std::string& text) {
-  std::vector<std::string> parts;
-  std::size_t begin = 0;
-  for (auto plus = text.find('+'); plus != std::string::npos; plus = text.find('+', begin)) {
-    parts.push_back(text.substr(begin, plus - begin));
-    begin = plus + 1;
-  }
-  parts.push_back(text.substr(begin));
-  return parts;
-}
 
 std::string kebab(std::string name) {
   for (auto& c : name) {
@@ -239,7 +228,12 @@ void EstimatorComponent::configure_legged(const runtime::Parameters& parameters)
   // "a+b": a foot on several sensors (iCub 3's front and rear plates), their loads summed.
   foot_sensors_ = {};
   for (std::size_t foot = 0; foot < sensors.size(); ++foot) {
-    foot_sensors_[foot] = split_at_plus(sensors[foot]);
+    if (sensors[foot].empty()) {
+      throw runtime::ParameterError(parameters.where("foot_force_torque") +
+                                    ": foot_force_torque: an empty entry for foot " +
+                                    std::to_string(foot));
+    }
+    foot_sensors_[foot] = split_joined_names(sensors[foot]);
     for (const auto& name : foot_sensors_[foot]) {
       if (name.empty()) {
         throw runtime::ParameterError(parameters.where("foot_force_torque") +

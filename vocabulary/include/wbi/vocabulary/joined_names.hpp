@@ -1,0 +1,27 @@
+// Several names given as one, joined by '+': a foot on two F/T sensors
+// ("l_foot_front_ft+l_foot_rear_ft"), a foot's contact links. One spelling for
+// the estimator's and the balancer's parameters.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace wbi {
+
+// "a+b+c" → {a, b, c}; "a" → {a}; "" → {}. Empty parts ("a++b") are kept, so
+// that the caller names them as unknown names.
+inline std::vector<std::string> split_joined_names(const std::string& joined) {
+  std::vector<std::string> names;
+  if (joined.empty()) {
+    return names;
+  }
+  std::size_t begin = 0;
+  for (auto plus = joined.find('+'); plus != std::string::npos; plus = joined.find('+', begin)) {
+    names.push_back(joined.substr(begin, plus - begin));
+    begin = plus + 1;
+  }
+  names.push_back(joined.substr(begin));
+  return names;
+}
+
+}  // namespace wbi
