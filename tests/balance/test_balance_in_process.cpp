@@ -6,7 +6,8 @@
 // slipped, lifted or tilted, how far the true CoM is from the reference and how
 // far the estimated base is from the true one. The same controller runs with
 // every joint controlled and with the arms and neck held in position, and once
-// on the ground-truth base for comparison; a push on the pelvis is rejected.
+// on the ground-truth base for comparison; a push on the pelvis is rejected; the
+// QP stays near the feet wrenches estimated from the F/T sensors when asked to.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -67,11 +68,19 @@ struct BalanceRun {
   // proxy's, not the controller's), in a quiet moment: the lockstep sim waits for a command.
   long control_allocations = 0;
   int ticks = 0;
+  // The feet's net force, estimated against planned, low-passed (MomentumBalance::
+  // wrench_miss()), after settling; estimated contact forces only [N].
+  double net_force_miss_rms = 0.0;
 };
 
 // Where the estimator takes the base state from: its own estimate from the IMU and both
 // feet (as in deploy/balance.yaml), or the simulator's ground truth (for comparison).
 enum class Base { legged, ground_truth };
+
+// The estimator's joint torques and external wrenches from the feet F/T sensors, as in
+// deploy/balance.yaml.
+const std::string kWrenchesFromForceTorque =
+    "joint_torques: force_torque\ncontact_links: [l_foot, r_foot]\nextra_links: [chest]\n";
 
 std::string estimator_parameters(const std::string& robot, Base base) {
   const std::string common = "robot: " + robot + "\nmethod: backward-difference\ncutoff: 50\n";
@@ -210,13 +219,15 @@ class TickRecorder {
 // `seconds` of balancing in lockstep; the CoM follows `reference` (its origin: the initial CoM).
 BalanceRun run_balance(const std::string& robot, const std::vector<std::string>& joints,
                        double seconds, wbi::controllers::ComSinusoid reference = {},
-                       const std::string& sim_extra = "", Base base = Base::legged) {
+                       const std::string& sim_extra = "", Base base = Base::legged,
+                       const std::string& estimator_extra = "",
+                       const wbi::controllers::MomentumBalanceParameters& parameters = {}) {
   const auto urdf = wbi::test::project_model("humanoid.urdf").string();
   const std::string config = sim_config(sim_extra);
   wbi::sim_rig::InProcessRobot rig("balance_test",
                                    "robot: " + robot + "\nconfig: " + config +
                                        "\nlockstep: true\nlockstep_controllers: [balance]\n",
-                                   estimator_parameters(robot, base));
+                                   estimator_parameters(robot, base) + estimator_extra);
   std::filesystem::remove(config);  // read when the rig configured the sim
   wbi::dds::Participant& participant = rig.participant();
   wbi::dds::Subscriber<wbi::msg::GroundTruth> truth(
@@ -246,7 +257,7 @@ BalanceRun run_balance(const std::string& robot, const std::vector<std::string>&
   Eigen::VectorXd q_posture(humanoid->dofs());
   humanoid->read_estimates(wbi::EstimateKind::joint_position, q_posture);
   expect_clear_errors(*humanoid, q_posture);
-  wbi::controllers::MomentumBalance balance(*humanoid, {}, q_posture);
+  wbi::controllers::MomentumBalance balance(*humanoid, parameters, q_posture);
   balance.start();
 
   // Ground truth: the soles' poses from q and the base pose.
@@ -258,7 +269,7 @@ BalanceRun run_balance(const std::string& robot, const std::vector<std::string>&
   Eigen::VectorXd q_model(model.nq);
 
   BalanceRun run;
-  double squared = 0.0;
+  double squared = 0.0, squared_gap = 0.0;
   int samples = 0;
   std::int64_t start_ns = -1;
   wbi::dds::Received<wbi::msg::GroundTruth> gt;
@@ -280,6 +291,7 @@ BalanceRun run_balance(const std::string& robot, const std::vector<std::string>&
       squared += error * error;
       ++samples;
       run.com_max_error = std::max(run.com_max_error, error);
+      squared_gap += balance.net_wrench(balance.wrench_miss()).head<3>().squaredNorm();
     }
     run.final_com_error = error;
     if (t >= seconds - 1.0) {
@@ -320,6 +332,7 @@ BalanceRun run_balance(const std::string& robot, const std::vector<std::string>&
     }
   }
   run.com_rms = samples > 0 ? std::sqrt(squared / samples) : 0.0;
+  run.net_force_miss_rms = samples > 0 ? std::sqrt(squared_gap / samples) : 0.0;
   // The fewest allocations of a few calls, on this thread (the DDS threads
   // allocate meanwhile; a synchronous publish allocates on this one).
   const auto fewest_allocations = [](auto call) {
@@ -416,6 +429,77 @@ TEST(BalanceInProcess, RejectsAPushOnTheTorso) {
   EXPECT_LT(run.max_foot_tilt, kEdgeLifts) << "rad";
   EXPECT_GT(run.min_normal_force, 0.0) << "N: a foot lifted";
   EXPECT_EQ(run.qp_failures, 0u);
+}
+
+}  // namespace
+
+namespace {
+
+// contact_forces: estimated. The humanoid's feet wrenches come from its two foot F/T
+// sensors through the model (the estimator's joint_torques: force_torque). With
+// wrench_correction 0 the estimates are read but change nothing: the feet carry what
+// the plain balancer's torques give. The correction takes the share k of what they
+// miss below its cutoff off: k = 1 halves the miss (the correction lags by its
+// low-pass and the plant's dynamics), k = 0.5 (the default) less, and the robot
+// balances within every bound. At k = 1 the feet slide further (1.6 mm), so only the
+// net force and the CoM are checked there.
+TEST(BalanceInProcess, FeetCarryThePlannedWrenchesWithEstimatedContactForces) {
+  wbi::controllers::MomentumBalanceParameters corrected;
+  corrected.estimated_contact_forces = true;
+  corrected.left_wrench_links = {"l_foot"};
+  corrected.right_wrench_links = {"r_foot"};
+  wbi::controllers::MomentumBalanceParameters uncorrected = corrected, full = corrected;
+  uncorrected.wrench_correction = 0.0;
+  full.wrench_correction = 1.0;
+  const auto run_with = [&](const char* robot,
+                            const wbi::controllers::MomentumBalanceParameters& p) {
+    return run_balance(robot, all_joints(), 6.0, {}, "", Base::legged, kWrenchesFromForceTorque, p);
+  };
+  const BalanceRun plain = run_with("balance_uncorrected", uncorrected);
+  const BalanceRun half = run_with("balance_corrected", corrected);
+  const BalanceRun whole = run_with("balance_fully_corrected", full);
+  expect_balanced(plain, "estimated contact forces, uncorrected");
+  expect_balanced(half, "estimated contact forces, corrected by half");
+  std::printf(
+      "feet net force, estimated - planned, low-passed, rms: %.2f N uncorrected, %.2f N at k = "
+      "0.5, %.2f N at k = 1; CoM rms %.2f, %.2f, %.2f mm; slip %.2f, %.2f, %.2f mm\n",
+      plain.net_force_miss_rms, half.net_force_miss_rms, whole.net_force_miss_rms,
+      1e3 * plain.com_rms, 1e3 * half.com_rms, 1e3 * whole.com_rms, 1e3 * plain.max_foot_slip,
+      1e3 * half.max_foot_slip, 1e3 * whole.max_foot_slip);
+  EXPECT_GT(plain.net_force_miss_rms, 1.0) << "N: the feet carry the plan; void test";
+  EXPECT_LT(half.net_force_miss_rms, 0.9 * plain.net_force_miss_rms) << "N";
+  EXPECT_LT(whole.net_force_miss_rms, 0.5 * plain.net_force_miss_rms) << "N";
+  EXPECT_LT(half.com_rms, plain.com_rms) << "m";
+  EXPECT_LT(whole.com_rms, half.com_rms) << "m";
+  EXPECT_EQ(whole.qp_failures, 0u);
+  EXPECT_GT(whole.min_normal_force, 0.0) << "N: a foot lifted";
+}
+
+// A foot link the state does not estimate is named, with the links it does.
+TEST(BalanceInProcess, NamesAFootLinkWithoutAnEstimatedWrench) {
+  const std::string config = sim_config("");
+  wbi::sim_rig::InProcessRobot rig(
+      "balance_test", "robot: balance_links\nconfig: " + config + "\n",
+      estimator_parameters("balance_links", Base::legged) + kWrenchesFromForceTorque);
+  std::filesystem::remove(config);
+  wbi::DdsInterfaceOptions options;
+  options.robot = "balance_links";
+  options.controller = "balance";
+  options.urdf = wbi::test::project_model("humanoid.urdf").string();
+  auto humanoid = wbi::make_dds_interface(options);
+  humanoid->add_joints(kLegsAndTorso);
+  rig.start_simulation();
+  humanoid->init(20s);
+  wbi::controllers::MomentumBalanceParameters p;
+  p.estimated_contact_forces = true;
+  p.left_wrench_links = {"l_heel", "l_foot"};
+  expect_message(
+      [&] {
+        wbi::controllers::MomentumBalance(*humanoid, p, Eigen::VectorXd::Zero(humanoid->dofs()));
+      },
+      "external wrench on l_heel, r_sole; the state estimates it on [l_foot, r_foot, chest]");
+  rig.sim().shutdown();
+  rig.estimator().shutdown();
 }
 
 }  // namespace

@@ -1,7 +1,10 @@
 #include "wbi/controllers/momentum_balance.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+
+#include <Eigen/Geometry>
 
 namespace wbi::controllers {
 
@@ -30,12 +33,15 @@ void MomentumBalance::set_tracking(const MomentumBalanceParameters& parameters) 
   require(p.com_kp >= 0.0 && p.com_kd >= 0.0 && p.angular_momentum_kd >= 0.0, "gains must be >= 0");
   require(p.torque_weight >= 0.0 && p.wrench_weight > 0.0 && p.foot_moment_weight >= 0.0,
           "torque_weight and foot_moment_weight must be >= 0, wrench_weight > 0");
+  require(p.wrench_correction >= 0.0 && p.wrench_correction <= 1.0,
+          "wrench_correction must be in [0, 1]");
   p_.com_kp = p.com_kp;
   p_.com_kd = p.com_kd;
   p_.angular_momentum_kd = p.angular_momentum_kd;
   p_.torque_weight = p.torque_weight;
   p_.wrench_weight = p.wrench_weight;
   p_.foot_moment_weight = p.foot_moment_weight;
+  p_.wrench_correction = p.wrench_correction;
 }
 
 MomentumBalance::MomentumBalance(WholeBodyInterface& robot, MomentumBalanceParameters parameters,
@@ -57,6 +63,7 @@ MomentumBalance::MomentumBalance(WholeBodyInterface& robot, MomentumBalanceParam
           "the foot rectangle must contain the sole origin (x_min < 0 < x_max, y_min < 0 < y_max)");
   require(p_.min_normal_force >= 0.0, "min_normal_force must be >= 0");
   require(p_.posture_bandwidth_hz >= 0.0, "gains must be >= 0");
+  require(p_.wrench_correction_cutoff_hz > 0.0, "wrench_correction_cutoff_hz must be > 0");
   set_tracking(p_);
 
   const int N = 6 + n_;
@@ -97,6 +104,44 @@ MomentumBalance::MomentumBalance(WholeBodyInterface& robot, MomentumBalanceParam
   joint_inertia_ = M_.diagonal().tail(n_);
 
   build_constraints();
+  if (p_.estimated_contact_forces) {
+    resolve_wrench_links();
+  }
+}
+
+// Each foot's links among the state's external wrenches; one error naming every
+// link the state does not estimate.
+void MomentumBalance::resolve_wrench_links() {
+  const IdList& estimated = robot_.external_wrench_links();
+  std::string missing;
+  const std::vector<std::string>* lists[kContacts] = {&p_.left_wrench_links,
+                                                      &p_.right_wrench_links};
+  const std::string* soles[kContacts] = {&p_.left_sole, &p_.right_sole};
+  for (int foot = 0; foot < kContacts; ++foot) {
+    std::vector<std::string> links = *lists[foot];
+    if (links.empty()) {
+      links = {*soles[foot]};
+    }
+    for (const auto& link : links) {
+      const auto at = std::find(estimated.begin(), estimated.end(), link);
+      if (at == estimated.end()) {
+        missing += (missing.empty() ? "" : ", ") + link;
+        continue;
+      }
+      wrench_links_.push_back(
+          {foot, static_cast<int>(at - estimated.begin()), robot_.frame_index(link)});
+    }
+  }
+  if (!missing.empty()) {
+    std::string known;
+    for (const auto& link : estimated) {
+      known += (known.empty() ? "" : ", ") + link;
+    }
+    throw Error("momentum balance: estimated contact forces need the state's external wrench on " +
+                missing + "; the state estimates it on [" + known +
+                "] (set left_wrench_links / right_wrench_links, or run the estimator with "
+                "joint_torques: force_torque and these contact_links)");
+  }
 }
 
 // Per foot, on the wrench (f, τ) in the sole frame, rows · w ≥ 0 (the first ≥ f_min):
@@ -123,7 +168,14 @@ void MomentumBalance::build_constraints() {
   }
 }
 
-void MomentumBalance::start() { robot_.set_control_mode(ControlMode::torque); }
+void MomentumBalance::start() {
+  robot_.set_control_mode(ControlMode::torque);
+  // The wrench correction starts anew: d̂ from an earlier activation is stale.
+  corrected_stamp_ns_ = -1;
+  wrench_disturbance_.setZero();
+  wrench_miss_.setZero();
+  wrench_correction_.setZero();
+}
 
 void MomentumBalance::set_com_reference(const Eigen::Vector3d& position,
                                         const Eigen::Vector3d& velocity,
@@ -137,6 +189,7 @@ void MomentumBalance::set_com_reference(const Eigen::Vector3d& position,
 Stamp MomentumBalance::read_state(ReadMode mode) {
   const Stamp stamp = robot_.state().read_robot_state(state_, mode);
   last_seq_ = stamp.seq;
+  stamp_ns_ = stamp.source_ns;
   return stamp;
 }
 
@@ -176,14 +229,20 @@ void MomentumBalance::compute_torque_map() {
   T_.noalias() += null_ * Jc_.rightCols(n_).transpose();
 }
 
-// min ½‖A f − (Ḣ* − m g)‖² + ½ w_τ ‖τ_c − T f‖² + ½ w_f ‖f‖²  s.t. the feet constraints.
-void MomentumBalance::solve_wrenches() {
+// A: the feet wrenches' net wrench about the CoM, Ḣ = A f + m g.
+void MomentumBalance::compute_momentum_map() {
   for (int foot = 0; foot < kContacts; ++foot) {
     const Eigen::Vector3d arm = sole_position_[foot] - com_;
     A_.block<3, 3>(0, 6 * foot).setIdentity();
     A_.block<3, 3>(0, 6 * foot + 3).setZero();
     A_.block<3, 3>(3, 6 * foot) = skew(arm);
     A_.block<3, 3>(3, 6 * foot + 3).setIdentity();
+  }
+}
+
+// min ½‖A f − (Ḣ* − m g)‖² + ½ w_τ ‖τ_c − T f‖² + ½ w_f ‖f‖²  s.t. the feet constraints.
+void MomentumBalance::solve_wrenches() {
+  for (int foot = 0; foot < kContacts; ++foot) {
     // World-axes wrench → sole frame: blockdiag(Rᵀ, Rᵀ).
     const Eigen::Matrix3d Rt = sole_rotation_[foot].transpose();
     qp_C_.block<kRowsPerFoot, 3>(kRowsPerFoot * foot, 6 * foot).noalias() =
@@ -206,6 +265,41 @@ void MomentumBalance::solve_wrenches() {
   } else {
     ++qp_failures_;  // keep the last feasible wrenches
   }
+}
+
+// f̂ per foot: Σ over its links of (f, τ + (p_link − p_sole) × f), world axes.
+void MomentumBalance::read_estimated_wrenches() {
+  wrench_estimated_.setZero();
+  for (const WrenchLink& link : wrench_links_) {
+    robot_.state().read_estimate(EstimateKind::external_wrench, link.estimate, link_wrench_);
+    robot_.frame_pose(state_.q, state_.world_H_base, link.frame, world_H_link_);
+    const Eigen::Vector3d arm = world_H_link_.topRightCorner<3, 1>() - sole_position_[link.foot];
+    const Eigen::Vector3d force = link_wrench_.head<3>();
+    wrench_estimated_.segment<3>(6 * link.foot) += force;
+    wrench_estimated_.segment<3>(6 * link.foot + 3) += link_wrench_.tail<3>() + arm.cross(force);
+  }
+}
+
+// d̂ ← d̂ + α (f̂ − f_cmd − d̂), f_cmd the wrenches the last torques were for,
+// α = 1 − exp(−2π f_c Δt) over the state's time since the last update (none at
+// the first tick after start(): no torques were sent for it); then
+// τ_c += k T A⁺A d̂, so that the QP's torque cost sees the torques sent.
+void MomentumBalance::correct_for_wrench_disturbance() {
+  if (corrected_stamp_ns_ >= 0 && stamp_ns_ > corrected_stamp_ns_) {
+    const double dt = std::min(1e-9 * static_cast<double>(stamp_ns_ - corrected_stamp_ns_), 0.1);
+    const double alpha = 1.0 - std::exp(-2.0 * M_PI * p_.wrench_correction_cutoff_hz * dt);
+    wrench_disturbance_ += alpha * (wrench_estimated_ - wrench_commanded_ - wrench_disturbance_);
+    wrench_miss_ += alpha * (wrench_estimated_ - wrench_planned_ - wrench_miss_);
+  }
+  if (corrected_stamp_ns_ < 0 || stamp_ns_ > corrected_stamp_ns_) {
+    corrected_stamp_ns_ = stamp_ns_;
+  }
+  // Only d̂'s net wrench, spread over the feet by least norm (A⁺ A d̂): the feet's
+  // internal forces are left to the QP.
+  const Eigen::Matrix<double, 6, 6> gram = A_ * A_.transpose();
+  const Eigen::Matrix<double, 6, 1> net = A_ * wrench_disturbance_;
+  wrench_correction_.noalias() = A_.transpose() * gram.llt().solve(net);
+  tau_c_.noalias() += p_.wrench_correction * T_ * wrench_correction_;
 }
 
 Eigen::Vector3d MomentumBalance::com_of_state() {
@@ -261,9 +355,16 @@ void MomentumBalance::compute() {
   momentum_rate_desired_.tail<3>() = -p_.angular_momentum_kd * momentum_.tail<3>();
 
   compute_torque_map();
+  compute_momentum_map();
+  if (p_.estimated_contact_forces) {
+    read_estimated_wrenches();
+    correct_for_wrench_disturbance();
+  }
   solve_wrenches();
   tau_ = tau_c_;
   tau_.noalias() -= T_ * wrench_;
+  wrench_planned_ = wrench_;
+  wrench_commanded_ = wrench_ - p_.wrench_correction * wrench_correction_;
 }
 
 }  // namespace wbi::controllers

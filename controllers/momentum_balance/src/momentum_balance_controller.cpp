@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <limits>
 
+#include <wbi/vocabulary/joined_names.hpp>
+
 namespace wbi::controllers {
 
 namespace {
@@ -54,6 +56,23 @@ std::vector<ParameterSpec> MomentumBalanceController::parameters() const {
       number("wrench_weight", "", d.wrench_weight, 1e-12, inf, true, "|f|^2 regularisation"),
       number("foot_moment_weight", "", d.foot_moment_weight, 0.0, inf, true,
              "extra weight on the feet moments"),
+      {.name = "contact_forces",
+       .help = "planned: the torques are those of the QP's feet wrenches; estimated: they are "
+               "corrected so that the feet carry them, by the feet wrenches the state estimates "
+               "from F/T sensors",
+       .text = true,
+       .text_default = "planned"},
+      {.name = "left_wrench_links",
+       .help = "with contact_forces: estimated, the left foot's links among the state's external "
+               "wrenches, joined by + (default: left_sole)",
+       .text = true},
+      {.name = "right_wrench_links",
+       .help = "likewise for the right foot (default: right_sole)",
+       .text = true},
+      number("wrench_correction", "", d.wrench_correction, 0.0, 1.0, true,
+             "with contact_forces: estimated, the share of the feet wrenches' error corrected"),
+      number("wrench_correction_cutoff_hz", "Hz", d.wrench_correction_cutoff_hz, 1e-3, 1000.0,
+             false, "low-pass of the feet wrenches' error"),
       {.name = "posture",
        .unit = "rad",
        .help = "postural task's reference (default: measured at configure)",
@@ -98,6 +117,16 @@ void MomentumBalanceController::configure(WholeBodyInterface& robot,
   p.torsional_friction = value("torsional_friction");
   p.min_normal_force = value("min_normal_force");
   p.posture_bandwidth_hz = value("posture_bandwidth_hz");
+  const std::string& contact_forces = parameters.text(parameters.index("contact_forces"));
+  if (contact_forces != "planned" && contact_forces != "estimated") {
+    throw Error("momentum_balance: contact_forces is '" + contact_forces +
+                "'; expected planned or estimated");
+  }
+  p.estimated_contact_forces = contact_forces == "estimated";
+  p.wrench_correction_cutoff_hz = value("wrench_correction_cutoff_hz");
+  p.left_wrench_links = split_joined_names(parameters.text(parameters.index("left_wrench_links")));
+  p.right_wrench_links =
+      split_joined_names(parameters.text(parameters.index("right_wrench_links")));
   const int n = robot.dofs();
   Eigen::VectorXd posture(n);
   if (const std::size_t i = parameters.index("posture"); parameters.is_set(i)) {
@@ -113,7 +142,8 @@ void MomentumBalanceController::configure(WholeBodyInterface& robot,
            parameters.index("angular_momentum_kd"),
            parameters.index("torque_weight"),
            parameters.index("wrench_weight"),
-           parameters.index("foot_moment_weight")};
+           parameters.index("foot_moment_weight"),
+           parameters.index("wrench_correction")};
   parameters_changed(parameters);  // the live gains into tracking_
   balance_.emplace(robot, tracking_, posture);
 }
@@ -125,6 +155,7 @@ void MomentumBalanceController::parameters_changed(const ParameterTable& paramet
   tracking_.torque_weight = parameters.value(live_[3]);
   tracking_.wrench_weight = parameters.value(live_[4]);
   tracking_.foot_moment_weight = parameters.value(live_[5]);
+  tracking_.wrench_correction = parameters.value(live_[6]);
   if (balance_) {
     balance_->set_tracking(tracking_);
   }
@@ -172,6 +203,9 @@ bool MomentumBalanceController::update(double /*time_s*/, double /*period_s*/) {
     squared_error_ += error * error;
     max_error_ = std::max(max_error_, error);
     ++samples_;
+    const auto net_miss = balance_->net_wrench(balance_->wrench_miss());
+    squared_force_gap_ += net_miss.head<3>().squaredNorm();
+    squared_moment_gap_ += net_miss.tail<3>().squaredNorm();
   }
   publish_signals();
   finished_ = exit_after_s_ > 0.0 && t >= exit_after_s_;
@@ -199,12 +233,24 @@ void MomentumBalanceController::progress(char* line, std::size_t size) const {
 }
 
 std::string MomentumBalanceController::summary() const {
-  char text[192];
+  const double samples = samples_ > 0 ? static_cast<double>(samples_) : 1.0;
+  char text[256];
   std::snprintf(text, sizeof text,
                 "qp failures: %llu\nmax com error: %.6f m\ncom tracking rms: %.6f m",
                 static_cast<unsigned long long>(balance_->qp_failures()), max_error_,
-                samples_ > 0 ? std::sqrt(squared_error_ / static_cast<double>(samples_)) : 0.0);
-  return text;
+                std::sqrt(squared_error_ / samples));
+  std::string summary = text;
+  if (tracking_.estimated_contact_forces) {
+    // The net wrench on the robot, estimated against planned, below the correction's
+    // cutoff: what the momentum sees of the model's error.
+    std::snprintf(text, sizeof text,
+                  "\nfeet net wrench, estimated - planned, low-passed, rms: force %.3f N, moment "
+                  "about the CoM %.3f N m",
+                  std::sqrt(squared_force_gap_ / samples),
+                  std::sqrt(squared_moment_gap_ / samples));
+    summary += text;
+  }
+  return summary;
 }
 
 void register_momentum_balance(ControllerRegistry& registry) {

@@ -7,12 +7,22 @@
 //   3. one QP in f: track (ṗ*, L̇*) with Ḣ = A f + m g, keep τ(f) small,
 //      subject to unilateral, friction-pyramid, centre-of-pressure and
 //      torsional constraints per foot.
+//   4. optionally (estimated_contact_forces), the feet wrenches the state element
+//      estimates from F/T sensors (EstimateKind::external_wrench) correct the
+//      torques, so that the feet carry the net wrench planned. With a model error
+//      (joint friction, soft contacts) the torques for f give f + d; a low-passed
+//      estimate of d from what the feet carried, d̂ = LP(f̂ − f_cmd), is taken
+//      off in its net wrench: τ = τ_c + k T A⁺A d̂ − T f, i.e. f_cmd = f − k A⁺A d̂,
+//      and the net wrench misses by (1 − k) A d. In the static model
+//      f̂ − f_cmd = d whatever f_cmd is, so the correction does not feed back
+//      on itself.
 // Written against the whole-body interface only; torque mode. Allocates
 // nothing per update after construction.
 #pragma once
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -41,6 +51,15 @@ struct MomentumBalanceParameters {
   // near the centre keeps the foot flat on a compliant ground).
   double foot_moment_weight = 1e-2;
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
+  // Contact forces from the state element (4. above): f̂ per foot is the sum of
+  // the wrenches estimated on the links of left_wrench_links and
+  // right_wrench_links (each among State::external_wrench_links(); empty: the
+  // sole frame itself), about the sole's origin. wrench_correction is k, in
+  // [0, 1]; wrench_correction_cutoff_hz the low-pass on d̂.
+  bool estimated_contact_forces = false;
+  std::vector<std::string> left_wrench_links, right_wrench_links;
+  double wrench_correction = 0.5;
+  double wrench_correction_cutoff_hz = 5.0;
 };
 
 class MomentumBalance {
@@ -51,7 +70,7 @@ class MomentumBalance {
   MomentumBalance(WholeBodyInterface& robot, MomentumBalanceParameters parameters,
                   Eigen::VectorXd q_posture);
 
-  // Puts the controlled joints in torque mode.
+  // Puts the controlled joints in torque mode; the wrench correction starts anew.
   void start();
   // One tick: read_state() then control(). No allocation.
   void update(ReadMode mode = ReadMode::latest);
@@ -64,7 +83,7 @@ class MomentumBalance {
   void compute();
 
   // The fields used per tick (com_kp, com_kd, angular_momentum_kd,
-  // torque_weight, wrench_weight, foot_moment_weight) from `parameters`; the
+  // torque_weight, wrench_weight, foot_moment_weight, wrench_correction) from `parameters`; the
   // others stay as constructed. Throws wbi::Error as the constructor does.
   void set_tracking(const MomentumBalanceParameters& parameters);
 
@@ -79,6 +98,19 @@ class MomentumBalance {
   const Eigen::VectorXd& torques() const { return tau_; }
   // Feet wrenches of the last QP: (force, moment about the sole), left then right, world axes.
   const Eigen::Matrix<double, 12, 1>& wrenches() const { return wrench_; }
+  // The feet wrenches the state element estimated, likewise, and d̂, the
+  // low-passed difference from the wrenches the torques were for (zero unless
+  // estimated_contact_forces).
+  const Eigen::Matrix<double, 12, 1>& estimated_wrenches() const { return wrench_estimated_; }
+  const Eigen::Matrix<double, 12, 1>& wrench_disturbance() const { return wrench_disturbance_; }
+  // What the feet carried beyond the plan, low-passed as d̂: LP(f̂ − f). With the
+  // correction it is (1 − k) d̂.
+  const Eigen::Matrix<double, 12, 1>& wrench_miss() const { return wrench_miss_; }
+  // The net wrench of feet wrenches w about the CoM, (force, moment), at the last
+  // control(): A w, the part of w that changes the momentum.
+  Eigen::Matrix<double, 6, 1> net_wrench(const Eigen::Matrix<double, 12, 1>& w) const {
+    return A_ * w;
+  }
   qp::Status qp_status() const { return qp_.status(); }
   std::uint64_t qp_failures() const { return qp_failures_; }
   std::uint64_t last_seq() const { return last_seq_; }
@@ -88,6 +120,10 @@ class MomentumBalance {
   void build_constraints();
   void compute_torque_map();
   void solve_wrenches();
+  void resolve_wrench_links();
+  void read_estimated_wrenches();
+  void correct_for_wrench_disturbance();
+  void compute_momentum_map();
 
   WholeBodyInterface& robot_;
   MomentumBalanceParameters p_;
@@ -99,8 +135,9 @@ class MomentumBalance {
 
   // state
   RobotState state_;  // read whole by read_state()
-  Transform world_H_sole_ = Transform::Identity();
+  Transform world_H_sole_ = Transform::Identity(), world_H_link_ = Transform::Identity();
   std::uint64_t last_seq_ = 0;
+  std::int64_t stamp_ns_ = 0, corrected_stamp_ns_ = -1;  // of the state; of the last d̂ update
 
   // model quantities
   Eigen::MatrixXd M_, Jc_, Minv_Jct_, Lambda_, Lambda_pinv_, gram_solve_, null_, gram_;
@@ -128,6 +165,19 @@ class MomentumBalance {
   Eigen::VectorXd qp_g_, qp_b_eq_, qp_d_;
   Eigen::Matrix<double, 11, 6> foot_constraints_;  // in the sole frame: rows · (f, τ) ≥ 0
   Eigen::Matrix<double, 12, 1> wrench_ = Eigen::Matrix<double, 12, 1>::Zero();
+  // estimated_contact_forces: per foot, the estimated links (index in
+  // external_wrench_links(), frame index), and their sum about the soles.
+  struct WrenchLink {
+    int foot, estimate, frame;
+  };
+  std::vector<WrenchLink> wrench_links_;
+  Eigen::Matrix<double, 6, 1> link_wrench_ = Eigen::Matrix<double, 6, 1>::Zero();
+  Eigen::Matrix<double, 12, 1> wrench_estimated_ = Eigen::Matrix<double, 12, 1>::Zero();
+  Eigen::Matrix<double, 12, 1> wrench_disturbance_ = Eigen::Matrix<double, 12, 1>::Zero();
+  Eigen::Matrix<double, 12, 1> wrench_commanded_ = Eigen::Matrix<double, 12, 1>::Zero();  // f − k d̂
+  Eigen::Matrix<double, 12, 1> wrench_correction_ = Eigen::Matrix<double, 12, 1>::Zero();
+  Eigen::Matrix<double, 12, 1> wrench_planned_ = Eigen::Matrix<double, 12, 1>::Zero();  // f
+  Eigen::Matrix<double, 12, 1> wrench_miss_ = Eigen::Matrix<double, 12, 1>::Zero();  // LP(f̂ − f)
   qp::DenseQp qp_;
   std::uint64_t qp_failures_ = 0;
 };

@@ -11,7 +11,11 @@
 //   left_sole, right_sole (text), foot_x_min/max, foot_y_min/max, friction,
 //   torsional_friction, min_normal_force, posture_bandwidth_hz: at configure;
 //   com_kp, com_kd, angular_momentum_kd, torque_weight, wrench_weight,
-//   foot_moment_weight: live.
+//   foot_moment_weight, wrench_correction: live.
+//   contact_forces planned (default) or estimated: the torques are corrected by
+//                  the feet wrenches the state estimates (estimated_contact_forces),
+//                  on left_wrench_links / right_wrench_links ('+'-joined; default:
+//                  the sole frames), low-passed at wrench_correction_cutoff_hz
 //   posture        the postural task's joint reference (default: the posture
 //                  measured at configure)
 //   settle_s       the CoM error figures count from this long after activation
@@ -62,12 +66,13 @@ class MomentumBalanceController final : public Controller {
   std::int64_t start_ns_ = -1, stamp_ns_ = 0;
   std::uint64_t last_seq_ = 0;
   bool has_seq_ = false;
-  double squared_error_ = 0.0, max_error_ = 0.0;
+  double squared_error_ = 0.0, max_error_ = 0.0, squared_force_gap_ = 0.0,
+         squared_moment_gap_ = 0.0;
   std::uint64_t samples_ = 0, new_estimators_ = 0;
   std::array<double, 9> signals_{};
   // Indices of com_kp, com_kd, angular_momentum_kd, torque_weight, wrench_weight,
-  // foot_moment_weight: looked up once, at configure.
-  std::array<std::size_t, 6> live_{};
+  // foot_moment_weight, wrench_correction: looked up once, at configure.
+  std::array<std::size_t, 7> live_{};
 };
 
 void register_momentum_balance(ControllerRegistry& registry);
