@@ -27,9 +27,10 @@ namespace {
 
 void usage(std::ostream& out, const wbi::runtime::Registry& registry) {
   out << "usage: wbi_host FILE.yaml\n"
-         "       wbi_host DEPLOY.yaml --process NAME\n"
+         "       wbi_host DEPLOY.yaml --process NAME[,NAME...]\n"
          "Runs the components listed in FILE.yaml (or those of process NAME of a deploy\n"
-         "file) in one process until SIGINT/SIGTERM.\n"
+         "file; of several processes, in the order named) in one process until\n"
+         "SIGINT/SIGTERM.\n"
          "Component types:\n";
   for (const auto& type : registry.names()) {
     out << "  " << type << "  " << registry.description(type) << "\n";

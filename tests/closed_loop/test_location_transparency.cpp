@@ -1,5 +1,6 @@
 // Location transparency: the same controller, the same components, only the
-// deploy file differs — three processes, or one; the model evaluated in the
+// deploy file differs — three processes, or one (a deploy file of its own, or
+// `wbi launch --one-process`); the model evaluated in the
 // controller's process, or by the model service in a fourth — and in lockstep
 // the run ends with the same final error to the last printed digit (the
 // remote model runs the same model library on the same inputs, sent as exact
@@ -8,6 +9,7 @@
 
 #include <chrono>
 #include <string>
+#include <vector>
 
 #include "child_process.hpp"
 #include "test_support.hpp"
@@ -17,12 +19,15 @@ namespace {
 using namespace std::chrono_literals;
 
 // Runs a deploy file (3 s of simulated time in lockstep) and returns its last line.
-std::string final_line(const std::string& deploy) {
+std::string final_line(const std::string& deploy, const std::string& launch_flag = "") {
   // The launch lasts 20 s of wall time: the simulation stops stepping at 3 s of
   // its own time long before, and the controller reports where it ended.
-  wbi::test::ChildProcess launch(
-      wbi::test::binary_dir() / "bin" / "wbi",
-      {"launch", (wbi::test::source_dir() / "deploy" / deploy).string(), "--duration", "20"});
+  std::vector<std::string> args{"launch", (wbi::test::source_dir() / "deploy" / deploy).string(),
+                                "--duration", "20"};
+  if (!launch_flag.empty()) {
+    args.push_back(launch_flag);
+  }
+  wbi::test::ChildProcess launch(wbi::test::binary_dir() / "bin" / "wbi", args);
   const auto code = launch.wait(120s);
   const std::string out = launch.output();
   EXPECT_TRUE(code.has_value() && *code == 0) << out;
@@ -46,6 +51,11 @@ TEST(LocationTransparency, OneProcessOrThreeGiveTheSameRun) {
   EXPECT_EQ(three, one);
   const double error = std::stod(three.substr(std::string("final max joint error: ").size()));
   EXPECT_LT(error, 0.01);
+}
+
+// `wbi launch --one-process`: the three-process deploy file hosted by one wbi_host.
+TEST(LocationTransparency, LaunchedAsOneProcessGivesTheSameRun) {
+  EXPECT_EQ(three_processes(), final_line("demo_lockstep.yaml", "--one-process"));
 }
 
 TEST(LocationTransparency, LocalOrRemoteModelGiveTheSameRun) {

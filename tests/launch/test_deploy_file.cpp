@@ -153,4 +153,71 @@ TEST_F(DeployFileTest, MissingFileIsNamed) {
   }
 }
 
+// `wbi launch --one-process`: one process hosting every component in file order,
+// ending the launch when it ends; the summaries read from it.
+TEST_F(DeployFileTest, OneProcessHostsEveryComponentInFileOrder) {
+  const auto deploy = wbi::launch::in_one_process(wbi::launch::load_deploy_file(write(R"(
+summary: {process: controller, match: "final max joint error"}
+processes:
+  - name: robot
+    components: [{type: sim_robot, name: sim}]
+    environment: {A: "1"}
+  - name: estimator
+    wait_for: {topics: [wbi/arm/sensors], timeout: 30}
+    respawn: {enabled: true}
+    hang_timeout: 3
+    components: [{type: estimator, name: estimator}]
+  - name: controller
+    environment: {A: "1", B: "2"}
+    components: [{type: pd_gravity, name: pd}, {type: com_sinusoid, name: reference}]
+)")));
+  ASSERT_EQ(deploy.processes.size(), 1u);
+  const auto& one = deploy.processes[0];
+  EXPECT_EQ(one.name, "all");
+  EXPECT_EQ(one.components, (std::vector<std::string>{"sim", "estimator", "pd", "reference"}));
+  ASSERT_EQ(one.command.size(), 4u);
+  EXPECT_EQ(one.command[0], "wbi_host");
+  EXPECT_EQ(one.command[2], "--process");
+  EXPECT_EQ(one.command[3], "robot,estimator,controller");
+  EXPECT_TRUE(one.wait_for_topics.empty());
+  EXPECT_FALSE(one.respawn.enabled);
+  EXPECT_TRUE(one.shutdown_on_exit);
+  EXPECT_DOUBLE_EQ(one.hang_timeout_s, 3.0);
+  EXPECT_EQ(one.environment, (std::map<std::string, std::string>{{"A", "1"}, {"B", "2"}}));
+  ASSERT_EQ(deploy.summaries.size(), 1u);
+  EXPECT_EQ(deploy.summaries[0].process, "all");
+}
+
+TEST_F(DeployFileTest, OneProcessNamesWhatCannotShareAProcess) {
+  const auto error_in_one_process = [&](const std::string& text) -> std::string {
+    const auto path = write(text);
+    try {
+      wbi::launch::in_one_process(wbi::launch::load_deploy_file(path));
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what()).substr(path.string().size());
+    }
+    return "(no error)";
+  };
+  EXPECT_EQ(error_in_one_process(R"(
+processes:
+  - {name: robot, components: [{type: sim_robot, name: sim}]}
+  - {name: viewer, command: [wbi-plot]}
+)"),
+            ": --one-process: process 'viewer' runs a command, not components: only components "
+            "can share a process");
+  EXPECT_EQ(error_in_one_process(R"(
+processes:
+  - {name: robot, components: [{type: sim_robot, name: sim}], environment: {A: "1"}}
+  - {name: controller, components: [{type: idle, name: c}], environment: {A: "2"}}
+)"),
+            ": --one-process: process 'controller' sets A=2, an earlier one A=1");
+  EXPECT_EQ(error_in_one_process(R"(
+processes:
+  - {name: robot, components: [{type: sim_robot, name: sim}]}
+  - {name: controller, host: my_host, components: [{type: idle, name: c}]}
+)"),
+            ": --one-process: processes 'robot' and 'controller' name different host programs "
+            "(wbi_host, my_host)");
+}
+
 }  // namespace

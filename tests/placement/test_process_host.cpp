@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <wbi/deploy/process_host.hpp>
 
@@ -49,6 +50,29 @@ TEST(ProcessHost, TakesTheProcessComponentsAndTheDeploysJoinKeys) {
 TEST(ProcessHost, AnUnknownProcessOrOneWithoutComponentsIsNamed) {
   EXPECT_EQ(error_of("estimator"), "deploy.yaml: no process named 'estimator' in the deploy file");
   EXPECT_EQ(error_of("viewer"), "deploy.yaml:9: process 'viewer' has no 'components' to host");
+}
+
+// `wbi_host DEPLOY --process a,b`: the components of both, in the order named.
+TEST(ProcessHost, SeveralProcessesGiveTheirComponentsInTheOrderNamed) {
+  const YAML::Node deploy = YAML::Load(R"(processes:
+  - name: robot
+    components: [{name: sim, type: sim_robot}]
+  - name: controller
+    components: [{name: pd, type: pd_gravity}, {name: hold, type: idle}]
+)");
+  const YAML::Node host = wbi::deploy::process_host_document(
+      deploy, "deploy.yaml", std::vector<std::string>{"controller", "robot"});
+  ASSERT_EQ(host["components"].size(), 3U);
+  EXPECT_EQ(host["components"][0]["name"].as<std::string>(), "pd");
+  EXPECT_EQ(host["components"][1]["name"].as<std::string>(), "hold");
+  EXPECT_EQ(host["components"][2]["name"].as<std::string>(), "sim");
+  try {
+    wbi::deploy::process_host_document(deploy, "deploy.yaml",
+                                       std::vector<std::string>{"robot", "viewer"});
+    FAIL() << "no error";
+  } catch (const std::runtime_error& error) {
+    EXPECT_STREQ(error.what(), "deploy.yaml: no process named 'viewer' in the deploy file");
+  }
 }
 
 TEST(ProcessHost, AFileThatCannotBeReadIsNamed) {

@@ -19,6 +19,9 @@ int run_launch(Args args) {
   options.positional("FILE", "deploy file (YAML)");
   options.option("duration", "SECONDS", "stop everything after this long (0: no limit)", "0");
   options.option("grace", "SECONDS", "time between SIGTERM and SIGKILL when stopping", "5");
+  options.flag("one-process",
+               "host every process's components in one wbi_host (file order), for speed: no "
+               "waits for topics, no respawns; not for secured deployments");
   // Above the file's blocks and the environment, for every process started.
   add_join_options(options, false);
   if (!options.parse(args)) {
@@ -31,7 +34,13 @@ int run_launch(Args args) {
   if (launch_options.duration_s < 0 || launch_options.stop_grace_s < 0) {
     throw UsageError("--duration and --grace must be >= 0");
   }
-  const auto deploy = launch::load_deploy_file(options.get("FILE"));
+  auto deploy = launch::load_deploy_file(options.get("FILE"));
+  if (options.has("one-process")) {
+    if (launch_options.join.security_directory) {
+      throw UsageError("--one-process: a secured deployment gives each process its own identity");
+    }
+    deploy = launch::in_one_process(std::move(deploy));
+  }
   return launch::run_launch(deploy, launch_options, std::cout);
 }
 

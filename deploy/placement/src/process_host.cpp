@@ -14,35 +14,64 @@ std::string line_of(const std::string& file, const YAML::Node& node) {
   return file + ":" + std::to_string(node.Mark().line + 1);
 }
 
-}  // namespace
-
-YAML::Node process_host_document(const YAML::Node& deploy, const std::string& file,
-                                 const std::string& process) {
+// The entry of `processes` named `name`; throws naming the file when there is none.
+YAML::Node find_process(const YAML::Node& deploy, const std::string& file,
+                        const std::string& name) {
   const YAML::Node processes = deploy["processes"];
   if (processes && processes.IsSequence()) {
     for (const auto& entry : processes) {
       if (entry.IsMap() && entry["name"] && entry["name"].IsScalar() &&
-          entry["name"].Scalar() == process) {
-        if (!entry["components"]) {
-          throw std::runtime_error(line_of(file, entry) + ": process '" + process +
-                                   "' has no 'components' to host");
-        }
-        YAML::Node host;
-        host["components"] = entry["components"];
-        for (const char* key : {"domain_id", "qos_file", kNetworkKey, kSecurityKey}) {
-          if (deploy[key]) {
-            host[key] = deploy[key];
-          }
-        }
-        return host;
+          entry["name"].Scalar() == name) {
+        return entry;
       }
     }
   }
-  throw std::runtime_error(file + ": no process named '" + process + "' in the deploy file");
+  throw std::runtime_error(file + ": no process named '" + name + "' in the deploy file");
 }
 
-YAML::Node load_process_host(const std::string& deploy_file, const std::string& process) {
-  return process_host_document(load_deploy_file(deploy_file), deploy_file, process);
+}  // namespace
+
+YAML::Node process_host_document(const YAML::Node& deploy, const std::string& file,
+                                 const std::vector<std::string>& processes) {
+  if (processes.empty()) {
+    throw std::runtime_error(file + ": no process named to host");
+  }
+  YAML::Node components(YAML::NodeType::Sequence);
+  for (const auto& name : processes) {
+    const YAML::Node entry = find_process(deploy, file, name);
+    if (!entry["components"]) {
+      throw std::runtime_error(line_of(file, entry) + ": process '" + name +
+                               "' has no 'components' to host");
+    }
+    for (const auto& component : entry["components"]) {
+      components.push_back(component);
+    }
+  }
+  YAML::Node host;
+  host["components"] = components;
+  for (const char* key : {"domain_id", "qos_file", kNetworkKey, kSecurityKey}) {
+    if (deploy[key]) {
+      host[key] = deploy[key];
+    }
+  }
+  return host;
+}
+
+YAML::Node process_host_document(const YAML::Node& deploy, const std::string& file,
+                                 const std::string& process) {
+  return process_host_document(deploy, file, std::vector<std::string>{process});
+}
+
+YAML::Node load_process_host(const std::string& deploy_file, const std::string& processes) {
+  std::vector<std::string> names;
+  std::size_t begin = 0;
+  for (auto comma = processes.find(','); comma != std::string::npos;
+       comma = processes.find(',', begin)) {
+    names.push_back(processes.substr(begin, comma - begin));
+    begin = comma + 1;
+  }
+  names.push_back(processes.substr(begin));
+  return process_host_document(load_deploy_file(deploy_file), deploy_file, names);
 }
 
 }  // namespace wbi::deploy

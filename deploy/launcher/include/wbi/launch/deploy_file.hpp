@@ -78,4 +78,15 @@ struct DeployFile {
 // naming the field (e.g. processes[1].respawn.delay) and what is wrong.
 DeployFile load_deploy_file(const std::filesystem::path& path);
 
+// The deploy's processes as one, named kOneProcessName (`wbi launch
+// --one-process`): every process's components in one wbi_host, in file
+// order, for when speed matters more than isolation. Waits for topics and
+// respawn policies go (a component starts after the ones before it in the
+// same process); the process stops the launch when it ends; the hang timeout
+// is the longest; summaries are read from it. Throws naming a process that
+// runs a command, processes with different host programs or environments
+// that disagree, or a secured deployment (one identity per process).
+inline constexpr const char* kOneProcessName = "all";
+DeployFile in_one_process(DeployFile deploy);
+
 }  // namespace wbi::launch

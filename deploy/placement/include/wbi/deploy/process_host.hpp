@@ -4,9 +4,12 @@
 // network and security. The nodes keep their marks, so errors about the
 // components still name the deploy file's lines. Used by `wbi_host DEPLOY
 // --process NAME`; the runtime itself does not know the deploy format.
+// Several processes hosted as one (`--process A,B,C`, `wbi launch --one-process`)
+// give their components in the order named.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <yaml-cpp/yaml.h>
 
@@ -17,8 +20,11 @@ namespace wbi::deploy {
 // without components.
 YAML::Node process_host_document(const YAML::Node& deploy, const std::string& file,
                                  const std::string& process);
+YAML::Node process_host_document(const YAML::Node& deploy, const std::string& file,
+                                 const std::vector<std::string>& processes);
 
-// Reads `deploy_file`, then as above.
-YAML::Node load_process_host(const std::string& deploy_file, const std::string& process);
+// Reads `deploy_file`, then as above; `processes` is one name or several
+// joined by ',' ("robot,estimator,controller").
+YAML::Node load_process_host(const std::string& deploy_file, const std::string& processes);
 
 }  // namespace wbi::deploy
