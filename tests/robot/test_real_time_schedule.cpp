@@ -187,6 +187,46 @@ TEST(LockstepPacer, ReportsTheRunsSpeedAndWhereATickWent) {
   EXPECT_EQ(pacer.summary(), "");
 }
 
+// With the commands' writing times the wait is split there: a controller that
+// writes each tick's command 5 ms after the previous one, while the robot does
+// nothing between waits, spends most of the wait before its writing.
+TEST(LockstepPacer, SplitsTheWaitWhereTheCommandWasWritten) {
+  wbi::runtime::StatusCounter timeouts;
+  wbi::runtime::EventLog events;
+  wbi::robot::LockstepPacer pacer({{"balance"}, 1.0, 1.0}, std::chrono::milliseconds(1),
+                                  "sim_robot 'humanoid'", timeouts, events);
+  pacer.start();
+  constexpr std::uint64_t kTicks = 8;
+  std::thread controller([&] {
+    wbi::msg::ActuatorCommand command;
+    command.controller("balance");
+    for (std::uint64_t tick = 0; tick <= kTicks; ++tick) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));  // the compute being timed
+      command.tick(tick);
+      pacer.observe(command, std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                 std::chrono::system_clock::now().time_since_epoch())
+                                 .count());
+    }
+  });
+  for (std::uint64_t tick = 0; tick <= kTicks; ++tick) {
+    pacer.wait(tick);
+  }
+  controller.join();
+  const std::string line = pacer.summary();
+  const auto split = line.find("; the wait: sensors out to the last command written mean ");
+  ASSERT_NE(split, std::string::npos) << line;
+  double to_written_ms = 0.0, to_written_p99 = 0.0, delivered_ms = 0.0;
+  ASSERT_EQ(std::sscanf(line.c_str() + split,
+                        "; the wait: sensors out to the last command written mean %lf ms (p99 %lf "
+                        "ms), its delivery to the robot mean %lf ms",
+                        &to_written_ms, &to_written_p99, &delivered_ms),
+            3)
+      << line;
+  EXPECT_GT(to_written_ms, 2.5) << line;
+  EXPECT_LT(delivered_ms, to_written_ms) << line;
+  EXPECT_EQ(timeouts.value(), 0u);
+}
+
 TEST(DurationHistogram, MeanAndQuantilesWithinABin) {
   using std::chrono::microseconds;
   wbi::robot::DurationHistogram histogram;

@@ -43,7 +43,7 @@ ActuatorSide::ActuatorSide(dds::Participant& participant, const std::string& rob
   commands_ = std::make_unique<dds::Subscriber<wbi::msg::ActuatorCommand>>(
       participant, commands_topic_, dds::qos::kCommand,
       [this](const wbi::msg::ActuatorCommand& c, const dds::detail::SampleInfo& info) {
-        handle(c, info.writer);
+        handle(c, info.writer, info.source_stamp_ns);
       });
   parameters_ = std::make_unique<dds::Subscriber<wbi::msg::ControlParameters>>(
       participant, parameters_topic_, dds::qos::kCommand,
@@ -74,8 +74,8 @@ void ActuatorSide::hold(const actuation::SensorReadings& readings, actuation::Ti
 // Runs on a DDS thread: stages the command for the next tick; never throws into DDS.
 // The loop waits for mutex_ only while the command is checked and staged; a
 // rejection is reported after it is released.
-void ActuatorSide::handle(const wbi::msg::ActuatorCommand& command,
-                          const dds::detail::Guid& writer) {
+void ActuatorSide::handle(const wbi::msg::ActuatorCommand& command, const dds::detail::Guid& writer,
+                          std::int64_t written_ns) {
   const auto sender =
       Claimant::of(writer.data(), {command.controller().c_str(), command.controller().size()});
   const std::span<const std::uint16_t> joints(command.joints().data(), command.joints().size());
@@ -103,7 +103,7 @@ void ActuatorSide::handle(const wbi::msg::ActuatorCommand& command,
     reject(rejected_commands_, "command", commands_topic_, command.controller(), error);
   }
   if (observer_) {
-    observer_(command);
+    observer_(command, written_ns);
   }
 }
 

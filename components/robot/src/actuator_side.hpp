@@ -49,8 +49,9 @@ namespace wbi::robot {
 class ActuatorSide {
  public:
   // Called on the DDS thread after each command was handled (accepted or not),
-  // e.g. for lockstep bookkeeping.
-  using CommandObserver = std::function<void(const wbi::msg::ActuatorCommand&)>;
+  // e.g. for lockstep bookkeeping, with its DDS source timestamp [ns].
+  using CommandObserver =
+      std::function<void(const wbi::msg::ActuatorCommand&, std::int64_t written_ns)>;
 
   ActuatorSide(dds::Participant& participant, const std::string& robot,
                const actuation::BackendDescription& description,
@@ -75,7 +76,9 @@ class ActuatorSide {
   // `writer` is the sending writer's GUID: with the message's controller name,
   // who must own every joint the message names (joint_claims.hpp).
   // (Tests that feed the side directly leave it zero: one participant.)
-  void handle(const wbi::msg::ActuatorCommand& command, const dds::detail::Guid& writer = {});
+  // `written_ns`: the command's DDS source timestamp, passed to the observer.
+  void handle(const wbi::msg::ActuatorCommand& command, const dds::detail::Guid& writer = {},
+              std::int64_t written_ns = 0);
   void handle(const wbi::msg::ControlParameters& message, const dds::detail::Guid& writer = {});
 
   const actuation::JointControlStatus& status() const { return controller_.status(); }

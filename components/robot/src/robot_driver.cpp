@@ -130,9 +130,9 @@ class RobotDriver final : public runtime::Component {
     ActuatorSide::CommandObserver observer;
     if (simulation_) {
       make_simulation_parts(participant, simulation);
-      observer = [this](const wbi::msg::ActuatorCommand& command) {
+      observer = [this](const wbi::msg::ActuatorCommand& command, std::int64_t written_ns) {
         for (const auto& pacer : pacers_) {
-          pacer->observe(command);  // lockstep bookkeeping
+          pacer->observe(command, written_ns);  // lockstep bookkeeping
         }
       };
     }

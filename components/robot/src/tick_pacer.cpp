@@ -10,6 +10,17 @@
 
 namespace wbi::robot {
 
+namespace {
+
+// The clock of DDS source timestamps.
+std::int64_t system_now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace
+
 RealTimeSchedule::TimePoint RealTimeSchedule::due(std::uint64_t tick, TimePoint now,
                                                   std::chrono::nanoseconds& dropped) {
   // From the anchor, not from the previous tick: jitter is caught up, no drift.
@@ -111,17 +122,27 @@ void LockstepPacer::start() {
   first_answered_ = last_answered_ = {};
   waits_.clear();
   work_.clear();
+  to_written_.clear();
+  delivered_.clear();
 }
 
 // The first tick after start() waits for the controllers to start: it sets
-// the origin and is not timed.
+// the origin and is not timed. written_ns: the DDS source time of the tick's
+// last command (system clock), 0 when unknown; called_ns and answered_ns the
+// same clock's times around the wait.
 void LockstepPacer::time_tick(std::chrono::steady_clock::time_point called,
-                              std::chrono::steady_clock::time_point answered) {
+                              std::chrono::steady_clock::time_point answered,
+                              std::int64_t called_ns, std::int64_t answered_ns,
+                              std::int64_t written_ns) {
   if (last_answered_ == std::chrono::steady_clock::time_point{}) {
     first_answered_ = answered;
   } else {
     waits_.add(answered - called);
     work_.add(called - last_answered_);
+    if (written_ns > 0) {
+      to_written_.add(std::chrono::nanoseconds(written_ns - called_ns));
+      delivered_.add(std::chrono::nanoseconds(answered_ns - written_ns));
+    }
     ++timed_ticks_;
   }
   last_answered_ = answered;
@@ -136,7 +157,7 @@ std::string LockstepPacer::summary() const {
       std::chrono::duration<double>(period_).count() * static_cast<double>(timed_ticks_);
   const double wall_s = std::chrono::duration<double>(last_answered_ - first_answered_).count();
   const double tick_ms = 1e3 * wall_s / static_cast<double>(timed_ticks_);
-  char line[320];
+  char line[512];
   std::snprintf(line, sizeof line,
                 "lockstep: simulated %.3f s in %.1f s wall: %.2fx real time; per tick %.3f ms: "
                 "waiting for the controllers' commands mean %.3f ms (p99 %.2f ms), the robot's "
@@ -144,13 +165,22 @@ std::string LockstepPacer::summary() const {
                 simulated_s, wall_s, wall_s > 0.0 ? simulated_s / wall_s : 0.0, tick_ms,
                 Ms(waits_.mean()).count(), Ms(waits_.quantile(0.99)).count(),
                 Ms(work_.mean()).count(), Ms(work_.quantile(0.99)).count());
-  return line;
+  std::string text = line;
+  if (to_written_.count() > 0) {
+    std::snprintf(line, sizeof line,
+                  "; the wait: sensors out to the last command written mean %.3f ms (p99 %.2f "
+                  "ms), its delivery to the robot mean %.3f ms (p99 %.2f ms)",
+                  Ms(to_written_.mean()).count(), Ms(to_written_.quantile(0.99)).count(),
+                  Ms(delivered_.mean()).count(), Ms(delivered_.quantile(0.99)).count());
+    text += line;
+  }
+  return text;
 }
 
 // On a DDS thread, after the actuator side staged the command.
 // A command with no tick (msg::kNoTick: a mode switch before the controller's
 // first reference) answers nothing; the actuator side applied it all the same.
-void LockstepPacer::observe(const wbi::msg::ActuatorCommand& command) {
+void LockstepPacer::observe(const wbi::msg::ActuatorCommand& command, std::int64_t written_ns) {
   if (command.tick() == wbi::msg::kNoTick) {
     return;
   }
@@ -160,7 +190,15 @@ void LockstepPacer::observe(const wbi::msg::ActuatorCommand& command) {
     if (sender == answered_.end()) {
       return;  // a controller the simulation does not wait for
     }
-    sender->second = std::max(sender->second, static_cast<std::int64_t>(command.tick()));
+    const auto tick = static_cast<std::int64_t>(command.tick());
+    sender->second = std::max(sender->second, tick);
+    // The tick's last command written: the one the wait ends on.
+    if (tick > written_tick_) {
+      written_tick_ = tick;
+      written_ns_ = written_ns;
+    } else if (tick == written_tick_) {
+      written_ns_ = std::max(written_ns_, written_ns);
+    }
   }
   changed_.notify_all();
 }
@@ -173,6 +211,7 @@ bool LockstepPacer::all_answered(std::uint64_t tick) const {
 
 void LockstepPacer::wait(std::uint64_t tick) {
   const auto called = std::chrono::steady_clock::now();
+  const std::int64_t called_ns = system_now_ns();
   std::unique_lock lock(mutex_);
   // The first tick waits for the controllers to start; later ticks for one control step.
   const double timeout_s = tick == 0 ? options_.start_timeout_s : options_.timeout_s;
@@ -187,7 +226,9 @@ void LockstepPacer::wait(std::uint64_t tick) {
     events_.emit(EventSeverity::warning, EventKind::loop_stall, text);
   }
   if (!stopped_) {  // the ticks stepped while stopping are not the run's
-    time_tick(called, std::chrono::steady_clock::now());
+    const bool written = written_tick_ == static_cast<std::int64_t>(tick);
+    time_tick(called, std::chrono::steady_clock::now(), called_ns, system_now_ns(),
+              written ? written_ns_ : 0);
   }
 }
 

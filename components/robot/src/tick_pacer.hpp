@@ -46,8 +46,10 @@ class TickPacer {
   virtual void wait(std::uint64_t tick) = 0;
   // Ends the wait in progress, and every later one at once, until start().
   virtual void stop() = 0;
-  // Every command that reached the actuator side, accepted or not (a DDS thread).
-  virtual void observe(const wbi::msg::ActuatorCommand& /*command*/) {}
+  // Every command that reached the actuator side, accepted or not (a DDS thread);
+  // written_ns: its DDS source timestamp (the system clock at the writer), 0: unknown.
+  virtual void observe(const wbi::msg::ActuatorCommand& /*command*/,
+                       std::int64_t /*written_ns*/ = 0) {}
   virtual bool lockstep() const = 0;
   // What the pacer saw since start(), one line for the end of a run, or "" (the
   // loop's thread).
@@ -137,7 +139,7 @@ class LockstepPacer final : public TickPacer {
   void start() override;
   void wait(std::uint64_t tick) override;
   void stop() override;
-  void observe(const wbi::msg::ActuatorCommand& command) override;
+  void observe(const wbi::msg::ActuatorCommand& command, std::int64_t written_ns = 0) override;
   bool lockstep() const override { return true; }
   // The run's speed and where a tick went, from tick 1 on (tick 0 waits for the
   // controllers to start): "lockstep: simulated 21.000 s in 24.3 s wall: 0.86×
@@ -145,28 +147,34 @@ class LockstepPacer final : public TickPacer {
   // 1.02 ms (p99 1.41 ms), the robot's own work mean 0.14 ms (p99 0.21 ms)".
   // The wait is the round trip sensors → … → commands through every other
   // process; the robot's work is its step, its sensors and ground truth out,
-  // and the commands in.
+  // and the commands in. Where the commands' DDS source timestamps are known
+  // the wait is split at the writing of the tick's last command: "; the wait:
+  // sensors out to the last command written mean … ms (p99 … ms), its delivery
+  // to the robot mean … ms (p99 … ms)" (one clock: the controllers on this host,
+  // or hosts with synchronised clocks).
   std::string summary() const override;
 
  private:
   bool all_answered(std::uint64_t tick) const;  // with mutex_ held
   void time_tick(std::chrono::steady_clock::time_point called,
-                 std::chrono::steady_clock::time_point answered);  // the loop only
+                 std::chrono::steady_clock::time_point answered, std::int64_t called_ns,
+                 std::int64_t answered_ns, std::int64_t written_ns);  // the loop only
 
   const LockstepOptions options_;
   const std::string who_;
   runtime::StatusCounter& timeouts_;
   runtime::EventLog& events_;
-  std::mutex mutex_;  // guards answered_, stopped_
+  std::mutex mutex_;  // guards answered_, stopped_, written_tick_, written_ns_
   std::condition_variable changed_;
-  std::map<std::string, std::int64_t> answered_;  // newest tick answered per controller
+  std::map<std::string, std::int64_t> answered_;     // newest tick answered per controller
+  std::int64_t written_tick_ = -1, written_ns_ = 0;  // newest tick, its last command's writing
   bool stopped_ = false;
   // The loop's thread only: when the first and the previous tick were
   // answered, the ticks timed, the waits and the robot's work between them.
   const std::chrono::nanoseconds period_;
   std::chrono::steady_clock::time_point first_answered_, last_answered_;
   std::uint64_t timed_ticks_ = 0;
-  DurationHistogram waits_, work_;
+  DurationHistogram waits_, work_, to_written_, delivered_;
 };
 
 }  // namespace wbi::robot
