@@ -2,19 +2,10 @@
 
 #include <chrono>
 
+#include <wbi/dds/source_clock.hpp>
 #include <wbi/dds/topics.hpp>
 
 namespace wbi::bench {
-
-namespace {
-
-std::int64_t system_now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
-}  // namespace
 
 LatencyObserver::LatencyObserver(dds::Participant& participant, const std::string& robot,
                                  const std::string& controller_instance, std::size_t max_samples)
@@ -65,7 +56,7 @@ void LatencyObserver::on_state(const msg::StateEstimate& state,
 
 void LatencyObserver::on_command(const msg::ActuatorCommand& command,
                                  const dds::detail::SampleInfo& info) {
-  const std::int64_t arrived_ns = system_now_ns();
+  const std::int64_t arrived_ns = dds::source_clock_now_ns();
   std::lock_guard lock(mutex_);
   ++result_.commands;
   const Seen& sensor = seen_[command.tick() % kSlots];

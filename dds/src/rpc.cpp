@@ -2,6 +2,8 @@
 
 #include <sstream>
 
+#include "wbi/dds/source_clock.hpp"
+
 namespace wbi::dds {
 
 const char* to_string(CallStatus status) {
@@ -57,11 +59,7 @@ std::string call_failure_message(const std::string& service, CallStatus status,
 }
 
 namespace detail {
-std::int64_t system_now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
+std::int64_t system_now_ns() { return source_clock_now_ns(); }
 }  // namespace detail
 
 }  // namespace wbi::dds

@@ -11,6 +11,7 @@
 
 #include <string>
 
+#include <wbi/dds/source_clock.hpp>
 #include <wbi/msg/wire_vocabulary.hpp>
 #include <wbi/runtime/status_report.hpp>
 
@@ -203,9 +204,7 @@ TEST(LockstepPacer, SplitsTheWaitWhereTheCommandWasWritten) {
     for (std::uint64_t tick = 0; tick <= kTicks; ++tick) {
       std::this_thread::sleep_for(std::chrono::milliseconds(5));  // the compute being timed
       command.tick(tick);
-      pacer.observe(command, std::chrono::duration_cast<std::chrono::nanoseconds>(
-                                 std::chrono::system_clock::now().time_since_epoch())
-                                 .count());
+      pacer.observe(command, wbi::dds::source_clock_now_ns());
     }
   });
   for (std::uint64_t tick = 0; tick <= kTicks; ++tick) {

@@ -4,22 +4,12 @@
 #include <cstdio>
 #include <sstream>
 
+#include <wbi/dds/source_clock.hpp>
 #include <wbi/msg/wire_vocabulary.hpp>
 
 #include "wbi/runtime/console_line.hpp"
 
 namespace wbi::robot {
-
-namespace {
-
-// The clock of DDS source timestamps.
-std::int64_t system_now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
-}  // namespace
 
 RealTimeSchedule::TimePoint RealTimeSchedule::due(std::uint64_t tick, TimePoint now,
                                                   std::chrono::nanoseconds& dropped) {
@@ -211,7 +201,7 @@ bool LockstepPacer::all_answered(std::uint64_t tick) const {
 
 void LockstepPacer::wait(std::uint64_t tick) {
   const auto called = std::chrono::steady_clock::now();
-  const std::int64_t called_ns = system_now_ns();
+  const std::int64_t called_ns = dds::source_clock_now_ns();
   std::unique_lock lock(mutex_);
   // The first tick waits for the controllers to start; later ticks for one control step.
   const double timeout_s = tick == 0 ? options_.start_timeout_s : options_.timeout_s;
@@ -227,7 +217,7 @@ void LockstepPacer::wait(std::uint64_t tick) {
   }
   if (!stopped_) {  // the ticks stepped while stopping are not the run's
     const bool written = written_tick_ == static_cast<std::int64_t>(tick);
-    time_tick(called, std::chrono::steady_clock::now(), called_ns, system_now_ns(),
+    time_tick(called, std::chrono::steady_clock::now(), called_ns, dds::source_clock_now_ns(),
               written ? written_ns_ : 0);
   }
 }
