@@ -97,7 +97,7 @@ stop() {
 
 if [[ $mode == record || $mode == secure ]]; then
   # The recorders first; the commands' writer (the controller) appears later.
-  tool "$logs/record.log" record -o "$logs/run.mcap" wbi/arm/sensors wbi/arm/commands
+  tool "$logs/record.log" record -o "$logs/run.mcap" wbi/arm/sensors wbi/arm/commands wbi/arm/state
   recorder=$!
   wait_for_text "$logs/record.log" "recording to" 10 || fail "wbi record did not start"
   if [[ $mode == secure ]]; then
@@ -127,7 +127,13 @@ if [[ $mode == record || $mode == secure ]]; then
   controller=$!
   wait_for_text "$logs/record.log" "recording wbi/arm/commands" 20 ||
     fail "wbi record, started before the controller, never found wbi/arm/commands"
+  # Nor the estimator and the model service together: started at one instant,
+  # the controller or the robot sometimes never finished one's handshake and
+  # never got the robot's state (1 CI run of many, 2026-11-29). The model
+  # service starts once the estimator's first state is recorded.
   host b estimator
+  wait_for_text "$logs/record.log" "recording wbi/arm/state" 20 ||
+    fail "wbi record never found the estimator's wbi/arm/state"
   host b model_service
 else
   host b estimator
