@@ -17,6 +17,8 @@
 #include <mutex>
 
 #include <wbi/controllers/com_sinusoid.hpp>
+#include <wbi/controllers/controller_host.hpp>
+#include <wbi/controllers/controller_types.hpp>
 #include <wbi/controllers/momentum_balance.hpp>
 #include <wbi/dds/subscriber.hpp>
 #include <wbi/dds/topics.hpp>
@@ -498,6 +500,33 @@ TEST(BalanceInProcess, NamesAFootLinkWithoutAnEstimatedWrench) {
         wbi::controllers::MomentumBalance(*humanoid, p, Eigen::VectorXd::Zero(humanoid->dofs()));
       },
       "external wrench on l_heel, r_sole; the state estimates it on [l_foot, r_foot, chest]");
+
+  // The same through the controller contract: the host names the controller and what
+  // is wrong with its parameters.
+  const auto configure_error = [&](const char* contact_forces, const char* left_links) {
+    wbi::runtime::StatusReport report;
+    wbi::runtime::EventLog events;
+    wbi::controllers::ControllerHost host(*humanoid, report, events,
+                                          wbi::controllers::ControllerHost::Options{});
+    auto& table = host.add("balance", "momentum_balance",
+                           wbi::controllers::controller_types().create("momentum_balance"));
+    table.set_text(table.index("contact_forces"), contact_forces);
+    table.set_text(table.index("left_wrench_links"), left_links);
+    table.set_text(table.index("right_wrench_links"), "r_foot");
+    try {
+      host.configure("balance");
+    } catch (const wbi::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_NE(configure_error("sideways", "l_foot")
+                .find("contact_forces is 'sideways'; expected planned or estimated"),
+            std::string::npos);
+  EXPECT_NE(configure_error("estimated", "l_foot+l_toe").find("external wrench on l_toe;"),
+            std::string::npos)
+      << configure_error("estimated", "l_foot+l_toe");
+  EXPECT_EQ(configure_error("estimated", "l_foot"), "(no error)");
   rig.sim().shutdown();
   rig.estimator().shutdown();
 }
