@@ -55,16 +55,19 @@ inline DynamicState random_state(const model::Model& m, const std::vector<std::s
   return s;
 }
 
-// A robot at rest (ν = ν̇ = 0) at a random configuration, with random wrenches
-// on `links` and, on `balancing_link`, the wrench that holds it: the base
-// needs no actuation, as on a floating-base robot.
-inline DynamicState static_state(const model::Model& m, const std::vector<std::string>& links,
-                                 const std::string& balancing_link, std::mt19937& rng) {
+// A robot at rest (ν = 0; ν̇ = 0 but the base's linear acceleration, by
+// default 0 too) at a random configuration, with random wrenches on `links`
+// and, on `balancing_link`, the wrench that holds it: the base needs no
+// actuation, as on a floating-base robot.
+inline DynamicState static_state(
+    const model::Model& m, const std::vector<std::string>& links, const std::string& balancing_link,
+    std::mt19937& rng, const Eigen::Vector3d& base_acceleration = Eigen::Vector3d::Zero()) {
   DynamicState s;
   model::Data data(m);
   s.q = model::random_configuration(m, rng);
   s.nu = Eigen::VectorXd::Zero(m.nv);
   s.dnu = Eigen::VectorXd::Zero(m.nv);
+  s.dnu.head<3>() = base_acceleration;
   for (const std::string& link : links) {
     Vector6d w;
     w << random_vector(3, rng, 100.0), random_vector(3, rng, 10.0);

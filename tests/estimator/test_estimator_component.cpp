@@ -36,11 +36,12 @@ class EstimatorFixture {
   // force_torque_frames (default: none). torque_sensors: the joints listed as
   // JOINT_TORQUE sensors (none listed: every joint has one); the samples carry
   // the joint torques of set_torques(). floating_base: the description's.
+  // imu: an IMU "imu" in the description; the samples carry set_imu()'s reading.
   EstimatorFixture(const std::string& robot, const std::vector<std::string>& joints,
                    const std::string& parameters_yaml, int force_torque_sensors = 0,
                    const std::vector<std::string>& torque_sensors = {},
                    const std::vector<std::string>& force_torque_frames = {},
-                   bool floating_base = false)
+                   bool floating_base = false, bool imu = false)
       : robot_(robot),
         description_(participant_, topics::description(robot), qos::kLatched),
         sensors_(participant_, topics::sensors(robot), qos::kStream),
@@ -67,6 +68,12 @@ class EstimatorFixture {
       sensor.kind(wbi::msg::SensorKind::JOINT_TORQUE);
       description.sensors().push_back(sensor);
     }
+    if (imu) {
+      wbi::msg::SensorInfo sensor;
+      sensor.name("imu");
+      sensor.kind(wbi::msg::SensorKind::IMU);
+      description.sensors().push_back(sensor);
+    }
     wrenches_.resize(static_cast<std::size_t>(force_torque_sensors));
     description_.publish(description);
     wbi::runtime::Registry registry;
@@ -91,6 +98,7 @@ class EstimatorFixture {
     sample.encoder_position().assign(q.data(), q.data() + q.size());
     sample.force_torque() = wrenches_;
     sample.joint_torque() = torques_;
+    sample.imus() = imus_;
     // Best-effort stream: send again until this sample's estimate comes back.
     for (int attempt = 0; attempt < 50; ++attempt) {
       sensors_.publish(sample);
@@ -132,6 +140,20 @@ class EstimatorFixture {
 
   // The joint torques of the next samples (robot order; empty: none).
   void set_torques(std::vector<double> torques) { torques_ = std::move(torques); }
+
+  // The IMU reading of the next samples: orientation in the world, accelerometer
+  // (proper acceleration, IMU axes); the gyroscope reads 0.
+  void set_imu(const Eigen::Quaterniond& orientation, const Eigen::Vector3d& accelerometer) {
+    wbi::msg::ImuReading reading;
+    reading.orientation().w(orientation.w());
+    reading.orientation().x(orientation.x());
+    reading.orientation().y(orientation.y());
+    reading.orientation().z(orientation.z());
+    reading.linear_acceleration().x(accelerometer.x());
+    reading.linear_acceleration().y(accelerometer.y());
+    reading.linear_acceleration().z(accelerometer.z());
+    imus_ = {reading};
+  }
 
   wbi::dds::Publisher<wbi::msg::EstimatorParameter>& parameters() { return parameters_; }
   wbi::dds::Participant& participant() { return participant_; }
@@ -203,6 +225,7 @@ class EstimatorFixture {
   wbi::dds::Received<wbi::msg::StateEstimate> received_;
   std::vector<wbi::msg::ForceTorqueReading> wrenches_;
   std::vector<double> torques_;
+  std::vector<wbi::msg::ImuReading> imus_;
   std::unique_ptr<wbi::runtime::ComponentRunner> runner_;
 };
 
@@ -285,6 +308,58 @@ TEST(EstimatorComponent, JointTorquesFromForceTorqueSensors) {
   fixture.send(4, q);
   EXPECT_NE(fixture.status_error("missing: ft_1").find("sensor samples carry 1 F/T readings"),
             std::string::npos);
+}
+
+// torque_accelerations: imu — the humanoid, at rest in velocity but with its base
+// accelerating (pushed), held by its soles and chest: the base's acceleration from
+// the IMU (its orientation turns the accelerometer into the world, gravity added
+// back) puts the push's inertia into the balance, and the wrenches and torques are
+// recovered; the quasi-static estimate (none) misses the chest's by m a.
+TEST(EstimatorComponent, JointTorquesWithTheBaseAccelerationOfTheImu) {
+  const auto urdf = wbi::test::project_model("humanoid.urdf");
+  const wbi::model::Model m = wbi::model::load_urdf_file(urdf.string());
+  std::mt19937 rng(7);
+  const Eigen::Vector3d acceleration(0.8, -0.5, 0.3);  // of the base, world [m/s²]
+  const auto s = wbi::test::static_state(m, {"l_sole", "r_sole"}, "chest", rng, acceleration);
+  wbi::test::SensorReference reference(
+      urdf, {{"l_foot_ft", "l_foot_ft_sensor"}, {"r_foot_ft", "r_foot_ft_sensor"}});
+  const auto readings = reference.readings(m, s);
+  const Eigen::Quaterniond imu_orientation =
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()));
+  const Eigen::Vector3d gravity(0, 0, -9.81);
+  const Eigen::Vector3d accelerometer = imu_orientation.inverse() * (acceleration - gravity);
+  const Eigen::Vector3d p = s.q.head<3>();
+  const auto& o = s.q.segment<4>(3);
+  const auto chest_force = [&](const std::string& robot, const std::string& accelerations) {
+    std::ostringstream yaml;
+    yaml.precision(17);
+    yaml << "robot: " << robot << "\nurdf: " << urdf.string() << "\nbase: fixed\nbase_position: ["
+         << p[0] << ", " << p[1] << ", " << p[2] << "]\nbase_quaternion: [" << o[0] << ", " << o[1]
+         << ", " << o[2] << ", " << o[3]
+         << "]\njoint_torques: force_torque\ncontact_links: [l_sole, r_sole]\n"
+            "extra_links: [chest]\ntorque_accelerations: "
+         << accelerations << "\n";
+    EstimatorFixture fixture(robot, m.joint_name, yaml.str(), 2, {}, {"l_foot", "r_foot"},
+                             /*floating_base=*/true, /*imu=*/true);
+    fixture.set_readings(readings);
+    fixture.set_imu(imu_orientation, accelerometer);
+    const Eigen::VectorXd q = s.q.tail(m.n_joints);
+    wbi::msg::StateEstimate state;
+    for (std::uint64_t k = 0; k < 3; ++k) {
+      state = fixture.step(k, q);
+    }
+    if (accelerations == "imu") {
+      for (int j = 0; j < m.n_joints; ++j) {
+        EXPECT_NEAR(state.tau()[static_cast<std::size_t>(j)], s.tau[j], 1e-6) << m.joint_name[j];
+      }
+    }
+    const auto& f = state.external_wrenches().at(2).wrench().force();
+    return Eigen::Vector3d(f.x(), f.y(), f.z());
+  };
+  const Eigen::Vector3d true_chest = s.wrenches[2].wrench.head<3>();
+  EXPECT_LT((chest_force("ftt_imu", "imu") - true_chest).norm(), 1e-6);
+  // Quasi-static, the chest takes the whole robot's m a (the humanoid: ~34 kg).
+  EXPECT_GT((chest_force("ftt_none", "none") - true_chest).norm(), 10.0);
 }
 
 // Joint torques: a joint without a sensor (NaN on the wire, idl/sensors.idl)
@@ -454,6 +529,17 @@ TEST(EstimatorComponent, LeggedBaseWithoutAnImuIsReported) {
   fixture.send(0, Eigen::VectorXd::Zero(model.n_joints));
   EXPECT_NE(fixture.status_error("has no IMU").find("robot 'blind' has no IMU"), std::string::npos);
   EXPECT_FALSE(fixture.next_estimate(100ms).has_value());
+  // The same for the torques' accelerations.
+  EstimatorFixture torques("blind_torques", joints,
+                           "robot: blind_torques\nurdf: " + urdf +
+                               "\njoint_torques: force_torque\ncontact_links: [l_sole, r_sole]\n"
+                               "extra_links: [chest]\ntorque_accelerations: imu\n",
+                           2, {}, {"l_foot", "r_foot"}, /*floating_base=*/true);
+  torques.send(0, Eigen::VectorXd::Zero(model.n_joints));
+  EXPECT_NE(torques.status_error("no IMU").find("torque_accelerations: imu: the robot has no IMU"),
+            std::string::npos)
+      << torques.status_error("no IMU");
+  EXPECT_FALSE(torques.next_estimate(100ms).has_value());
 }
 
 // accelerations: model on the project's arm, driven in torque control by the
@@ -607,7 +693,7 @@ TEST(EstimatorComponent, BadParametersAreNamed) {
       std::string::npos);
   EXPECT_NE(configure("robot: r\njoint_torques: force_torque\nurdf: x.urdf\n"
                       "contact_links: [a]\ntorque_accelerations: measured\n")
-                .find("torque_accelerations must be none or estimated, got 'measured'"),
+                .find("torque_accelerations must be none, estimated or imu, got 'measured'"),
             std::string::npos);
 }
 

@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include <Eigen/Geometry>
 #include <wbi/model/urdf.hpp>
 
 #include "base_from_state.hpp"
@@ -36,12 +37,16 @@ std::optional<TorqueEstimationConfig> TorqueEstimationConfig::from(
   c.force_limit = parameters.get<double>("force_limit", c.force_limit);
   c.torque_limit = parameters.get<double>("torque_limit", c.torque_limit);
   const auto accelerations = parameters.get<std::string>("torque_accelerations", "none");
-  if (accelerations != "none" && accelerations != "estimated") {
+  if (accelerations == "estimated") {
+    c.accelerations = Accelerations::estimated;
+  } else if (accelerations == "imu") {
+    c.accelerations = Accelerations::imu;
+    c.imu = parameters.get<std::string>("imu", "");
+  } else if (accelerations != "none") {
     throw runtime::ParameterError(parameters.where("torque_accelerations") +
-                                  ": torque_accelerations must be none or estimated, got '" +
+                                  ": torque_accelerations must be none, estimated or imu, got '" +
                                   accelerations + "'");
   }
-  c.use_accelerations = accelerations == "estimated";
   if (c.force_limit < 0.0 || c.torque_limit < 0.0) {
     throw runtime::ParameterError(
         parameters.where(c.force_limit < 0.0 ? "force_limit" : "torque_limit") +
@@ -72,6 +77,22 @@ TorquesFromForceTorque::TorquesFromForceTorque(const TorqueEstimationConfig& con
         {name, model.frame_joint[static_cast<std::size_t>(model.frame_id(frame))]});
     sensor_names_.push_back(name);
   }
+  if (config.accelerations == TorqueEstimationConfig::Accelerations::imu) {
+    int imus = 0;
+    for (const auto& sensor : description.sensors()) {
+      if (sensor.kind() == wbi::msg::SensorKind::IMU) {
+        if (imu_index_ < 0 && (config.imu.empty() || sensor.name().to_string() == config.imu)) {
+          imu_index_ = imus;
+        }
+        ++imus;
+      }
+    }
+    if (imu_index_ < 0) {
+      throw std::invalid_argument(
+          "torque_accelerations: imu: the robot has no IMU" +
+          (config.imu.empty() ? std::string() : " named '" + config.imu + "'"));
+    }
+  }
   options.contact_links = config.contact_links;
   options.extra_links = config.extra_links;
   options.contact_on_force = config.contact_on_force;
@@ -87,13 +108,14 @@ TorquesFromForceTorque::TorquesFromForceTorque(const TorqueEstimationConfig& con
   nu_.setZero(model.nv);
   dnu_.setZero(model.nv);
   torques_.setZero(model.n_joints);
-  use_accelerations_ = config.use_accelerations;
+  accelerations_ = config.accelerations;
 }
 
 bool TorquesFromForceTorque::update(const wbi::msg::SensorSample& sample, const Eigen::VectorXd& q,
                                     const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq,
                                     const wbi::msg::StateEstimate& state) {
-  if (sample.force_torque().size() != readings_.size()) {
+  if (sample.force_torque().size() != readings_.size() ||
+      static_cast<int>(sample.imus().size()) <= imu_index_) {
     return false;
   }
   for (std::size_t i = 0; i < readings_.size(); ++i) {
@@ -102,15 +124,24 @@ bool TorquesFromForceTorque::update(const wbi::msg::SensorSample& sample, const 
         w.torque().z();
   }
   const model::Model& m = estimator_->model();
+  using Accelerations = TorqueEstimationConfig::Accelerations;
   if (m.floating_base) {
     base_from_state(state, q_model_, nu_);
-    if (use_accelerations_) {
+    if (accelerations_ == Accelerations::estimated) {
       dnu_.head<6>() = Eigen::Map<const model::Vector6d>(state.base_acceleration().data());
+    } else if (accelerations_ == Accelerations::imu) {
+      // The accelerometer reads the proper acceleration f = Rᵀ (a − g): a = R f + g.
+      const auto& imu = sample.imus()[static_cast<std::size_t>(imu_index_)];
+      const auto& o = imu.orientation();
+      const auto& f = imu.linear_acceleration();
+      dnu_.head<3>() =
+          Eigen::Quaterniond(o.w(), o.x(), o.y(), o.z()) * Eigen::Vector3d(f.x(), f.y(), f.z()) +
+          estimator_->options().gravity;
     }
   }
   q_model_.tail(m.n_joints) = q;
   nu_.tail(m.n_joints) = dq;
-  if (use_accelerations_) {
+  if (accelerations_ == Accelerations::estimated) {
     dnu_.tail(m.n_joints) = ddq;
   }
   estimator_->update(q_model_, nu_, dnu_, readings_);
@@ -133,6 +164,12 @@ std::string TorquesFromForceTorque::missing_readings(const wbi::msg::SensorSampl
   std::string names;
   for (std::size_t i = sample.force_torque().size(); i < sensor_names_.size(); ++i) {
     names += (names.empty() ? "" : ", ") + sensor_names_[i];
+  }
+  if (static_cast<int>(sample.imus().size()) <= imu_index_ &&
+      sample.force_torque().size() == sensor_names_.size()) {
+    return "joint_torques: force_torque: torque_accelerations: imu: sensor samples carry " +
+           std::to_string(sample.imus().size()) + " IMU readings, the IMU is number " +
+           std::to_string(imu_index_ + 1) + "; torques and wrenches are held";
   }
   return "joint_torques: force_torque: sensor samples carry " +
          std::to_string(sample.force_torque().size()) + " F/T readings, the description " +

@@ -14,7 +14,9 @@
 #include <wbi/msg/state.h>
 #include <Eigen/Core>
 #include <wbi/estimation/wrench_estimator.hpp>
+
 #include <wbi/runtime/parameters.hpp>
+#include "wbi/estimator/legged_base_estimator.hpp"
 
 namespace wbi::estimator::detail {
 
@@ -29,11 +31,17 @@ struct TorqueEstimationConfig {
   std::map<std::string, double> link_off_force;
   double force_limit = 0.0;   // 0: no limit
   double torque_limit = 0.0;  // 0: no limit
-  // Whether the estimated q̈ and base acceleration enter the dynamics; without
-  // them (the default) the estimate is quasi-static: velocity terms, gravity and
-  // the readings. Measured in balancing (README): the accelerations differentiated
-  // from encoders and the legged base were noisier than the inertial terms they add.
-  bool use_accelerations = false;
+  // What accelerations enter the dynamics. none (the default): the estimate is
+  // quasi-static (velocity terms, gravity and the readings). estimated: the
+  // state's q̈ and base acceleration; measured in balancing (README), the
+  // accelerations differentiated from encoders and the legged base were noisier
+  // than the inertial terms they add. imu: the base's linear acceleration is the
+  // IMU's (its accelerometer turned into the world by its orientation, gravity
+  // added back), q̈ and the angular acceleration 0: a push's reaction is in the
+  // submodels' balance from its first tick.
+  enum class Accelerations { none, estimated, imu };
+  Accelerations accelerations = Accelerations::none;
+  std::string imu;  // the estimator's `imu`: its name in the description ("": the first)
 
   // joint_torques: sensors (the default, no config) or force_torque. Throws
   // runtime::ParameterError naming the parameter.
@@ -52,7 +60,8 @@ class TorquesFromForceTorque {
 
   // One sample: q, dq, ddq of the joints, the base as in `state` (pose,
   // velocity, acceleration already written). False, with the sample left
-  // unused, when it lacks F/T readings (counted by the caller). Never allocates.
+  // unused, when it lacks F/T readings or, with accelerations: imu, the IMU's
+  // (counted by the caller). Never allocates.
   bool update(const wbi::msg::SensorSample& sample, const Eigen::VectorXd& q,
               const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq,
               const wbi::msg::StateEstimate& state);
@@ -77,7 +86,9 @@ class TorquesFromForceTorque {
   Eigen::VectorXd q_model_, nu_, dnu_, torques_;
   int invalid_joints_ = 0;
   int invalid_wrenches_ = 0;
-  bool use_accelerations_ = false;  // else dnu_ stays zero
+  TorqueEstimationConfig::Accelerations accelerations_ =
+      TorqueEstimationConfig::Accelerations::none;  // none: dnu_ stays zero
+  int imu_index_ = -1;                              // in the samples' imus, with accelerations: imu
 };
 
 }  // namespace wbi::estimator::detail
