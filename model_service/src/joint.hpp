@@ -59,28 +59,51 @@ inline JointCalc joint_calc(JointType type, const Vector3d& axis, double q) {
 // world: columns K1, K2 rotate in their plane, S comes from column K. K is a template
 // argument so that every column index is a constant: with a runtime k, R_WJ went
 // through the stack and clang 14 reloaded its columns at run-time offsets.
+// Rotations are read and written by columns only (3-vectors at 0, 24, 48 bytes): the
+// next joint reads R_WB as its R_WP, and clang 14 copies a whole Matrix3d in 16-byte
+// pieces at 0, 16, 32, 48, which straddle the column stores and cannot be forwarded
+// from them (a store-forwarding stall per piece on every joint of a chain).
 template <int K>
 inline void joint_forward_axis(bool revolute, double sign, double q, const Matrix3d& R_WJ,
                                Matrix3d& R_WB, Vector3d& p_WB, Vector6d& S) {
   constexpr int K1 = (K + 1) % 3;
   constexpr int K2 = (K + 2) % 3;
-  const Vector3d a_W = sign * R_WJ.col(K);
+  const Vector3d c_K = R_WJ.col(K);
+  const Vector3d c_K1 = R_WJ.col(K1);
+  const Vector3d c_K2 = R_WJ.col(K2);
+  const Vector3d a_W = sign * c_K;
   if (revolute) {
     double s, c;
     sin_cos(sign * q, s, c);
-    R_WB.col(K) = R_WJ.col(K);
-    R_WB.col(K1) = c * R_WJ.col(K1) + s * R_WJ.col(K2);
-    R_WB.col(K2) = c * R_WJ.col(K2) - s * R_WJ.col(K1);
+    R_WB.col(K) = c_K;
+    R_WB.col(K1) = c * c_K1 + s * c_K2;
+    R_WB.col(K2) = c * c_K2 - s * c_K1;
     // Halves by fixed-size blocks, not `S << a, b`: the comma initializer copies
     // each 3-vector through a runtime-sized block, whose never-taken 4-wide AVX
     // path g++ 12 flags with -Warray-bounds (GCC PR 106247, Eigen #2506).
     S.head<3>() = p_WB.cross(a_W);
     S.tail<3>() = a_W;
   } else {
-    R_WB = R_WJ;
+    R_WB.col(K) = c_K;
+    R_WB.col(K1) = c_K1;
+    R_WB.col(K2) = c_K2;
     p_WB += q * a_W;
     S.head<3>() = a_W;
     S.tail<3>().setZero();
+  }
+}
+
+template <int K>
+inline void joint_forward_axis(const Model& model, int i, double q, const Matrix3d& R_WP,
+                               Matrix3d& R_WB, Vector3d& p_WB, Vector6d& S) {
+  const bool revolute = model.body_joint_type[i] == JointType::kRevolute;
+  const double sign = model.body_joint_axis_sign[i];
+  if (model.joint_R_PJ_identity[i]) {
+    joint_forward_axis<K>(revolute, sign, q, R_WP, R_WB, p_WB, S);  // R_WJ = R_WP, no copy
+  } else {
+    Matrix3d R_WJ;
+    R_WJ.noalias() = R_WP * model.joint_R_PJ[i];
+    joint_forward_axis<K>(revolute, sign, q, R_WJ, R_WB, p_WB, S);
   }
 }
 
@@ -89,27 +112,25 @@ inline void joint_forward_axis(bool revolute, double sign, double q, const Matri
 // Coordinate axes (±e_k, the usual case in URDFs) rotate two columns only.
 inline void joint_forward(const Model& model, int i, double q, const Matrix3d& R_WP,
                           const Vector3d& p_WP, Matrix3d& R_WB, Vector3d& p_WB, Vector6d& S) {
+  p_WB.noalias() = p_WP + R_WP * model.joint_p_PJ[i];
+  switch (model.body_joint_axis_index[i]) {
+    case 0:
+      joint_forward_axis<0>(model, i, q, R_WP, R_WB, p_WB, S);
+      return;
+    case 1:
+      joint_forward_axis<1>(model, i, q, R_WP, R_WB, p_WB, S);
+      return;
+    case 2:
+      joint_forward_axis<2>(model, i, q, R_WP, R_WB, p_WB, S);
+      return;
+    default:
+      break;
+  }
   Matrix3d R_WJ;
   if (model.joint_R_PJ_identity[i]) {
     R_WJ = R_WP;
   } else {
     R_WJ.noalias() = R_WP * model.joint_R_PJ[i];
-  }
-  p_WB.noalias() = p_WP + R_WP * model.joint_p_PJ[i];
-  const bool revolute = model.body_joint_type[i] == JointType::kRevolute;
-  const double sign = model.body_joint_axis_sign[i];
-  switch (model.body_joint_axis_index[i]) {
-    case 0:
-      joint_forward_axis<0>(revolute, sign, q, R_WJ, R_WB, p_WB, S);
-      return;
-    case 1:
-      joint_forward_axis<1>(revolute, sign, q, R_WJ, R_WB, p_WB, S);
-      return;
-    case 2:
-      joint_forward_axis<2>(revolute, sign, q, R_WJ, R_WB, p_WB, S);
-      return;
-    default:
-      break;
   }
   const JointCalc jc = joint_calc(model.body_joint_type[i], model.body_joint_axis[i], q);
   p_WB.noalias() += R_WJ * jc.p;
