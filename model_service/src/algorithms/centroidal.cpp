@@ -27,22 +27,22 @@ const Vector6d& centroidal_momentum(const Model& model, Data& data, const ConstV
 const Eigen::MatrixXd& centroidal_momentum_matrix(const Model& model, Data& data,
                                                   const ConstVectorRef& q) {
   forward_kinematics(model, data, q);
-  detail::world_inertias(model, data);
   detail::composite_inertias(model, data);
   const SpatialInertia& I_tot = data.I_C[0];
   data.com = I_tot.h / I_tot.m;
   const Vector3d& p_B = data.p_WB[0];
   Eigen::MatrixXd& Ag = data.Ag;
-  // joint columns: I_C[j] S_j, moment taken about the CoM
+  // joint columns: I_C[j] S_j, moment taken about the CoM (fixed-size blocks: Ag.col(k)
+  // has a runtime row count, a copy that clang 14 made a memcpy call per column)
   for (int j = 1; j < model.n_bodies; ++j) {
-    Ag.col(model.body_v_index[j]) = force_at_point(data.I_C[j] * data.S[j], data.com);
+    Ag.block<6, 1>(0, model.body_v_index[j]) = force_at_point(data.I_C[j] * data.S[j], data.com);
   }
   // base columns: I_C[0] S_B e_k, moment about the CoM
   if (model.floating_base) {
     for (int k = 0; k < 6; ++k) {
       Vector6d e = Vector6d::Zero();
       e[k] = 1.0;
-      Ag.col(k) = force_at_point(I_tot * detail::base_motion(p_B, e), data.com);
+      Ag.block<6, 1>(0, k) = force_at_point(I_tot * detail::base_motion(p_B, e), data.com);
     }
   }
   return Ag;
