@@ -64,13 +64,11 @@ inline JointCalc joint_calc(JointType type, const Vector3d& axis, double q) {
 // pieces at 0, 16, 32, 48, which straddle the column stores and cannot be forwarded
 // from them (a store-forwarding stall per piece on every joint of a chain).
 template <int K>
-inline void joint_forward_axis(bool revolute, double sign, double q, const Matrix3d& R_WJ,
-                               Matrix3d& R_WB, Vector3d& p_WB, Vector6d& S) {
+inline void joint_forward_axis(bool revolute, double sign, double q, const Vector3d& c_K,
+                               const Vector3d& c_K1, const Vector3d& c_K2, Matrix3d& R_WB,
+                               Vector3d& p_WB, Vector6d& S) {
   constexpr int K1 = (K + 1) % 3;
   constexpr int K2 = (K + 2) % 3;
-  const Vector3d c_K = R_WJ.col(K);
-  const Vector3d c_K1 = R_WJ.col(K1);
-  const Vector3d c_K2 = R_WJ.col(K2);
   const Vector3d a_W = sign * c_K;
   if (revolute) {
     double s, c;
@@ -93,17 +91,22 @@ inline void joint_forward_axis(bool revolute, double sign, double q, const Matri
   }
 }
 
+// The columns of R_WJ = R_WP R_PJ, each as R_WP times a column of R_PJ: no Matrix3d
+// temporary, which clang 14 stored in other pieces than the columns read back.
 template <int K>
 inline void joint_forward_axis(const Model& model, int i, double q, const Matrix3d& R_WP,
                                Matrix3d& R_WB, Vector3d& p_WB, Vector6d& S) {
+  constexpr int K1 = (K + 1) % 3;
+  constexpr int K2 = (K + 2) % 3;
   const bool revolute = model.body_joint_type[i] == JointType::kRevolute;
   const double sign = model.body_joint_axis_sign[i];
   if (model.joint_R_PJ_identity[i]) {
-    joint_forward_axis<K>(revolute, sign, q, R_WP, R_WB, p_WB, S);  // R_WJ = R_WP, no copy
+    joint_forward_axis<K>(revolute, sign, q, R_WP.col(K), R_WP.col(K1), R_WP.col(K2), R_WB, p_WB,
+                          S);
   } else {
-    Matrix3d R_WJ;
-    R_WJ.noalias() = R_WP * model.joint_R_PJ[i];
-    joint_forward_axis<K>(revolute, sign, q, R_WJ, R_WB, p_WB, S);
+    const Matrix3d& R_PJ = model.joint_R_PJ[i];
+    joint_forward_axis<K>(revolute, sign, q, R_WP * R_PJ.col(K), R_WP * R_PJ.col(K1),
+                          R_WP * R_PJ.col(K2), R_WB, p_WB, S);
   }
 }
 
