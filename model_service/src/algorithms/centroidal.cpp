@@ -32,10 +32,15 @@ const Eigen::MatrixXd& centroidal_momentum_matrix(const Model& model, Data& data
   data.com = I_tot.h / I_tot.m;
   const Vector3d& p_B = data.p_WB[0];
   Eigen::MatrixXd& Ag = data.Ag;
-  // joint columns: I_C[j] S_j, moment taken about the CoM (fixed-size blocks: Ag.col(k)
-  // has a runtime row count, a copy that clang 14 made a memcpy call per column)
+  // joint columns: I_C[j] S_j, moment taken about the CoM; by 3-vector halves into
+  // fixed-size blocks (Ag.col(k) has a runtime row count, a copy that clang 14 made a
+  // memcpy call per column; a Vector6d in between costs a mismatched round trip)
+  const Vector3d& com = data.com;
   for (int j = 1; j < model.n_bodies; ++j) {
-    Ag.block<6, 1>(0, model.body_v_index[j]) = force_at_point(data.I_C[j] * data.S[j], data.com);
+    const int k = model.body_v_index[j];
+    const Vector3d l = data.I_C[j].linear(data.S[j]);
+    Ag.block<3, 1>(0, k) = l;
+    Ag.block<3, 1>(3, k) = data.I_C[j].angular(data.S[j]) - com.cross(l);
   }
   // base columns: I_C[0] S_B e_k, moment about the CoM
   if (model.floating_base) {

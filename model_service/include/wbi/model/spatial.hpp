@@ -69,11 +69,11 @@ struct SpatialInertia {
   Matrix3d I = Matrix3d::Zero();
 
   // Momentum I·v: (m v − h × ω, h × v + I ω).
-  Vector6d operator*(const Vector6d& v) const {
-    const Vector3d lin = m * v.head<3>() - h.cross(v.tail<3>());
-    const Vector3d ang = h.cross(v.head<3>()) + I * v.tail<3>();
-    return join(lin, ang);
-  }
+  Vector6d operator*(const Vector6d& v) const { return join(linear(v), angular(v)); }
+  // Its halves, for callers that go on with 3-vectors: the Vector6d in between costs a
+  // round trip through memory whose pieces do not match (join).
+  Vector3d linear(const Vector6d& v) const { return m * v.head<3>() - h.cross(v.tail<3>()); }
+  Vector3d angular(const Vector6d& v) const { return h.cross(v.head<3>()) + I * v.tail<3>(); }
   SpatialInertia& operator+=(const SpatialInertia& o) {
     m += o.m;
     h += o.h;
