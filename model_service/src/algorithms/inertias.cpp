@@ -12,13 +12,17 @@ inline void world_inertia(const Model& model, const Data& data, int i, SpatialIn
   const Vector3d c = data.p_WB[i] + R * model.body_com[i];
   I.m = m;
   I.h = m * c;
-  // R I_c Rᵀ, symmetric: T = R I_c, then the 6 unique entries of T Rᵀ
+  // R I_c Rᵀ, symmetric: T = R I_c, P = T Rᵀ as a whole product (vectorised by
+  // columns; the 6 dots of rows of T and R were strided scalar code), then its upper
+  // triangle mirrored so that I stays exactly symmetric
   Matrix3d T;
   T.noalias() = R * model.body_inertia_c[i];
+  Matrix3d P;
+  P.noalias() = T * R.transpose();
   const double cc = c.squaredNorm();
   for (int a = 0; a < 3; ++a) {
     for (int b = a; b < 3; ++b) {
-      I.I(a, b) = I.I(b, a) = T.row(a).dot(R.row(b)) + m * ((a == b ? cc : 0.0) - c[a] * c[b]);
+      I.I(a, b) = I.I(b, a) = P(a, b) + m * ((a == b ? cc : 0.0) - c[a] * c[b]);
     }
   }
 }
