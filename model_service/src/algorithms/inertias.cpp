@@ -4,8 +4,11 @@ namespace wbi::model::detail {
 
 namespace {
 
-// The inertia of body i in world axes about the world origin, into I.
-inline void world_inertia(const Model& model, const Data& data, int i, SpatialInertia& I) {
+// The inertia of body i in world axes about the world origin, into I. Always inlined:
+// with two callers, g++ without -march=native left it out of line, 3-4 % slower A_G
+// and centroidal momentum than the loop it came from.
+[[gnu::always_inline]] inline void world_inertia(const Model& model, const Data& data, int i,
+                                                 SpatialInertia& I) {
   // c = p + R c_B;  I_O = R I_c Rᵀ + m [c]×ᵀ[c]×
   const double m = model.body_mass[i];
   const Matrix3d& R = data.R_WB[i];
