@@ -1,6 +1,7 @@
 // Benchmarks of the model library: ns per call of each algorithm at random
 // states, on iCub 3 (../shared/models/iCubGenova09, free-floating, 38 velocities)
-// and on models/humanoid.urdf; M, RNEA and ABA also on iCub 3 with armature.
+// and on models/humanoid.urdf; M, RNEA and ABA also on iCub 3 with armature;
+// every algorithm also on TALOS (../shared/models/talos/talos_reduced.urdf, 38 velocities).
 // Every call includes its own forward kinematics;
 // FrameJacobian includes the kinematics of the frame's support only, and
 // FrameJacobianAfterKinematics times the Jacobian alone after a full FK.
@@ -30,16 +31,19 @@ struct Fixture {
 
 std::filesystem::path source_dir() { return std::filesystem::path(WBI_SOURCE_DIR); }
 
-// "icub3", "humanoid", or "icub3_armature": iCub 3 with an armature of 0.05 on every joint.
+// "icub3", "talos", "humanoid", or "icub3_armature": iCub 3 with an armature of 0.05 on
+// every joint.
 const Fixture* fixture(const std::string& which) {
-  static std::unique_ptr<Fixture> icub, icub_armature, humanoid;
+  static std::unique_ptr<Fixture> icub, icub_armature, talos, humanoid;
   std::unique_ptr<Fixture>& f = which == "icub3"            ? icub
                                 : which == "icub3_armature" ? icub_armature
+                                : which == "talos"          ? talos
                                                             : humanoid;
   if (!f) {
-    const auto path = which.starts_with("icub3")
-                          ? source_dir().parent_path() / "shared/models/iCubGenova09/model.urdf"
-                          : source_dir() / "models/humanoid.urdf";
+    const auto models = source_dir().parent_path() / "shared/models";
+    const auto path = which.starts_with("icub3") ? models / "iCubGenova09/model.urdf"
+                      : which == "talos"         ? models / "talos/talos_reduced.urdf"
+                                                 : source_dir() / "models/humanoid.urdf";
     if (!std::filesystem::exists(path)) {
       return nullptr;
     }
@@ -189,6 +193,7 @@ void BM_ComJacobian(benchmark::State& s, const std::string& m) {
 
 WBI_BENCH_ALL(icub3);
 WBI_BENCH_ALL(humanoid);
+WBI_BENCH_ALL(talos);
 // Armature enters these three (and no other algorithm).
 BENCHMARK_CAPTURE(BM_MassMatrix, icub3_armature, "icub3_armature");
 BENCHMARK_CAPTURE(BM_InverseDynamics, icub3_armature, "icub3_armature");

@@ -35,10 +35,7 @@ inline void check_frame(const Model& model, int frame) {
 
 // S_B ν_B for the mixed base velocity (ṗ_B, ω_B): (ṗ_B + p_B × ω_B, ω_B) at the world origin.
 inline Vector6d base_motion(const Vector3d& p_B, const Vector6d& nu_B) {
-  Vector6d r;
-  r.head<3>() = nu_B.head<3>() + p_B.cross(nu_B.tail<3>());
-  r.tail<3>() = nu_B.tail<3>();
-  return r;
+  return join(nu_B.head<3>() + p_B.cross(nu_B.tail<3>()), nu_B.tail<3>());
 }
 
 // S_Bᵀ f: a world-origin force as (force, moment about p_B).

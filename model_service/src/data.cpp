@@ -10,7 +10,6 @@ Data::Data(const Model& model)
       I_W(static_cast<std::size_t>(model.n_bodies)),
       I_C(static_cast<std::size_t>(model.n_bodies)),
       F(Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, model.n_bodies)),
-      M_row(Eigen::RowVectorXd::Zero(model.n_bodies)),
       v(static_cast<std::size_t>(model.n_bodies), Vector6d::Zero()),
       a(static_cast<std::size_t>(model.n_bodies), Vector6d::Zero()),
       f(static_cast<std::size_t>(model.n_bodies), Vector6d::Zero()),

@@ -16,7 +16,9 @@ void world_inertias(const Model& model, Data& data);
 // Pre: I_W current. Writes: IA.
 void articulated_inertias(const Model& model, Data& data);
 
-// I_C[i] = I_W[i] + Σ children I_C[c] (RBDA Table 6.2, first loop). Pre: I_W current. Writes: I_C.
+// I_C[i] = I_W[i] + Σ children I_C[c] (RBDA Table 6.2, first loop), the body inertias
+// computed afresh (I_W is neither read nor written). Pre: forward_kinematics current.
+// Writes: I_C.
 void composite_inertias(const Model& model, Data& data);
 
 // Mass and first moment only, straight from the poses: I_C[i].m, I_C[i].h

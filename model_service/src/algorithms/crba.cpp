@@ -8,7 +8,6 @@ namespace wbi::model {
 
 const Eigen::MatrixXd& mass_matrix(const Model& model, Data& data, const ConstVectorRef& q) {
   forward_kinematics(model, data, q);
-  detail::world_inertias(model, data);
   detail::composite_inertias(model, data);
   Eigen::MatrixXd& M = data.M;
   auto& F = data.F;
@@ -18,18 +17,16 @@ const Eigen::MatrixXd& mass_matrix(const Model& model, Data& data, const ConstVe
   for (int j = 1; j < model.n_bodies; ++j) {
     F.col(j) = data.I_C[j] * data.S[j];
   }
-  // M_ij = S_iᵀ F_j for j in the subtree of i (bodies i … i + n − 1, contiguous by construction)
+  // M_ij = S_iᵀ F_j for j in the subtree of i (bodies i … i + n − 1, contiguous by
+  // construction). One fixed-size 6-dot per entry: the row as a 1×6 by 6×n product went
+  // through Eigen's runtime-sized GEMV for a handful of columns (n is mostly 1 to 7).
   for (int i = 1; i < model.n_bodies; ++i) {
     const int n = model.body_subtree_size[i];
     const int vi = model.body_v_index[i];
-    if (model.joint_order_is_body_order) {
-      M.block(vi, vi, 1, n).noalias() = data.S[i].transpose() * F.middleCols(i, n);
-      M.block(vi + 1, vi, n - 1, 1) = M.block(vi, vi + 1, 1, n - 1).transpose();
-    } else {
-      data.M_row.segment(i, n).noalias() = data.S[i].transpose() * F.middleCols(i, n);
-      for (int j = i; j < i + n; ++j) {
-        M(vi, model.body_v_index[j]) = M(model.body_v_index[j], vi) = data.M_row[j];
-      }
+    const Vector6d& S_i = data.S[i];
+    for (int j = i; j < i + n; ++j) {
+      const int vj = model.body_v_index[j];
+      M(vi, vj) = M(vj, vi) = S_i.dot(F.col(j));
     }
   }
   if (nb == 6) {

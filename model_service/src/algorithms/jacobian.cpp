@@ -13,8 +13,13 @@ const Eigen::MatrixXd& frame_jacobian(const Model& model, Data& data, int frame)
   Eigen::MatrixXd& J = data.J;
   J.setZero();
   // support of the frame: column k = S_k seen at p_F = (s_O + ω_k × p_F, ω_k)
+  // Written as two fixed-size 3-blocks: J is 6 × nv with 6 known at run time only, and
+  // J.col(k) = (a Vector6d) was a runtime-sized copy that clang 14 made a memcpy call.
   for (int i = b; i > 0; i = model.parent[i]) {
-    J.col(model.body_v_index[i]) = motion_at_point(data.S[i], p_F);
+    const Vector6d& S = data.S[i];
+    const int k = model.body_v_index[i];
+    J.block<3, 1>(0, k) = S.head<3>() + S.tail<3>().cross(p_F);
+    J.block<3, 1>(3, k) = S.tail<3>();
   }
   // base: ṗ_F = ṗ_B + ω_B × (p_F − p_B),  ω_F = ω_B
   if (model.floating_base) {

@@ -34,10 +34,17 @@ const Eigen::VectorXd& inverse_dynamics(const Model& model, Data& data, const Co
   for (int i = 1; i < model.n_bodies; ++i) {
     const int lambda = model.parent[i];
     const int k = model.body_v_index[i];
-    const Vector6d vJ = data.S[i] * nu[k];
-    data.v[i] = data.v[lambda] + vJ;
-    data.a[i] = data.a[lambda] + data.S[i] * dnu[k] + cross_motion(data.v[i], vJ);
-    data.f[i] = data.I_W[i] * data.a[i] + cross_force(data.v[i], data.I_W[i] * data.v[i]);
+    // In locals, stored once: reading v_i, a_i back from Data right after storing them
+    // made clang 14 load 3-vector halves across two 16-byte stores (a store-forwarding
+    // stall on every cross product).
+    const Vector6d& S = data.S[i];
+    const Vector6d vJ = S * nu[k];
+    const Vector6d v = data.v[lambda] + vJ;
+    const Vector6d a = data.a[lambda] + S * dnu[k] + cross_motion(v, vJ);
+    const SpatialInertia& I = data.I_W[i];
+    data.f[i] = I * a + cross_force(v, I * v);
+    data.v[i] = v;
+    data.a[i] = a;
   }
   // external wrenches: (f, n_F) at p_F → (f, n_F + p_F × f) at the world origin
   for (const ExternalWrench& w : wrenches) {

@@ -28,12 +28,11 @@ struct Data {
   std::vector<Vector6d> S;   // [n_bodies] motion axis of the joint of body i, world, entry 0 unused
   std::vector<int> support;  // [n_bodies] frame_jacobian(q): bodies from the frame body to the root
 
-  // ---- inertias: world_inertias() (called by crba, rnea, aba, centroidal, com) ----
+  // ---- inertias: world_inertias() (rnea, aba, centroidal_momentum), composite_inertias() ----
   std::vector<SpatialInertia> I_W;  // [n_bodies] body inertia, world axes about world origin
   std::vector<SpatialInertia>
       I_C;  // [n_bodies] composite inertia of the subtree (crba, centroidal, com)
   Eigen::Matrix<double, 6, Eigen::Dynamic> F;  // [6×n_bodies] crba: I_C[j] S_j (col 0 unused)
-  Eigen::RowVectorXd M_row;                    // [n_bodies] crba: one row of M in body order
 
   // ---- velocity / acceleration stage: forward_velocity_kinematics(), rnea, aba ----
   std::vector<Vector6d> v;  // [n_bodies] spatial velocity of body i
