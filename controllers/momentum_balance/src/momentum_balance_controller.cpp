@@ -204,8 +204,8 @@ bool MomentumBalanceController::update(double /*time_s*/, double /*period_s*/) {
     max_error_ = std::max(max_error_, error);
     ++samples_;
     const auto net_miss = balance_->net_wrench(balance_->wrench_miss());
-    squared_force_gap_ += net_miss.head<3>().squaredNorm();
-    squared_moment_gap_ += net_miss.tail<3>().squaredNorm();
+    squared_force_miss_ += net_miss.head<3>().squaredNorm();
+    squared_moment_miss_ += net_miss.tail<3>().squaredNorm();
   }
   publish_signals();
   finished_ = exit_after_s_ > 0.0 && t >= exit_after_s_;
@@ -246,8 +246,8 @@ std::string MomentumBalanceController::summary() const {
     std::snprintf(text, sizeof text,
                   "\nfeet net wrench, estimated - planned, low-passed, rms: force %.3f N, moment "
                   "about the CoM %.3f N m",
-                  std::sqrt(squared_force_gap_ / samples),
-                  std::sqrt(squared_moment_gap_ / samples));
+                  std::sqrt(squared_force_miss_ / samples),
+                  std::sqrt(squared_moment_miss_ / samples));
     summary += text;
   }
   return summary;

@@ -66,8 +66,8 @@ class MomentumBalanceController final : public Controller {
   std::int64_t start_ns_ = -1, stamp_ns_ = 0;
   std::uint64_t last_seq_ = 0;
   bool has_seq_ = false;
-  double squared_error_ = 0.0, max_error_ = 0.0, squared_force_gap_ = 0.0,
-         squared_moment_gap_ = 0.0;
+  double squared_error_ = 0.0, max_error_ = 0.0, squared_force_miss_ = 0.0,
+         squared_moment_miss_ = 0.0;
   std::uint64_t samples_ = 0, new_estimators_ = 0;
   std::array<double, 9> signals_{};
   // Indices of com_kp, com_kd, angular_momentum_kd, torque_weight, wrench_weight,
