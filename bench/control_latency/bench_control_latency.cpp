@@ -1,5 +1,5 @@
 // wbi_bench_control_latency [--duration S] [--ticks N] [--deploy FILE] [--skip-ticks]
-//                           [--skip-demo]
+//                           [--skip-chain] [--skip-demo]
 //
 // (a) Control tick: this process is the controller — PD + gravity through
 //     the DDS whole-body interface, one tick = read the state estimate,
@@ -14,6 +14,11 @@
 //     observer participant in this process (latency_observer.hpp). --deploy
 //     runs another deploy file with the same robot (arm) and controller
 //     instance name (pd_gravity).
+// (c) The raw chain, run just before (b) for as long: the same five DDS hops
+//     (robot -> estimator -> controller -> model service -> controller ->
+//     robot) between four processes that only relay (dds_chain_stage.cpp),
+//     seen by the same observer. (b)'s latency over (c)'s is what the
+//     components add to the transport.
 //
 // The last line is one JSON object. Runs on WBI_DOMAIN_ID (default 77 here,
 // so that it does not meet a demo running on domain 0).
@@ -23,6 +28,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
@@ -53,6 +59,7 @@ struct Options {
   int ticks = 5000;
   std::filesystem::path deploy = kSource / "deploy" / "demo.yaml";
   bool run_ticks = true;
+  bool run_chain = true;
   bool run_demo = true;
 };
 
@@ -74,11 +81,14 @@ Options parse(int argc, char** argv) {
       options.deploy = std::filesystem::absolute(value());
     } else if (arg == "--skip-ticks") {
       options.run_ticks = false;
+    } else if (arg == "--skip-chain") {
+      options.run_chain = false;
     } else if (arg == "--skip-demo") {
       options.run_demo = false;
     } else if (arg == "--help" || arg == "-h") {
-      std::cout << "usage: wbi_bench_control_latency [--duration S (60)] [--ticks N (5000)] "
-                   "[--deploy FILE (deploy/demo.yaml)] [--skip-ticks] [--skip-demo]\n";
+      std::cout
+          << "usage: wbi_bench_control_latency [--duration S (60)] [--ticks N (5000)] "
+             "[--deploy FILE (deploy/demo.yaml)] [--skip-ticks] [--skip-chain] [--skip-demo]\n";
       std::exit(0);
     } else {
       throw std::invalid_argument("unknown option " + arg + " (see --help)");
@@ -151,6 +161,43 @@ std::string last_line_with(const std::string& text, const std::string& marker) {
   return text.substr(at, text.find('\n', at) - at);
 }
 
+// Sensor-to-command latency and its three parts, as keys PREFIXlatency_p50_us, ...
+void put_latencies(const wbi::bench::LatencyObserver::Result& r, const std::string& prefix,
+                   nlohmann::json& out) {
+  out[prefix + "latency_p50_us"] = percentile(r.latencies_us, 0.5);
+  out[prefix + "latency_p99_us"] = percentile(r.latencies_us, 0.99);
+  out[prefix + "latency_max_us"] =
+      r.latencies_us.empty() ? 0.0
+                             : *std::max_element(r.latencies_us.begin(), r.latencies_us.end());
+  out[prefix + "latency_samples"] = r.latencies_us.size();
+  for (const auto& [key, values] : {std::pair{"sensor_to_state", &r.to_state_us},
+                                    std::pair{"state_to_command", &r.to_command_us},
+                                    std::pair{"command_delivery", &r.delivery_us}}) {
+    out[prefix + key + "_p50_us"] = percentile(*values, 0.5);
+    out[prefix + key + "_p99_us"] = percentile(*values, 0.99);
+  }
+}
+
+std::size_t samples_for(double duration_s) {
+  return static_cast<std::size_t>(duration_s * 1000.0 * 1.5) + 10000;
+}
+
+// (c): the four relay stages for `duration_s`, the robot started last.
+wbi::bench::LatencyObserver::Result run_chain(double duration_s,
+                                              const std::filesystem::path& logs) {
+  wbi::dds::Participant participant("bench_observer");
+  wbi::bench::LatencyObserver observer(participant, "chain", "pd_gravity", samples_for(duration_s));
+  std::vector<std::unique_ptr<wbi::bench::LaunchProcess>> stages;
+  for (const char* role : {"model_service", "controller", "estimator", "robot"}) {
+    stages.push_back(std::make_unique<wbi::bench::LaunchProcess>(
+        "wbi_bench_dds_chain_stage", std::vector<std::string>{"--role", role},
+        logs / (std::string("wbi_bench_control_latency_chain_") + role + ".log")));
+  }
+  std::this_thread::sleep_for(std::chrono::duration<double>(duration_s));  // the run's length
+  stages.clear();                                                          // SIGTERM, each
+  return observer.result();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -181,12 +228,24 @@ int main(int argc, char** argv) {
                 << out["tick_remote"].dump() << "\n";
     }
 
+    if (options.run_chain) {
+      std::cerr << "(c) the raw five-hop chain, " << options.duration_s << " s...\n";
+      const auto chain = run_chain(options.duration_s, logs);
+      put_latencies(chain, "chain_", out);
+      std::cerr << "  chain p50 " << out["chain_latency_p50_us"] << " us, p99 "
+                << out["chain_latency_p99_us"] << " us over " << chain.latencies_us.size()
+                << " commands\n";
+      if (chain.latencies_us.empty()) {
+        std::cerr << "no command came through the chain: see "
+                  << (logs / "wbi_bench_control_latency_chain_*.log").string() << "\n";
+      }
+    }
+
     if (options.run_demo) {
       std::cerr << "(b) " << options.deploy.string() << ", " << options.duration_s << " s...\n";
       wbi::dds::Participant participant("bench_observer");
-      wbi::bench::LatencyObserver observer(
-          participant, "arm", "pd_gravity",
-          static_cast<std::size_t>(options.duration_s * 1000.0 * 1.5) + 10000);
+      wbi::bench::LatencyObserver observer(participant, "arm", "pd_gravity",
+                                           samples_for(options.duration_s));
       wbi::bench::LaunchProcess demo(options.deploy, options.duration_s,
                                      logs / "wbi_bench_control_latency_demo.log");
       // The launcher stops everything after the duration (start-up comes on top).
@@ -195,17 +254,12 @@ int main(int argc, char** argv) {
       demo.stop();
       const std::string log = demo.output();
       const auto r = observer.result();
-      out["latency_p50_us"] = percentile(r.latencies_us, 0.5);
-      out["latency_p99_us"] = percentile(r.latencies_us, 0.99);
-      out["latency_max_us"] = r.latencies_us.empty()
-                                  ? 0.0
-                                  : *std::max_element(r.latencies_us.begin(), r.latencies_us.end());
-      out["latency_samples"] = r.latencies_us.size();
-      for (const auto& [key, values] : {std::pair{"sensor_to_state", &r.to_state_us},
-                                        std::pair{"state_to_command", &r.to_command_us},
-                                        std::pair{"command_delivery", &r.delivery_us}}) {
-        out[std::string(key) + "_p50_us"] = percentile(*values, 0.5);
-        out[std::string(key) + "_p99_us"] = percentile(*values, 0.99);
+      put_latencies(r, "", out);
+      if (out.value("chain_latency_samples", 0U) > 0 && !r.latencies_us.empty()) {
+        out["latency_p50_vs_chain"] =
+            out["latency_p50_us"].get<double>() / out["chain_latency_p50_us"].get<double>();
+        out["latency_p99_vs_chain"] =
+            out["latency_p99_us"].get<double>() / out["chain_latency_p99_us"].get<double>();
       }
       // Commands that came more than one control period (1 ms) after their sensor sample.
       out["late_commands"] = std::count_if(r.latencies_us.begin(), r.latencies_us.end(),

@@ -18,21 +18,26 @@ namespace wbi::bench {
 
 namespace {
 
-std::filesystem::path wbi_executable() {
-  return std::filesystem::read_symlink("/proc/self/exe").parent_path() / "wbi";
+std::filesystem::path beside_this_executable(const std::string& program) {
+  return std::filesystem::read_symlink("/proc/self/exe").parent_path() / program;
 }
 
 }  // namespace
 
 LaunchProcess::LaunchProcess(const std::filesystem::path& deploy, double duration_s,
                              const std::filesystem::path& log)
+    : LaunchProcess("wbi", {"launch", deploy.string(), "--duration", std::to_string(duration_s)},
+                    log) {}
+
+LaunchProcess::LaunchProcess(const std::string& program, const std::vector<std::string>& args,
+                             const std::filesystem::path& log)
     : log_(log) {
-  const std::string program = wbi_executable().string();
-  std::vector<std::string> args = {program, "launch", deploy.string(), "--duration",
-                                   std::to_string(duration_s)};
+  const std::string path = beside_this_executable(program).string();
+  std::vector<std::string> words = {path};
+  words.insert(words.end(), args.begin(), args.end());
   std::vector<char*> argv;
-  for (auto& arg : args) {
-    argv.push_back(arg.data());
+  for (auto& word : words) {
+    argv.push_back(word.data());
   }
   argv.push_back(nullptr);
   posix_spawn_file_actions_t actions;
@@ -40,11 +45,11 @@ LaunchProcess::LaunchProcess(const std::filesystem::path& deploy, double duratio
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_.c_str(),
                                    O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  const int failed = posix_spawn(&pid_, program.c_str(), &actions, nullptr, argv.data(), environ);
+  const int failed = posix_spawn(&pid_, path.c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
   if (failed != 0) {
     pid_ = -1;
-    throw std::runtime_error("cannot start " + program);
+    throw std::runtime_error("cannot start " + path);
   }
 }
 

@@ -1,6 +1,6 @@
-// A `wbi launch FILE --duration S` child process of the benchmark, its output
-// going to a file (read after the run), stopped with SIGTERM (the launcher
-// then stops its own processes).
+// A child process of the benchmark (`wbi launch FILE --duration S`, or any
+// program beside it), its output going to a file (read after the run), stopped
+// with SIGTERM (a launcher then stops its own processes).
 #pragma once
 
 #include <sys/types.h>
@@ -8,6 +8,7 @@
 #include <chrono>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace wbi::bench {
 
@@ -16,6 +17,9 @@ class LaunchProcess {
   // Starts `<dir of this executable>/wbi launch deploy --duration duration_s`.
   // Throws std::runtime_error when it cannot be started.
   LaunchProcess(const std::filesystem::path& deploy, double duration_s,
+                const std::filesystem::path& log);
+  // Starts `<dir of this executable>/program args...`.
+  LaunchProcess(const std::string& program, const std::vector<std::string>& args,
                 const std::filesystem::path& log);
   ~LaunchProcess();  // stop()
   LaunchProcess(const LaunchProcess&) = delete;
