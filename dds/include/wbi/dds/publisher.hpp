@@ -2,6 +2,7 @@
 #pragma once
 
 #include <chrono>
+#include <cstddef>
 #include <string>
 
 #include "detail/endpoints.hpp"
@@ -15,14 +16,16 @@ class Publisher {
  public:
   Publisher(Participant& participant, const std::string& topic, const std::string& qos_profile)
       : writer_(participant, topic, new typename MessageTraits<T>::TypeSupport(), qos_profile),
-        bounded_(typename MessageTraits<T>::TypeSupport().is_bounded()) {}
+        max_size_(typename MessageTraits<T>::TypeSupport().is_bounded()
+                      ? T::getMaxCdrSerializedSize()
+                      : 0) {}
 
   // Returns false when the sample was not sent: larger than the largest
   // sample the IDL bounds allow (Fast DDS would send it anyway), or refused
   // by DDS (e.g. a reliable history full of unacknowledged samples). Sizes
   // of single sequences against the robot are checked by the components.
   bool publish(const T& sample) {
-    if (bounded_ && T::getCdrSerializedSize(sample) > T::getMaxCdrSerializedSize()) {
+    if (max_size_ != 0 && T::getCdrSerializedSize(sample) > max_size_) {
       return false;
     }
     return writer_.write(&sample);
@@ -44,7 +47,9 @@ class Publisher {
 
  private:
   detail::Writer writer_;
-  bool bounded_;  // every sequence of T has a bound, so a maximum size exists
+  // The largest size T's bounds allow, 0 when a sequence of T has no bound.
+  // Computed once: the generated code walks every nested type for it.
+  std::size_t max_size_;
 };
 
 }  // namespace wbi::dds
