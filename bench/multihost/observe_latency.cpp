@@ -88,6 +88,17 @@ int run(const Options& options) {
     std::this_thread::sleep_for(50ms);
   }
   std::this_thread::sleep_for(std::chrono::duration<double>(options.warmup_s));
+  // The loop rate is counted between two status reports of the controller: the
+  // window starts once one came (1 s heartbeats, best effort: over a lossy link
+  // none may have come within the warm-up; the rate was then printed as 0 Hz).
+  const auto status_deadline = std::chrono::steady_clock::now() + 10s;
+  while (observer.result().status_stamp_ns == 0) {
+    if (std::chrono::steady_clock::now() > status_deadline) {
+      throw std::runtime_error("no status of controller '" + options.controller +
+                               "' on wbi/status within 10 s after its first command");
+    }
+    std::this_thread::sleep_for(50ms);
+  }
   const LatencyObserver::Result before = observer.result();
   std::this_thread::sleep_for(std::chrono::duration<double>(options.duration_s));
   const LatencyObserver::Result after = observer.result();
