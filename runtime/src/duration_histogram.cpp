@@ -1,9 +1,10 @@
-#include "duration_histogram.hpp"
+#include "wbi/runtime/duration_histogram.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
-namespace wbi::robot {
+namespace wbi::runtime {
 
 void DurationHistogram::clear() {
   std::fill(counts_.begin(), counts_.end(), 0);
@@ -41,4 +42,12 @@ std::chrono::nanoseconds DurationHistogram::quantile(double p) const {
   return kBinWidth * static_cast<std::int64_t>(kBins);
 }
 
-}  // namespace wbi::robot
+std::string DurationHistogram::mean_and_p99() const {
+  using Ms = std::chrono::duration<double, std::milli>;
+  char text[64];
+  std::snprintf(text, sizeof text, "mean %.3f ms (p99 %.2f ms)", Ms(mean()).count(),
+                Ms(quantile(0.99)).count());
+  return text;
+}
+
+}  // namespace wbi::runtime

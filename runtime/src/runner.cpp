@@ -8,6 +8,8 @@
 #include <wbi/dds/topics.hpp>
 #include <wbi/msg/wire_vocabulary.hpp>
 
+#include "wbi/runtime/console_line.hpp"
+
 namespace wbi::runtime {
 
 namespace {
@@ -137,6 +139,7 @@ void ComponentRunner::activate() {
   {
     std::lock_guard lock(mutex_);
     stats_ = LoopStats{};
+    cycle_times_.clear();
   }
   state_ = LifecycleState::active;
   if (options_.rate_hz > 0.0) {
@@ -158,6 +161,7 @@ void ComponentRunner::stop_loop() {
 void ComponentRunner::deactivate() {
   require(LifecycleState::active, "deactivate");
   stop_loop();  // the cycle never overlaps a transition hook
+  print_cycle_times();
   try {
     component_->on_deactivate();
   } catch (const std::exception& error) {
@@ -236,6 +240,7 @@ void ComponentRunner::run_loop() {
       continue;  // no event yet, or woken early: stop requested, or spurious
     }
     const std::int64_t start_ns = clock.now_ns();
+    const auto started = std::chrono::steady_clock::now();
     bool error = false;
     std::string what;
     try {
@@ -247,6 +252,7 @@ void ComponentRunner::run_loop() {
       what = e.what();  // allocation only on the error path
     }
     const std::int64_t end_ns = clock.now_ns();
+    const auto took = std::chrono::steady_clock::now() - started;
     next_ns += period_ns;
     bool overrun = false;
     if (event_driven) {
@@ -266,6 +272,7 @@ void ComponentRunner::run_loop() {
     const double cycle_s = 1e-9 * static_cast<double>(end_ns - start_ns);
     s.cycle_mean_s += (cycle_s - s.cycle_mean_s) / static_cast<double>(s.iterations);
     s.cycle_max_s = std::max(s.cycle_max_s, cycle_s);
+    cycle_times_.add(took);
     if (last_start_ns >= 0) {
       const double period_s = 1e-9 * static_cast<double>(start_ns - last_start_ns);
       ++periods;
@@ -278,6 +285,22 @@ void ComponentRunner::run_loop() {
     }
     last_start_ns = start_ns;
   }
+}
+
+// One line at the end of a periodic component's run, e.g. "balance: 21003
+// cycles, read + update + write mean 0.071 ms (p99 0.09 ms)": with the
+// robot's lockstep line, where a tick went.
+void ComponentRunner::print_cycle_times() {
+  std::string line;
+  {
+    std::lock_guard lock(mutex_);
+    if (cycle_times_.count() == 0) {
+      return;
+    }
+    line = context_.instance + ": " + std::to_string(cycle_times_.count()) +
+           " cycles, read + update + write " + cycle_times_.mean_and_p99();
+  }
+  print_line(stdout, line);
 }
 
 void ComponentRunner::publish_status() {

@@ -15,7 +15,6 @@
 #include <wbi/msg/wire_vocabulary.hpp>
 #include <wbi/runtime/status_report.hpp>
 
-#include "duration_histogram.hpp"
 #include "tick_pacer.hpp"
 
 namespace {
@@ -224,23 +223,4 @@ TEST(LockstepPacer, SplitsTheWaitWhereTheCommandWasWritten) {
   EXPECT_GT(to_written_ms, 2.5) << line;
   EXPECT_LT(delivered_ms, to_written_ms) << line;
   EXPECT_EQ(timeouts.value(), 0u);
-}
-
-TEST(DurationHistogram, MeanAndQuantilesWithinABin) {
-  using std::chrono::microseconds;
-  wbi::robot::DurationHistogram histogram;
-  EXPECT_EQ(histogram.quantile(0.99).count(), 0) << "empty";
-  for (int i = 0; i < 100; ++i) {
-    histogram.add(microseconds(10 * i + 5));  // 5, 15, ..., 995 µs: one per 10 µs bin
-  }
-  EXPECT_EQ(histogram.count(), 100u);
-  EXPECT_EQ(histogram.mean(), microseconds(500));
-  EXPECT_EQ(histogram.quantile(0.0), microseconds(10));
-  EXPECT_EQ(histogram.quantile(0.5), microseconds(510));   // the 51st: 505 µs
-  EXPECT_EQ(histogram.quantile(0.99), microseconds(990));  // the 99th: 985 µs
-  histogram.add(std::chrono::seconds(1));                  // beyond the last bin's edge
-  EXPECT_EQ(histogram.quantile(1.0), std::chrono::milliseconds(100)) << "at least 100 ms";
-  histogram.clear();
-  EXPECT_EQ(histogram.count(), 0u);
-  EXPECT_EQ(histogram.mean().count(), 0);
 }

@@ -21,6 +21,7 @@
 #include <wbi/dds/subscriber.hpp>
 #include <wbi/dds/topics.hpp>
 #include <wbi/runtime/builtin.hpp>
+#include <wbi/runtime/duration_histogram.hpp>
 #include <wbi/runtime/host.hpp>
 
 #include "test_support.hpp"
@@ -575,3 +576,22 @@ TEST(SimClock, FollowsTheClockTopic) {
 }
 
 }  // namespace
+
+TEST(DurationHistogram, MeanAndQuantilesWithinABin) {
+  using std::chrono::microseconds;
+  wbi::runtime::DurationHistogram histogram;
+  EXPECT_EQ(histogram.quantile(0.99).count(), 0) << "empty";
+  for (int i = 0; i < 100; ++i) {
+    histogram.add(microseconds(10 * i + 5));  // 5, 15, ..., 995 µs: one per 10 µs bin
+  }
+  EXPECT_EQ(histogram.count(), 100u);
+  EXPECT_EQ(histogram.mean(), microseconds(500));
+  EXPECT_EQ(histogram.quantile(0.0), microseconds(10));
+  EXPECT_EQ(histogram.quantile(0.5), microseconds(510));   // the 51st: 505 µs
+  EXPECT_EQ(histogram.quantile(0.99), microseconds(990));  // the 99th: 985 µs
+  histogram.add(std::chrono::seconds(1));                  // beyond the last bin's edge
+  EXPECT_EQ(histogram.quantile(1.0), std::chrono::milliseconds(100)) << "at least 100 ms";
+  histogram.clear();
+  EXPECT_EQ(histogram.count(), 0u);
+  EXPECT_EQ(histogram.mean().count(), 0);
+}

@@ -152,8 +152,21 @@ void EstimatorComponent::on_configure(const runtime::Parameters& parameters,
 
 void EstimatorComponent::on_activate() {
   std::lock_guard lock(mutex_);
+  estimate_times_.clear();
   active_ = true;
   process_pending();
+}
+
+void EstimatorComponent::on_deactivate() {
+  active_ = false;
+  std::lock_guard lock(mutex_);
+  if (estimate_times_.count() > 0) {
+    runtime::print_line(stdout, "estimator of robot '" + robot_ +
+                                    "': " + std::to_string(estimate_times_.count()) +
+                                    " samples, from sample in to state out (its DDS write not "
+                                    "included) " +
+                                    estimate_times_.mean_and_p99());
+  }
 }
 
 void EstimatorComponent::on_cleanup() {

@@ -17,6 +17,7 @@
 #include <wbi/estimation/estimator_factory.hpp>
 #include <wbi/estimation/low_pass_filter.hpp>
 #include <wbi/estimation/model_kalman.hpp>
+#include <wbi/runtime/duration_histogram.hpp>
 
 #include "accelerations_from_model.hpp"
 #include "torques_from_force_torque.hpp"
@@ -33,7 +34,7 @@ class EstimatorComponent final : public runtime::Component {
   void on_configure(const runtime::Parameters& parameters,
                     const runtime::ComponentContext& context) override;
   void on_activate() override;
-  void on_deactivate() override { active_ = false; }
+  void on_deactivate() override;
   void on_cleanup() override;
   void on_shutdown() override { on_cleanup(); }
 
@@ -53,7 +54,7 @@ class EstimatorComponent final : public runtime::Component {
   void on_new_producer(const dds::detail::Guid& writer);  // caller holds mutex_
   void estimate(const wbi::msg::SensorSample& sample);
   void filter_force_torque(const wbi::msg::SensorSample& sample);
-  void publish(const wbi::msg::SensorSample& sample);
+  void fill_state(const wbi::msg::SensorSample& sample);
   void write_base(const BaseState& base);
   bool has_legged_inputs(const wbi::msg::SensorSample& sample) const;
   ImuInput sample_imu() const;
@@ -78,6 +79,9 @@ class EstimatorComponent final : public runtime::Component {
 
   std::atomic<bool> active_{false};
   std::mutex mutex_;  // between the sample and the parameter callbacks
+  // Sample in to state ready (the DDS write not included), for the end-of-run
+  // line (a lockstep run's breakdown): since the last activation.
+  runtime::DurationHistogram estimate_times_;
   std::unique_ptr<estimation::DerivativeEstimator> estimator_;
   std::optional<estimation::LowPassFilter> torque_filter_;
   std::optional<estimation::LowPassFilter> force_torque_filter_;  // 6 per F/T sensor; none: no F/T

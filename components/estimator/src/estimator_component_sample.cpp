@@ -1,6 +1,7 @@
 // The estimator component's work per sensor sample: waiting for its inputs,
 // estimating joints, F/T and base state, and publishing the StateEstimate.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <mutex>
 #include <string>
@@ -100,6 +101,7 @@ void EstimatorComponent::on_new_producer(const dds::detail::Guid& writer) {  // 
 }
 
 void EstimatorComponent::estimate(const wbi::msg::SensorSample& sample) {
+  const auto start = std::chrono::steady_clock::now();
   const auto& positions = sample.encoder_position();
   if (positions.size() != static_cast<std::size_t>(q_.size())) {
     ++ignored_;  // a sample of the wrong size is not this robot's: never applied
@@ -128,7 +130,9 @@ void EstimatorComponent::estimate(const wbi::msg::SensorSample& sample) {
     tau_ = torque_filter_->value();
   }
   filter_force_torque(sample);
-  publish(sample);
+  fill_state(sample);
+  estimate_times_.add(std::chrono::steady_clock::now() - start);
+  state_publisher_->publish(state_);
 }
 
 // The F/T readings, low-passed like the joint torques, into the state's
@@ -158,7 +162,7 @@ void EstimatorComponent::filter_force_torque(const wbi::msg::SensorSample& sampl
   }
 }
 
-void EstimatorComponent::publish(const wbi::msg::SensorSample& sample) {
+void EstimatorComponent::fill_state(const wbi::msg::SensorSample& sample) {
   auto& state = state_;
   state.header().stamp_ns(sample.header().stamp_ns());
   state.header().seq(sample.header().seq());
@@ -184,7 +188,6 @@ void EstimatorComponent::publish(const wbi::msg::SensorSample& sample) {
   out_of_order_->set(counters.out_of_order);
   gaps_->set(counters.gaps);
   non_finite_->set(counters.non_finite);
-  state_publisher_->publish(state);
 }
 
 // joint_torques: force_torque — the torques through the model from the F/T

@@ -142,27 +142,19 @@ std::string LockstepPacer::summary() const {
   if (timed_ticks_ == 0) {
     return "";
   }
-  using Ms = std::chrono::duration<double, std::milli>;
   const double simulated_s =
       std::chrono::duration<double>(period_).count() * static_cast<double>(timed_ticks_);
   const double wall_s = std::chrono::duration<double>(last_answered_ - first_answered_).count();
   const double tick_ms = 1e3 * wall_s / static_cast<double>(timed_ticks_);
-  char line[512];
+  char line[128];
   std::snprintf(line, sizeof line,
-                "lockstep: simulated %.3f s in %.1f s wall: %.2fx real time; per tick %.3f ms: "
-                "waiting for the controllers' commands mean %.3f ms (p99 %.2f ms), the robot's "
-                "own work mean %.3f ms (p99 %.2f ms)",
-                simulated_s, wall_s, wall_s > 0.0 ? simulated_s / wall_s : 0.0, tick_ms,
-                Ms(waits_.mean()).count(), Ms(waits_.quantile(0.99)).count(),
-                Ms(work_.mean()).count(), Ms(work_.quantile(0.99)).count());
-  std::string text = line;
+                "lockstep: simulated %.3f s in %.1f s wall: %.2fx real time; per tick %.3f ms: ",
+                simulated_s, wall_s, wall_s > 0.0 ? simulated_s / wall_s : 0.0, tick_ms);
+  std::string text = std::string(line) + "waiting for the controllers' commands " +
+                     waits_.mean_and_p99() + ", the robot's own work " + work_.mean_and_p99();
   if (to_written_.count() > 0) {
-    std::snprintf(line, sizeof line,
-                  "; the wait: sensors out to the last command written mean %.3f ms (p99 %.2f "
-                  "ms), its delivery to the robot mean %.3f ms (p99 %.2f ms)",
-                  Ms(to_written_.mean()).count(), Ms(to_written_.quantile(0.99)).count(),
-                  Ms(delivered_.mean()).count(), Ms(delivered_.quantile(0.99)).count());
-    text += line;
+    text += "; the wait: sensors out to the last command written " + to_written_.mean_and_p99() +
+            ", its delivery to the robot " + delivered_.mean_and_p99();
   }
   return text;
 }

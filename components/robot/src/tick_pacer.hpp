@@ -30,10 +30,9 @@
 #include <vector>
 
 #include <wbi/msg/commands.h>
+#include <wbi/runtime/duration_histogram.hpp>
 #include <wbi/runtime/event_log.hpp>
 #include <wbi/runtime/status_report.hpp>
-
-#include "duration_histogram.hpp"
 
 namespace wbi::robot {
 
@@ -174,7 +173,7 @@ class LockstepPacer final : public TickPacer {
   const std::chrono::nanoseconds period_;
   std::chrono::steady_clock::time_point first_answered_, last_answered_;
   std::uint64_t timed_ticks_ = 0;
-  DurationHistogram waits_, work_, to_written_, delivered_;
+  runtime::DurationHistogram waits_, work_, to_written_, delivered_;
 };
 
 }  // namespace wbi::robot

@@ -1,13 +1,14 @@
-// Durations of a loop's parts for its end-of-run line: count, mean and a
-// quantile, from fixed bins (10 µs wide up to 100 ms, one bin beyond), so that
-// adding one in the loop never allocates.
+// Durations of a loop's parts (a robot's tick, a component's cycle) for an end-of-run line: count,
+// mean and a quantile, from fixed bins (10 µs wide up to 100 ms, one bin beyond), so that adding
+// one in the loop never allocates.
 #pragma once
 
 #include <chrono>
 #include <cstdint>
+#include <string>
 #include <vector>
 
-namespace wbi::robot {
+namespace wbi::runtime {
 
 class DurationHistogram {
  public:
@@ -23,6 +24,8 @@ class DurationHistogram {
   // The upper edge of the bin of the p-quantile (nearest rank, 0 ≤ p ≤ 1): a
   // bound within kBinWidth. 0 when empty; at least 100 ms in the last bin.
   std::chrono::nanoseconds quantile(double p) const;
+  // "mean 0.307 ms (p99 0.52 ms)", the words of the end-of-run lines.
+  std::string mean_and_p99() const;
 
  private:
   std::vector<std::uint64_t> counts_;
@@ -30,4 +33,4 @@ class DurationHistogram {
   std::chrono::nanoseconds total_{0};
 };
 
-}  // namespace wbi::robot
+}  // namespace wbi::runtime

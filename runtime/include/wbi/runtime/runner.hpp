@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "wbi/runtime/component.hpp"
+#include "wbi/runtime/duration_histogram.hpp"
 #include "wbi/runtime/event_pump.hpp"
 
 namespace wbi::runtime {
@@ -81,6 +82,7 @@ class ComponentRunner {
   // An event-driven component's wait, bounded so that a stop request is seen.
   bool wait_for_event(std::int64_t period_ns);
   void stop_loop();
+  void print_cycle_times();
   void run_heartbeat();
 
   std::unique_ptr<Component> component_;
@@ -88,8 +90,11 @@ class ComponentRunner {
   RunnerOptions options_;
   std::atomic<LifecycleState> state_{LifecycleState::unconfigured};
 
-  mutable std::mutex mutex_;  // guards stats_
+  mutable std::mutex mutex_;  // guards stats_ and cycle_times_
   LoopStats stats_;
+  // Each cycle's read + update + write on the steady clock (the component's
+  // clock may be simulated), for the line deactivate() prints.
+  DurationHistogram cycle_times_;
 
   std::atomic<bool> loop_stop_{false};
   std::thread loop_;
