@@ -80,6 +80,12 @@ TEST(BalanceLaunch, ThreeProcessesTrackTheSinusoidFor20Seconds) {
   ASSERT_GE(times.size(), 10u) << "no progress lines\n" << out;
   EXPECT_GE(times.back(), 20.0) << "the run ended early\n" << out;
   EXPECT_NE(out.find("[controller] qp failures: 0\n"), std::string::npos) << out;
+  // Where a tick went: the robot's lockstep line, the estimator's and the
+  // balancer's own times (deploy/README.md, "Where a tick goes").
+  EXPECT_NE(out.find("lockstep: simulated "), std::string::npos) << out;
+  EXPECT_NE(out.find("[estimator] estimator of robot 'humanoid': "), std::string::npos) << out;
+  EXPECT_NE(out.find("[controller] balance: "), std::string::npos) << out;
+  EXPECT_NE(out.find(" cycles, read + update + write mean "), std::string::npos) << out;
   const std::string marker = "\ncom tracking rms: ";
   const auto at = out.rfind(marker);
   ASSERT_NE(at, std::string::npos) << out;

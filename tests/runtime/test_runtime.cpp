@@ -285,7 +285,12 @@ TEST_F(Loop, RunsOncePerTickOfASteppedClock) {
     stepped.advance_ns(10'000'000);
     ASSERT_TRUE(done(k + 1)) << "tick " << k;
   }
+  testing::internal::CaptureStdout();
   r->deactivate();
+  const std::string line = testing::internal::GetCapturedStdout();
+  // The end-of-run line, its times on the steady clock (this clock is stepped).
+  EXPECT_NE(line.find(": 21 cycles, read + update + write mean "), std::string::npos) << line;
+  EXPECT_NE(line.find(" ms (p99 "), std::string::npos) << line;
   const auto stats = r->stats();
   EXPECT_EQ(stats.iterations, 21u);
   EXPECT_EQ(stats.overruns, 0u);
@@ -589,7 +594,8 @@ TEST(DurationHistogram, MeanAndQuantilesWithinABin) {
   EXPECT_EQ(histogram.quantile(0.0), microseconds(10));
   EXPECT_EQ(histogram.quantile(0.5), microseconds(510));   // the 51st: 505 µs
   EXPECT_EQ(histogram.quantile(0.99), microseconds(990));  // the 99th: 985 µs
-  histogram.add(std::chrono::seconds(1));                  // beyond the last bin's edge
+  EXPECT_EQ(histogram.mean_and_p99(), "mean 0.500 ms (p99 0.99 ms)");
+  histogram.add(std::chrono::seconds(1));  // beyond the last bin's edge
   EXPECT_EQ(histogram.quantile(1.0), std::chrono::milliseconds(100)) << "at least 100 ms";
   histogram.clear();
   EXPECT_EQ(histogram.count(), 0u);
