@@ -16,6 +16,13 @@ here=$(cd "$(dirname "$0")" && pwd)
 source "$here/netns_pair.sh"
 [[ $# -eq 3 ]] || { sed -n '2,10p' "$0"; exit 2; }
 bin="$1/bin" deploy="$2/deploy/multihost_lockstep.yaml" mode="$3"
+# A discovery server's client that never got the robot (1 CI run, 2026-11-29,
+# among other multihost tests; not reproduced in 10 runs here, cause not found)
+# and a secured pair that never authenticates (Fast DDS 2.9.1) stall start-up:
+# 3 attempts from scratch (netns_attempts), each retry printed.
+if [[ $mode == server || $mode == secure ]] && [[ -z ${WBI_NETNS_ATTEMPT:-} ]]; then
+  netns_attempts 3 "$0" "$@"
+fi
 netns_pair_create || exit $?
 logs=$(mktemp -d /tmp/wbi-multihost.XXXXXX)
 NETNS_TEMP_DIR=$logs
@@ -55,8 +62,11 @@ host b model_service
 host b controller
 
 show_logs() { for log in "$logs"/*.log; do echo "== $(basename "$log")"; cat "$log"; done; }
-if ! wait_for_text "$logs/controller.log" "t =   0.00" 60; then
-  netns_stop_processes; show_logs; echo "FAIL: the controller never received the robot's state ($mode)"; exit 1
+# 20 s where a stall is tried again (above), else 60 s.
+if ! wait_for_text "$logs/controller.log" "t =   0.00" "$([[ -n ${WBI_NETNS_ATTEMPT:-} ]] && echo 20 || echo 60)"; then
+  netns_stop_processes; show_logs; echo "FAIL: the controller never received the robot's state ($mode)"
+  [[ -n ${WBI_NETNS_ATTEMPT:-} ]] && exit 75
+  exit 1
 fi
 echo "first state at the controller: $((($(date +%s%N) - started) / 1000000)) ms after start ($mode)"
 # The end of the simulated run (the robot's duration_s), not a point on the way:

@@ -177,6 +177,23 @@ on_host_b() { local log=$1; shift; ip netns exec "$NETNS_B" setsid "$@" >"$log" 
 netns_link() { ip -n "$NETNS_A" link set "$VETH_A" "$1"; ip -n "$NETNS_B" link set "$VETH_B" "$1"; }
 
 # wait_for_text FILE TEXT SECONDS: 0 once FILE contains TEXT, 1 on timeout.
+# netns_attempts N SCRIPT ARGS...: runs SCRIPT ARGS... (WBI_NETNS_ATTEMPT set,
+# so that it runs once) up to N times while it exits 75, a start-up that
+# stalled where the DDS layer, not wbi, is suspected (tests/multihost/README.md,
+# "Attempts"); each retry is printed. Exits with the last attempt's status.
+netns_attempts() {
+  local attempts=$1 attempt status
+  shift
+  for ((attempt = 1; attempt <= attempts; attempt++)); do
+    status=0
+    WBI_NETNS_ATTEMPT=$attempt "$@" || status=$?
+    ((status == 75)) || exit "$status"
+    echo "attempt $attempt: start-up stalled; starting again from new namespaces"
+  done
+  echo "FAIL: $attempts attempts stalled at start-up"
+  exit 1
+}
+
 wait_for_text() {
   local deadline=$((SECONDS + $3))
   while ((SECONDS < deadline)); do

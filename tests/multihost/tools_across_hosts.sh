@@ -26,16 +26,7 @@ bin="$1/bin" deploy="$2/deploy/multihost_lockstep.yaml" mode="$3"
 # participant per process"; 3 of 13 runs here under load): a start-up that
 # stalls where only such a pair would (exit 75) is tried again from scratch,
 # 3 attempts in all. Every other failure fails at once.
-if [[ $mode == secure && -z ${WBI_TOOLS_ATTEMPT:-} ]]; then
-  for attempt in 1 2 3; do
-    status=0
-    WBI_TOOLS_ATTEMPT=$attempt "$0" "$@" || status=$?
-    ((status == 75)) || exit "$status"
-    echo "attempt $attempt: start-up stalled on a secured pair that never authenticated; starting again"
-  done
-  echo "FAIL: 3 attempts stalled on a DDS Security handshake ($mode)"
-  exit 1
-fi
+[[ $mode != secure || -n ${WBI_NETNS_ATTEMPT:-} ]] || netns_attempts 3 "$0" "$@"
 netns_pair_create || exit $?
 logs=$(mktemp -d /tmp/wbi-tools.XXXXXX)
 NETNS_TEMP_DIR=$logs
