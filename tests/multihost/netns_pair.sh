@@ -194,6 +194,12 @@ netns_attempts() {
   exit 1
 }
 
+# netns_joined MODE LOG: in the discovery-server mode, waits (15 s at most) for
+# the wbi_host writing LOG to be running, so that clients join the server one
+# at a time (clients that joined together under load once never learnt of each
+# other: "Attempts" in tests/multihost/README.md). Other modes: no wait.
+netns_joined() { [[ $1 != server ]] || wait_for_text "$2" "wbi_host: running" 15 || true; }
+
 wait_for_text() {
   local deadline=$((SECONDS + $3))
   while ((SECONDS < deadline)); do
