@@ -56,12 +56,7 @@ host() {  # host a|b PROCESS
     stdbuf -oL "$bin/wbi_host" "$deploy" --process "$2"
 }
 started=$(date +%s%N)
-host a robot
-netns_joined "$mode" "$logs/robot.log"
-host b estimator
-netns_joined "$mode" "$logs/estimator.log"
-host b model_service
-netns_joined "$mode" "$logs/model_service.log"
+netns_start_all_but_controller "$mode" "$logs"
 host b controller
 
 show_logs() { for log in "$logs"/*.log; do echo "== $(basename "$log")"; cat "$log"; done; }

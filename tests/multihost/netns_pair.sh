@@ -200,6 +200,18 @@ netns_attempts() {
 # other: "Attempts" in tests/multihost/README.md). Other modes: no wait.
 netns_joined() { [[ $1 != server ]] || wait_for_text "$2" "wbi_host: running" 15 || true; }
 
+# netns_start_all_but_controller MODE LOGS: the robot on host A, the estimator
+# and the model service on host B, through the caller's `host A|B PROCESS`,
+# each joined (netns_joined) before the next; the caller starts the controller.
+netns_start_all_but_controller() {
+  host a robot
+  netns_joined "$1" "$2/robot.log"
+  host b estimator
+  netns_joined "$1" "$2/estimator.log"
+  host b model_service
+  netns_joined "$1" "$2/model_service.log"
+}
+
 wait_for_text() {
   local deadline=$((SECONDS + $3))
   while ((SECONDS < deadline)); do

@@ -153,12 +153,7 @@ if [[ $mode == record || $mode == secure ]]; then
   host b model_service
 elif [[ $mode == server ]]; then
   # One client at a time, the controller (which waits for the rest) last.
-  host a robot
-  netns_joined "$mode" "$logs/robot.log"
-  host b estimator
-  netns_joined "$mode" "$logs/estimator.log"
-  host b model_service
-  netns_joined "$mode" "$logs/model_service.log"
+  netns_start_all_but_controller "$mode" "$logs"
   host b controller
   controller=$!
 else
