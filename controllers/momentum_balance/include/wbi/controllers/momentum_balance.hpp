@@ -94,6 +94,9 @@ class MomentumBalance {
   const Eigen::Vector3d& com() const { return com_; }  // at the last control()
   Eigen::Vector3d com_of_state();                      // of the last read_state()
   Eigen::Vector3d feet_center_of_state();              // middle of the soles, likewise
+  Eigen::Vector3d feet_center() const {                // the same at the last control()
+    return 0.5 * (sole_position_[0] + sole_position_[1]);
+  }
   const Eigen::Vector3d& com_reference() const { return com_desired_; }
   const Eigen::VectorXd& torques() const { return tau_; }
   // Feet wrenches of the last QP: (force, moment about the sole), left then right, world axes.
