@@ -72,11 +72,11 @@ tool() {
 }
 show_logs() { for log in "$logs"/*.log; do echo "== $(basename "$log")"; cat "$log"; done; }
 fail() { netns_stop_processes; show_logs; echo "FAIL: $* ($mode)"; exit 1; }
-# stalled MESSAGE: a start-up step that never happened; secured or through a
-# discovery server, the sign of the DDS layer's stalls above (exit 75, the
-# attempt is made again), otherwise a failure.
+# stalled MESSAGE: a start-up step that never happened; within an attempt (the
+# modes above), the sign of the DDS layer's stalls (exit 75, the attempt is
+# made again), otherwise a failure.
 stalled() {
-  [[ $mode == secure || $mode == server ]] || fail "$@"
+  [[ -n ${WBI_NETNS_ATTEMPT:-} ]] || fail "$@"
   netns_stop_processes; show_logs; echo "STALLED: $* ($mode)"; exit 75
 }
 

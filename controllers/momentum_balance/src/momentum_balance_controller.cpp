@@ -180,8 +180,8 @@ bool MomentumBalanceController::update(double /*time_s*/, double /*period_s*/) {
     // moves with the frame, so that the robot does not (it moved 5 cm to the
     // shifted reference before). The frames' offset is measured on the feet,
     // which stand still, not on the CoM, which moved during the outage (up
-    // to 2 cm in 0.5 s at the sinusoid's peak speed: a CI run once ended 1 cm
-    // off the reference after an estimator restart).
+    // to 2 cm in 0.5 s at the sinusoid's peak speed; likely why a CI run once
+    // ended an estimator restart 1 cm off the reference).
     const Eigen::Vector3d shift = balance_->feet_center_of_state() - balance_->feet_center();
     frame_shift_ += shift;
     ++new_estimators_;
