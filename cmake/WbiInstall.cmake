@@ -16,6 +16,7 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/wbiConfig.cmake.in
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/wbiConfigVersion.cmake
   COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/wbiConfig.cmake ${PROJECT_BINARY_DIR}/wbiConfigVersion.cmake
+  ${PROJECT_SOURCE_DIR}/cmake/WbiPlugin.cmake
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/wbi)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/deploy/ DESTINATION ${CMAKE_INSTALL_DATADIR}/wbi/deploy
   FILES_MATCHING PATTERN "*.yaml" PATTERN "*.xml")

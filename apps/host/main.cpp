@@ -1,56 +1,105 @@
 // wbi_host FILE.yaml: runs the components a host file lists (see
 // wbi/runtime/host.hpp) in this process until SIGINT or SIGTERM, then stops
 // them cleanly (deactivate, cleanup, shutdown, in reverse order); started by
-// `wbi launch`, also when the launcher dies.
+// `wbi launch`, also when the launcher dies. Its types come from plugins: the
+// built-in one, then those the file names (`plugins:`, wbi/runtime/plugins.hpp).
 // Exit codes: 0 after SIGTERM, 130 after SIGINT, 1 on error (one line on stderr);
 // a component that ends the process (wbi/runtime/process_exit.hpp) gives its code.
 #include <csignal>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <pthread.h>
+#include <yaml-cpp/yaml.h>
 
+#include <wbi/catalog.hpp>
 #include <wbi/dds/participant.hpp>
 #include <wbi/deploy/placement.hpp>
 #include <wbi/deploy/process_host.hpp>
 #include <wbi/launch/launcher.hpp>
-#include <wbi/runtime/builtin.hpp>
 #include <wbi/runtime/console_line.hpp>
 #include <wbi/runtime/host.hpp>
+#include <wbi/runtime/plugins.hpp>
 #include <wbi/runtime/process_exit.hpp>
-
-#include "components.hpp"
 
 namespace {
 
-void usage(std::ostream& out, const wbi::runtime::Registry& registry) {
-  out << "usage: wbi_host FILE.yaml\n"
-         "       wbi_host DEPLOY.yaml --process NAME[,NAME...]\n"
+struct Arguments {
+  bool help = false;
+  std::string file;                  // host or deploy file
+  std::string processes;             // --process: the deploy file's processes to host
+  std::vector<std::string> plugins;  // --plugin: loaded before the file's own
+};
+
+void usage(std::ostream& out) {
+  out << "usage: wbi_host FILE.yaml [--plugin NAME|PATH]...\n"
+         "       wbi_host DEPLOY.yaml --process NAME[,NAME...] [--plugin NAME|PATH]...\n"
+         "       wbi_host --help [--plugin NAME|PATH]...\n"
          "Runs the components listed in FILE.yaml (or those of process NAME of a deploy\n"
          "file; of several processes, in the order named) in one process until\n"
-         "SIGINT/SIGTERM.\n"
-         "Component types:\n";
-  for (const auto& type : registry.names()) {
-    out << "  " << type << "  " << registry.description(type) << "\n";
+         "SIGINT/SIGTERM. Their types come from plugins: the built-in one, the --plugin\n"
+         "ones, then the file's `plugins:` (a name is looked for as libNAME.so in\n"
+         "$WBI_PLUGIN_PATH, the file's folder, then wbi's own plugin folder).\n";
+}
+
+// Throws std::invalid_argument for a bad command line.
+Arguments parse(int argc, char** argv) {
+  Arguments arguments;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const auto value = [&](const char* flag) -> std::string {
+      if (i + 1 >= argc) {
+        throw std::invalid_argument(std::string(flag) + " needs a value");
+      }
+      return argv[++i];
+    };
+    if (arg == "--help" || arg == "-h") {
+      arguments.help = true;
+    } else if (arg == "--process") {
+      arguments.processes = value("--process");
+    } else if (arg == "--plugin") {
+      arguments.plugins.push_back(value("--plugin"));
+    } else if (!arg.empty() && arg[0] != '-' && arguments.file.empty()) {
+      arguments.file = arg;
+    } else {
+      throw std::invalid_argument("unexpected argument '" + arg + "'");
+    }
   }
+  if (!arguments.help && arguments.file.empty()) {
+    throw std::invalid_argument("no host or deploy file named");
+  }
+  return arguments;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  wbi::runtime::Registry registry;
-  wbi::runtime::register_builtin_components(registry);
-  wbi::host::register_components(registry);
-  if (argc == 2 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)) {
-    usage(std::cout, registry);
-    return 0;
-  }
-  const bool from_deploy = argc == 4 && std::strcmp(argv[2], "--process") == 0;
-  if (argc != 2 && !from_deploy) {
-    usage(std::cerr, registry);
+  Arguments arguments;
+  try {
+    arguments = parse(argc, argv);
+  } catch (const std::invalid_argument& error) {
+    std::cerr << "wbi_host: " << error.what() << "\n";
+    usage(std::cerr);
     return 1;
+  }
+  // Declared first: it outlives every component made from it.
+  wbi::Catalog catalog;
+  if (arguments.help) {
+    usage(std::cout);
+    try {
+      wbi::runtime::load_plugins(catalog, arguments.plugins);
+    } catch (const std::exception& error) {
+      std::cerr << "wbi_host: " << error.what() << "\n";
+      return 1;
+    }
+    std::cout << "\n"
+              << wbi::runtime::describe_catalog(catalog)
+              << "(and `hold`, every controller host's own fallback)\n";
+    return 0;
   }
   // Started by `wbi launch`: its death (even SIGKILL) is a SIGTERM here, taken
   // by sigwait below like any other, so the components stop in order.
@@ -65,24 +114,30 @@ int main(int argc, char** argv) {
   // A component that ends the process (its run is over, or a fault): stop the
   // components as SIGTERM does, then exit with its code.
   wbi::runtime::set_process_exit_handler([](int) { ::kill(::getpid(), SIGTERM); });
+  const std::string& file = arguments.file;
+  const bool from_deploy = !arguments.processes.empty();
   try {
+    // One process of a deploy file: the deploy reader picks it out (the
+    // runtime reads host documents only).
+    const YAML::Node document = from_deploy
+                                    ? wbi::deploy::load_process_host(file, arguments.processes)
+                                    : wbi::runtime::read_host_file(file);
+    std::vector<std::string> plugins = arguments.plugins;
+    for (auto& plugin : wbi::runtime::plugins_of(document, file)) {
+      plugins.push_back(std::move(plugin));
+    }
+    wbi::runtime::load_plugins(catalog, plugins, std::filesystem::path(file).parent_path());
     // The deploy reader turns the file's network and security blocks into join
     // options; the host file's key check accepts the keys it reads.
     const wbi::runtime::PlacementReader placement{
         {wbi::deploy::kPlacementKeys.begin(), wbi::deploy::kPlacementKeys.end()},
         wbi::deploy::read_placement};
-    // One process of a deploy file: the deploy reader picks it out (the runtime
-    // reads host documents only).
-    auto host_ptr =
-        from_deploy
-            ? std::make_unique<wbi::runtime::Host>(wbi::deploy::load_process_host(argv[1], argv[3]),
-                                                   argv[1], argv[3], registry, placement)
-            : std::make_unique<wbi::runtime::Host>(argv[1], registry, placement);
-    auto& host = *host_ptr;
+    wbi::runtime::Host host(document, file, from_deploy ? arguments.processes : "",
+                            catalog.registry<wbi::runtime::Registry>(), placement);
     host.start();
     // The components already run and print: this line goes out whole (console_line.hpp).
     wbi::runtime::print_line(stdout, "wbi_host: running " + std::to_string(host.size()) +
-                                         " component(s) from " + argv[1] + " on domain " +
+                                         " component(s) from " + file + " on domain " +
                                          std::to_string(host.participant().domain_id()));
     int signal_number = 0;
     sigwait(&signals, &signal_number);

@@ -10,6 +10,8 @@
 //   sends. Both send the command (a DDS publish) once per tick. Target: the
 //   difference ≤ 2 µs per tick. BM_HostOverheadPaired: the two in turn, tick
 //   by tick, and the difference of their medians (less sensitive to load).
+// BM_HostOverheadThreeControllers: the same with three active controllers, a
+//   planner chained to the legs' input, the arms beside them, hold on the rest.
 // BM_SwitchTicks: a switch requested from another thread while the loop ticks
 //   at 1 kHz (the same robot and host, two fixed-torque controllers and hold):
 //   ticks from the request to the new controller's first update (counters
@@ -25,12 +27,12 @@
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include <wbi/controllers/controller_host.hpp>
-#include <wbi/controllers/controller_types.hpp>
 #include <wbi/dds_interface.hpp>
 #include <wbi/sim_rig/in_process_robot.hpp>
 
@@ -138,7 +140,7 @@ void BM_UpdateDirectly(benchmark::State& state) {
 void host_fixed_and_hold(ControllerHost& host) {
   host.add("fixed", "fixed", std::make_unique<FixedTorque>());
   host.configure("fixed");
-  host.add("hold", "hold", wbi::controllers::controller_types().create("hold"));
+  host.add("hold", "hold", wbi::controllers::make_hold_controller());
   host.configure("hold");
   host.set_initial("fixed");
   host.tick(0.0, 0.001);
@@ -225,7 +227,7 @@ void BM_SwitchTicks(benchmark::State& state) {
   host.configure("a");
   host.add("b", "fixed", std::make_unique<FixedTorque>(&ticks, &first_b));
   host.configure("b");
-  host.add("hold", "hold", wbi::controllers::controller_types().create("hold"));
+  host.add("hold", "hold", wbi::controllers::make_hold_controller());
   host.configure("hold");
   host.set_initial("a");
   std::atomic<bool> stop{false};
@@ -274,9 +276,148 @@ void BM_SwitchTicks(benchmark::State& state) {
   state.counters["fallbacks"] = static_cast<double>(report.counter("fallbacks").value());
 }
 
+// Three controllers active at once, one of them chained: a planner writes a
+// 3-value point per tick into the legs' reference input (same tick, no DDS),
+// the legs (12 joints) read it and send fixed torques, the upper body (torso,
+// arms, neck: 20 joints) sends its own; hold holds nothing. Direct: the same three updates
+// (the point through the same output and input), the two commands copied
+// into one and sent. Counter overhead_p50_ns (target ≤ 2000 ns).
+class FixedPlanner final : public wbi::controllers::Controller {
+ public:
+  std::vector<wbi::controllers::ParameterSpec> parameters() const override { return {}; }
+  std::vector<wbi::controllers::ReferenceSpec> outputs() const override {
+    return {{.name = "ref", .size = 3}};
+  }
+  void bind_outputs(std::span<wbi::controllers::ReferenceOutput* const> outputs) override {
+    output_ = outputs[0];
+  }
+  bool commands_joints() const override { return false; }
+  void configure(wbi::WholeBodyInterface&, const wbi::controllers::ParameterTable&) override {}
+  void activate(const wbi::RobotState&) override {}
+  bool update(double time_s, double) override {
+    const double point[3] = {time_s, 0.0, 0.0};
+    output_->write(static_cast<std::int64_t>(time_s * 1e9), point);
+    return true;
+  }
+  const Eigen::VectorXd& command() const override { return none_; }
+  wbi::controllers::ReferenceOutput* output_ = nullptr;
+
+ private:
+  Eigen::VectorXd none_;
+};
+
+class FixedFollower final : public wbi::controllers::Controller {
+ public:
+  std::vector<wbi::controllers::ParameterSpec> parameters() const override { return {}; }
+  std::vector<wbi::controllers::ReferenceSpec> references() const override {
+    return {{.name = "ref", .size = 3}};
+  }
+  void bind_references(std::span<wbi::controllers::ReferenceInput* const> inputs) override {
+    input_ = inputs[0];
+  }
+  void configure(wbi::WholeBodyInterface& robot, const wbi::controllers::ParameterTable&) override {
+    tau_ = Eigen::VectorXd::Constant(robot.dofs(), 0.5);
+  }
+  void activate(const wbi::RobotState&) override {}
+  bool update(double time_s, double) override {
+    input_->at(static_cast<std::int64_t>(time_s * 1e9), [] { return Eigen::Vector3d::Zero(); });
+    tau_[0] = input_->position()[0];
+    return true;
+  }
+  const Eigen::VectorXd& command() const override { return tau_; }
+  wbi::controllers::ReferenceInput* input_ = nullptr;
+
+ private:
+  Eigen::VectorXd tau_;
+};
+
+std::vector<std::string> icub3_joints(std::size_t from, std::size_t count) {
+  return {kIcub3Joints.begin() + static_cast<long>(from),
+          kIcub3Joints.begin() + static_cast<long>(from + count)};
+}
+
+void BM_HostOverheadThreeControllers(benchmark::State& state) {
+  if (!have_icub3(state)) {
+    return;
+  }
+  Icub3 robot("bench_host_three");
+  const int n = robot.interface->dofs();
+  // Direct: the same controllers, chained by hand.
+  wbi::controllers::ParameterTable none("none", {});
+  wbi::controllers::ParameterTable fixed("fixed", FixedTorque().parameters());
+  fixed.size_for(n);
+  FixedPlanner planner;
+  FixedFollower legs;
+  FixedTorque arms;
+  wbi::controllers::ReferenceOutput output("planner/ref", planner.outputs()[0]);
+  wbi::controllers::ReferenceInput input("legs/ref", legs.references()[0]);
+  output.connect(input);
+  planner.output_ = &output;
+  legs.input_ = &input;
+  legs.configure(*robot.interface, none);
+  arms.configure(*robot.interface, fixed);
+  std::vector<int> leg_joints, arm_joints;
+  for (int j = 20; j < 32; ++j) {
+    leg_joints.push_back(j);
+  }
+  for (int j = 0; j < 20; ++j) {
+    arm_joints.push_back(j);
+  }
+  Eigen::VectorXd command = Eigen::VectorXd::Zero(n);
+  // The host: the same three (hold configured, holding nothing).
+  wbi::runtime::StatusReport report;
+  wbi::runtime::EventLog events;
+  ControllerHost host(*robot.interface, report, events, {});
+  host.add("planner", "planner", std::make_unique<FixedPlanner>());
+  host.configure("planner");
+  host.add("legs", "follower", std::make_unique<FixedFollower>());
+  host.set_joints("legs", icub3_joints(20, 12));
+  host.configure("legs");
+  host.chain("legs", "ref", "planner", "ref");
+  host.add("arms", "fixed", std::make_unique<FixedTorque>());
+  host.set_joints("arms", icub3_joints(0, 20));
+  host.configure("arms");
+  host.add("hold", "hold", wbi::controllers::make_hold_controller());
+  host.configure("hold");
+  host.set_initial(std::vector<std::string>{"legs", "arms"});
+  host.tick(0.0, 0.001);
+  std::vector<double> direct_ns, host_ns;
+  direct_ns.reserve(static_cast<std::size_t>(state.max_iterations));
+  host_ns.reserve(static_cast<std::size_t>(state.max_iterations));
+  double t = 0.001;
+  for (auto _ : state) {
+    const auto begin = std::chrono::steady_clock::now();
+    planner.update(t, 0.001);
+    legs.update(t, 0.001);
+    arms.update(t, 0.001);
+    for (const int j : leg_joints) {
+      command[j] = legs.command()[j];
+    }
+    for (const int j : arm_joints) {
+      command[j] = arms.command()[j];
+    }
+    robot.interface->set_control_reference(command);
+    const auto between = std::chrono::steady_clock::now();
+    host.tick(t, 0.001);
+    const auto end = std::chrono::steady_clock::now();
+    direct_ns.push_back(std::chrono::duration<double, std::nano>(between - begin).count());
+    host_ns.push_back(std::chrono::duration<double, std::nano>(end - between).count());
+    t += 0.001;
+  }
+  const double direct_p50 = wbi::bench::percentile(direct_ns, 0.5);
+  const double host_p50 = wbi::bench::percentile(host_ns, 0.5);
+  state.counters["direct_p50_ns"] = direct_p50;
+  state.counters["host_p50_ns"] = host_p50;
+  state.counters["overhead_p50_ns"] = host_p50 - direct_p50;
+  state.counters["joints"] = n;
+  state.counters["active"] = static_cast<double>(host.active_controllers().size());
+  state.counters["fallbacks"] = static_cast<double>(report.counter("fallbacks").value());
+}
+
 BENCHMARK(BM_UpdateDirectly)->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_HostTick)->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_HostOverheadPaired)->Iterations(50000)->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_HostOverheadThreeControllers)->Iterations(50000)->Unit(benchmark::kNanosecond);
 BENCHMARK(BM_SwitchTicks)->UseManualTime()->Iterations(200)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

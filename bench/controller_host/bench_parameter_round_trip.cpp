@@ -13,10 +13,11 @@
 #include <thread>
 #include <vector>
 
-#include <wbi/controllers/controller_host_component.hpp>
+#include <wbi/catalog.hpp>
 #include <wbi/controllers/host_client.hpp>
 #include <wbi/dds/participant.hpp>
 #include <wbi/runtime/clock.hpp>
+#include <wbi/runtime/plugins.hpp>
 #include <wbi/runtime/registry.hpp>
 #include <wbi/runtime/runner.hpp>
 #include <wbi/sim_rig/in_process_robot.hpp>
@@ -35,8 +36,9 @@ void BM_ParameterRoundTrip(benchmark::State& state) {
       robot, "robot: " + robot + "\nconfig: " + kSource + "/deploy/robots/arm.yaml\n",
       "robot: " + robot + "\nmethod: backward-difference\ncutoff: 50\n");
   wbi::runtime::SystemClock clock;
-  wbi::runtime::Registry registry;
-  wbi::controllers::register_components(registry);
+  wbi::Catalog catalog;  // the built-in plugin's types, as wbi_host has them
+  wbi::runtime::load_plugins(catalog, {});
+  const auto& registry = catalog.registry<wbi::runtime::Registry>();
   wbi::runtime::ComponentRunner host(
       registry.create("controller_host"),
       wbi::runtime::ComponentContext{"host", "controller_host", &rig.participant(), &clock},

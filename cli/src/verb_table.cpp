@@ -8,7 +8,7 @@
 namespace wbi::cli {
 
 std::span<const Verb> verbs() {
-  static const std::array<Verb, 13> table{{
+  static const std::array<Verb, 14> table{{
       {"launch", "start, watch and stop the processes of a deploy file", run_launch},
       {"record", "record DDS topics to an MCAP file", run_record},
       {"play", "replay an MCAP recording onto DDS", run_play},
@@ -21,6 +21,8 @@ std::span<const Verb> verbs() {
        run_controller},
       {"param", "list, read and set controllers' parameters while they run", run_param},
       {"bridge", "watch and steer a run live from Foxglove or Lichtblick (WebSocket)", run_bridge},
+      {"plugins", "list the types plugins bring (components, controllers, engines) and from where",
+       run_plugins},
       {"model", "inspect and evaluate robot models (info, eval, bench)", run_model},
       {"robot", "check robot config files (URDF, contacts, joints, sensors)", run_robot},
       {"estimate", "estimate joint velocities and accelerations offline from a CSV file",

@@ -1,6 +1,11 @@
 // controllers/README.md, "Writing a controller": PD + gravity under the
-// controller contract, whole. Built (not registered) so that the README stays true.
+// controller contract, whole, as a plugin of a lab's own project. Built here
+// the way a lab builds it (wbi_add_plugin) and run by test_minimal_controller:
+// hosted, switched to from hold and back, a gain changed while it runs.
+#include <cstdio>
+
 #include <wbi/controllers/controller.hpp>
+#include <wbi/plugin.hpp>
 
 namespace example {
 using namespace wbi;
@@ -32,6 +37,12 @@ class MinimalPd final : public Controller {
     return true;  // the host sends tau_
   }
   const Eigen::VectorXd& command() const override { return tau_; }
+  std::string summary() const override {  // printed when the host stops
+    char line[64];
+    std::snprintf(line, sizeof line, "minimal_pd: max joint error %.4f rad",
+                  (state_.q - q_d_).cwiseAbs().maxCoeff());
+    return line;
+  }
 
  private:
   WholeBodyInterface* robot_ = nullptr;
@@ -40,3 +51,8 @@ class MinimalPd final : public Controller {
   double kp_ = 0.0, kd_ = 0.0;
 };
 }  // namespace example
+
+WBI_PLUGIN(catalog) {
+  catalog.registry<wbi::controllers::ControllerRegistry>().add<example::MinimalPd>(
+      "minimal_pd", "PD + gravity towards a target (the README's example)");
+}

@@ -69,17 +69,24 @@ std::unique_ptr<Host> Host::from_string(const std::string& yaml, const Registry&
   return host;
 }
 
-void Host::load(const std::string& source, bool is_text, const std::string& file,
-                const Registry& registry, const PlacementReader& placement) {
-  YAML::Node root;
+namespace {
+YAML::Node parse(const std::string& source, bool is_text, const std::string& file) {
   try {
-    root = is_text ? YAML::Load(source) : YAML::LoadFile(source);
+    return is_text ? YAML::Load(source) : YAML::LoadFile(source);
   } catch (const YAML::BadFile&) {
     throw ParameterError(file + ": cannot read the host file");
   } catch (const YAML::Exception& error) {
     throw ParameterError(file + ":" + std::to_string(error.mark.line + 1) + ": " + error.msg);
   }
-  build(root, file, "", registry, placement, /*paths_from_file=*/!is_text);
+}
+}  // namespace
+
+YAML::Node read_host_file(const std::string& file) { return parse(file, false, file); }
+
+void Host::load(const std::string& source, bool is_text, const std::string& file,
+                const Registry& registry, const PlacementReader& placement) {
+  build(parse(source, is_text, file), file, "", registry, placement,
+        /*paths_from_file=*/!is_text);
 }
 
 void Host::build(const YAML::Node& root, const std::string& file, const std::string& identity,
@@ -89,7 +96,9 @@ void Host::build(const YAML::Node& root, const std::string& file, const std::str
   }
   const std::string context = "host file";
   // The runtime's own keys, and those the placement reader reads.
-  std::set<std::string> known{"domain_id", "qos_file", "clock", "status_period_s", "components"};
+  // `plugins` is read by the program before it makes the registry (plugins.hpp).
+  std::set<std::string> known{"domain_id",       "qos_file",   "clock",
+                              "status_period_s", "components", "plugins"};
   if (placement) {
     known.insert(placement.keys.begin(), placement.keys.end());
   }

@@ -18,8 +18,8 @@
 
 #include <wbi/controllers/com_sinusoid.hpp>
 #include <wbi/controllers/controller_host.hpp>
-#include <wbi/controllers/controller_types.hpp>
 #include <wbi/controllers/momentum_balance.hpp>
+#include <wbi/controllers/momentum_balance_controller.hpp>
 #include <wbi/dds/subscriber.hpp>
 #include <wbi/dds/topics.hpp>
 #include <wbi/dds_interface.hpp>
@@ -509,7 +509,7 @@ TEST(BalanceInProcess, NamesAFootLinkWithoutAnEstimatedWrench) {
     wbi::controllers::ControllerHost host(*humanoid, report, events,
                                           wbi::controllers::ControllerHost::Options{});
     auto& table = host.add("balance", "momentum_balance",
-                           wbi::controllers::controller_types().create("momentum_balance"));
+                           std::make_unique<wbi::controllers::MomentumBalanceController>());
     table.set_text(table.index("contact_forces"), contact_forces);
     table.set_text(table.index("left_wrench_links"), left_links);
     table.set_text(table.index("right_wrench_links"), "r_foot");

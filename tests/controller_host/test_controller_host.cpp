@@ -6,12 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <functional>
 #include <future>
 #include <optional>
 
 #include <wbi/controllers/controller_host.hpp>
-#include <wbi/controllers/controller_types.hpp>
+#include <wbi/controllers/pd_gravity_controller.hpp>
 #include <wbi/dds_interface.hpp>
 #include <wbi/sim_rig/in_process_robot.hpp>
 
@@ -56,11 +58,12 @@ class ThrowingController final : public Controller {
 };
 
 // The simulated arm, its estimator, and a host with pd (active), hold and a
-// thrower, on robot `robot`. Each tick() waits for the next estimate, as the
-// host's component does with wait_for_state.
+// thrower, on robot `robot` (or the controllers `hosting` adds). Each tick()
+// waits for the next estimate, as the host's component does with wait_for_state.
 class HostedArm {
  public:
-  explicit HostedArm(const std::string& robot, double gain_scale = 1.0)
+  using Hosting = std::function<void(ControllerHost&)>;
+  explicit HostedArm(const std::string& robot, double gain_scale = 1.0, Hosting hosting = {})
       : rig_("controller_host",
              "robot: " + robot + "\nconfig: " + config() +
                  "\nlockstep: true\nlockstep_controllers: [host]\n",
@@ -77,12 +80,16 @@ class HostedArm {
     q_.setZero(arm_->dofs());
     state_ = wbi::RobotState(arm_->dofs());
     host_.emplace(*arm_, report_, events_, ControllerHost::Options{});
-    const auto& types = wbi::controllers::controller_types();
-    ParameterTable& pd = host_->add("pd", "pd_gravity", types.create("pd_gravity"));
+    if (hosting) {
+      hosting(*host_);
+      return;
+    }
+    ParameterTable& pd =
+        host_->add("pd", "pd_gravity", std::make_unique<wbi::controllers::PdGravityController>());
     pd.set(pd.index("target"), kTarget);
     pd.set(pd.index("gain_scale"), std::vector<double>{gain_scale});
     host_->configure("pd");
-    host_->add("hold", "hold", types.create("hold"));
+    host_->add("hold", "hold", wbi::controllers::make_hold_controller());
     host_->configure("hold");
     host_->add("thrower", "thrower", std::make_unique<ThrowingController>());
     host_->configure("thrower");
@@ -315,6 +322,237 @@ TEST(ControllerHost, AControllerThatThrowsFallsBackToHold) {
   EXPECT_EQ(events[1].kind, wbi::EventKind::controller_fallback);
   EXPECT_EQ(events[1].severity, wbi::EventSeverity::warning);
   EXPECT_STREQ(events[1].text.data(), error.c_str());
+}
+
+// Several controllers on one host: pd on the shoulder and elbow (joints 1-4),
+// a second pd on the wrist (5-7), hold on nothing; and a thrower that may
+// take the wrist.
+const std::vector<std::string> kShoulder{"joint_1", "joint_2", "joint_3", "joint_4"};
+const std::vector<std::string> kWrist{"joint_5", "joint_6", "joint_7"};
+
+void host_two_sets(ControllerHost& host) {
+  for (const auto& [name, joints] :
+       {std::pair{"shoulder", kShoulder}, std::pair{"wrist", kWrist}}) {
+    ParameterTable& pd =
+        host.add(name, "pd_gravity", std::make_unique<wbi::controllers::PdGravityController>());
+    pd.set(pd.index("target"), kTarget);
+    host.set_joints(name, joints);
+    host.configure(name);
+  }
+  host.add("thrower", "thrower", std::make_unique<ThrowingController>());
+  host.set_joints("thrower", kWrist);
+  host.configure("thrower");
+  host.add("hold", "hold", wbi::controllers::make_hold_controller());
+  host.configure("hold");
+  host.set_initial(std::vector<std::string>{"shoulder", "wrist"});
+}
+
+// The shoulder's commands of a run without the switch, tick by tick from 1.5 s.
+std::vector<Eigen::VectorXd> commands_without_a_switch(int ticks) {
+  HostedArm arm("host_two_sets_plain", 1.0, host_two_sets);
+  arm.run(1500);
+  std::vector<Eigen::VectorXd> commands;
+  for (int k = 0; k < ticks; ++k) {
+    arm.run(1);
+    commands.push_back(arm.host().last_command());
+  }
+  return commands;
+}
+
+TEST(ControllerHostJointSets, TwoControllersActiveOnDisjointJoints) {
+  const auto plain = commands_without_a_switch(1000);
+  HostedArm arm("host_two_sets", 1.0, host_two_sets);
+  arm.run(1500);
+  EXPECT_EQ(arm.host().active(), "shoulder, wrist");
+  EXPECT_LT(arm.error_to_target(), 0.02) << "each set reached its target";
+  // The wrist to hold and back: the shoulder's command at the switch tick is
+  // the one of the run without a switch, to the bit (lockstep: the same state).
+  const auto tick_of = [](double time_s) {
+    return static_cast<std::size_t>(std::lround((time_s - 1.5) / kPeriod));
+  };
+  auto to_hold = std::async(std::launch::async,
+                            [&] { return arm.host().request_switch({"hold"}, {"wrist"}); });
+  const auto held = arm.tick_until(to_hold);
+  ASSERT_TRUE(held.done) << held.text;
+  std::printf("%s\n", held.text.c_str());
+  EXPECT_EQ(held.from, "wrist");
+  EXPECT_EQ(held.to, "hold");
+  EXPECT_EQ(arm.host().active(), "shoulder, hold");
+  EXPECT_LT(held.torque_step_switched, 0.05) << held.text;
+  ASSERT_LT(tick_of(held.time_s), plain.size());
+  EXPECT_EQ(arm.host().last_command().head(4), plain[tick_of(held.time_s)].head(4))
+      << "the switch changed the shoulder's command";
+  arm.run(300);
+  auto back =
+      std::async(std::launch::async, [&] { return arm.host().request_switch({"wrist"}, {}); });
+  const auto resumed = arm.tick_until(back);
+  ASSERT_TRUE(resumed.done) << resumed.text;
+  std::printf("%s\n", resumed.text.c_str());
+  EXPECT_EQ(resumed.from, "hold");
+  EXPECT_EQ(arm.host().active(), "shoulder, wrist");
+  EXPECT_LT(resumed.torque_step_switched, 0.05) << resumed.text;
+  arm.run(500);
+  EXPECT_LT(arm.error_to_target(), 0.03);
+}
+
+TEST(ControllerHostJointSets, OverlappingSetsAreRefusedWhole) {
+  HostedArm arm("host_overlap", 1.0, host_two_sets);
+  arm.run(10);
+  const auto overlap = arm.host().request_switch({"thrower"}, {});
+  EXPECT_FALSE(overlap.done);
+  EXPECT_NE(overlap.text.find("'wrist' is active on the same joints as 'thrower' (joint_5, "
+                              "joint_6, joint_7): deactivate it in the same switch"),
+            std::string::npos)
+      << overlap.text;
+  const auto nothing = arm.host().request_switch({"hold"}, {});
+  EXPECT_FALSE(nothing.done);
+  EXPECT_NE(nothing.text.find("nothing to hold"), std::string::npos) << nothing.text;
+  arm.run(10);
+  EXPECT_EQ(arm.host().active(), "shoulder, wrist");
+  EXPECT_EQ(arm.counter("switches"), 0u);
+  EXPECT_EQ(arm.counter("refused_switches"), 2u);
+}
+
+// One of two active controllers throws: hold takes its joints, and only those.
+TEST(ControllerHostJointSets, AFallbackMovesOnlyThatControllersJointsToHold) {
+  HostedArm arm("host_set_fallback", 1.0, host_two_sets);
+  arm.run(500);
+  auto request = std::async(std::launch::async,
+                            [&] { return arm.host().request_switch({"thrower"}, {"wrist"}); });
+  ASSERT_TRUE(arm.tick_until(request).done);
+  const Eigen::VectorXd before = arm.host().last_command();
+  arm.run(20);  // throws at its 5th update
+  EXPECT_EQ(arm.host().active(), "shoulder, hold");
+  EXPECT_EQ(arm.counter("fallbacks"), 1u);
+  EXPECT_NE(arm.report().last_error().find("controller 'thrower' threw in update"),
+            std::string::npos);
+  arm.run(500);
+  EXPECT_LT(arm.error_to_target(), 0.05) << "the shoulder kept its target, hold the wrist";
+  EXPECT_TRUE(arm.host().last_command().head(4) != before.head(4)) << "the shoulder still commands";
+}
+
+// A planner chained to a controller of the same host: its point for this
+// tick's state reaches the controller in the same tick, without DDS.
+class TargetPlanner final : public Controller {
+ public:
+  std::vector<ParameterSpec> parameters() const override { return {}; }
+  std::vector<wbi::controllers::ReferenceSpec> outputs() const override {
+    return {{.name = "target", .unit = "rad", .size = 7}};
+  }
+  void bind_outputs(std::span<wbi::controllers::ReferenceOutput* const> outputs) override {
+    output_ = outputs[0];
+  }
+  bool commands_joints() const override { return false; }
+  void configure(wbi::WholeBodyInterface& robot, const ParameterTable&) override {
+    robot_ = &robot;
+    state_ = wbi::RobotState(robot.dofs());
+  }
+  void activate(const wbi::RobotState&) override {}
+  bool update(double, double) override {
+    robot_->state().read_robot_state(state_, wbi::ReadMode::latest);
+    output_->write(state_.stamp.source_ns, kTarget);
+    return true;
+  }
+  const Eigen::VectorXd& command() const override { return none_; }
+
+ private:
+  wbi::WholeBodyInterface* robot_ = nullptr;
+  wbi::controllers::ReferenceOutput* output_ = nullptr;
+  wbi::RobotState state_;
+  Eigen::VectorXd none_;
+};
+
+// PD + gravity towards its reference input `target` (zero torque until one came).
+class FollowerPd final : public Controller {
+ public:
+  std::vector<ParameterSpec> parameters() const override { return {}; }
+  std::vector<wbi::controllers::ReferenceSpec> references() const override {
+    return {{.name = "target", .unit = "rad", .size = 7, .max_age_s = 0.0005}};
+  }
+  void bind_references(std::span<wbi::controllers::ReferenceInput* const> inputs) override {
+    input_ = inputs[0];
+  }
+  void configure(wbi::WholeBodyInterface& robot, const ParameterTable&) override {
+    robot_ = &robot;
+    state_ = wbi::RobotState(robot.dofs());
+    g_.setZero(robot.dofs() + 6);
+    tau_.setZero(robot.dofs());
+  }
+  void activate(const wbi::RobotState&) override {
+    robot_->set_control_mode(wbi::ControlMode::torque);
+  }
+  bool update(double, double) override {
+    robot_->state().read_robot_state(state_, wbi::ReadMode::latest);
+    const auto status = input_->at(state_.stamp.source_ns, [&] { return state_.q; });
+    fresh_ += status == wbi::controllers::ReferenceStatus::fresh;
+    robot_->model().gravity_forces(state_.q, state_.world_H_base, {0, 0, -9.81}, g_);
+    tau_ = g_.tail(robot_->dofs()) - 100.0 * (state_.q - input_->position()) - 10.0 * state_.dq;
+    return true;
+  }
+  const Eigen::VectorXd& command() const override { return tau_; }
+  int fresh() const { return fresh_; }
+
+ private:
+  wbi::WholeBodyInterface* robot_ = nullptr;
+  wbi::controllers::ReferenceInput* input_ = nullptr;
+  wbi::RobotState state_;
+  Eigen::VectorXd g_, tau_;
+  int fresh_ = 0;
+};
+
+TEST(ControllerHostChaining, APlannersPointReachesItsControllerInTheSameTick) {
+  FollowerPd* follower = nullptr;
+  HostedArm arm("host_chain", 1.0, [&](ControllerHost& host) {
+    auto owned = std::make_unique<FollowerPd>();
+    follower = owned.get();
+    host.add("follower", "follower", std::move(owned));
+    host.configure("follower");
+    host.add("planner", "planner", std::make_unique<TargetPlanner>());
+    host.configure("planner");
+    host.chain("follower", "target", "planner", "target");
+    host.add("hold", "hold", wbi::controllers::make_hold_controller());
+    host.configure("hold");
+    EXPECT_TRUE(host.references("follower").empty()) << "a chained input reads no topic";
+    host.set_initial("follower");  // its planner comes with it
+  });
+  arm.run(1500);
+  EXPECT_EQ(arm.host().active(), "planner, follower");
+  // Every tick's point was the state's own (max_age_s is half a tick): no tick of delay.
+  EXPECT_EQ(follower->fresh(), 1500);
+  EXPECT_LT(arm.error_to_target(), 0.05);
+  // Deactivating the follower takes its planner along; hold takes the joints.
+  auto request =
+      std::async(std::launch::async, [&] { return arm.host().request_switch({}, {"follower"}); });
+  const auto result = arm.tick_until(request);
+  ASSERT_TRUE(result.done) << result.text;
+  EXPECT_EQ(arm.host().active(), "hold");
+}
+
+TEST(ControllerHostChaining, BadChainsAreRefusedNamingWhy) {
+  HostedArm arm("host_chain_bad", 1.0, [&](ControllerHost& host) {
+    host.add("follower", "follower", std::make_unique<FollowerPd>());
+    host.add("planner", "planner", std::make_unique<TargetPlanner>());
+    const auto refusal = [&](auto&& call) {
+      try {
+        call();
+      } catch (const wbi::Error& e) {
+        return std::string(e.what());
+      }
+      return std::string("accepted");
+    };
+    EXPECT_EQ(refusal([&] { host.chain("follower", "goal", "planner", "target"); }),
+              "controller 'follower' has no reference input 'goal' (target)");
+    EXPECT_EQ(refusal([&] { host.chain("follower", "target", "planner", "com"); }),
+              "controller 'planner' has no reference output 'com' (target)");
+    EXPECT_EQ(refusal([&] { host.chain("follower", "target", "follower", "target"); }),
+              "controller 'follower' has no reference output 'target' (none)");
+    host.chain("follower", "target", "planner", "target");
+    EXPECT_EQ(refusal([&] { host.chain("follower", "target", "planner", "target"); }),
+              "the reference input follower/target is chained already");
+    host.add("hold", "hold", wbi::controllers::make_hold_controller());
+    host.configure("hold");
+    host.set_initial("hold");
+  });
 }
 
 }  // namespace

@@ -13,7 +13,7 @@
 #include <optional>
 
 #include <wbi/controllers/controller_host.hpp>
-#include <wbi/controllers/controller_types.hpp>
+#include <wbi/controllers/momentum_balance_controller.hpp>
 #include <wbi/dds/subscriber.hpp>
 #include <wbi/dds/topics.hpp>
 #include <wbi/dds_interface.hpp>
@@ -91,7 +91,7 @@ HoldRun run_hold(const std::string& robot, double seconds, const std::string& en
   wbi::runtime::StatusReport report;
   wbi::runtime::EventLog events;
   ControllerHost host(*humanoid, report, events, ControllerHost::Options{});
-  auto& hold = host.add("hold", "hold", wbi::controllers::controller_types().create("hold"));
+  auto& hold = host.add("hold", "hold", wbi::controllers::make_hold_controller());
   if (bandwidth_hz > 0.0) {
     hold.set(hold.index("bandwidth_hz"), std::vector<double>{bandwidth_hz});
   }
@@ -100,7 +100,7 @@ HoldRun run_hold(const std::string& robot, double seconds, const std::string& en
   host.configure("hold");
   if (balance_s > 0.0) {
     host.add("balance", "momentum_balance",
-             wbi::controllers::controller_types().create("momentum_balance"));
+             std::make_unique<wbi::controllers::MomentumBalanceController>());
     host.configure("balance");
     host.set_initial("balance");
   } else {

@@ -4,8 +4,10 @@
 // with the sensor sample they answer.
 #include <gtest/gtest.h>
 
-#include <wbi/controllers/controller_host_component.hpp>
+#include <wbi/catalog.hpp>
 #include <wbi/runtime/clock.hpp>
+#include <wbi/runtime/plugins.hpp>
+#include <wbi/runtime/registry.hpp>
 #include <wbi/runtime/runner.hpp>
 
 #include "remote_model_peer.hpp"
@@ -17,11 +19,12 @@ using namespace wbi::test;
 struct Host {
   wbi::dds::Participant participant{"controller"};
   wbi::runtime::SystemClock clock;
-  wbi::runtime::Registry registry;
+  wbi::Catalog catalog;  // the built-in plugin's types, as wbi_host has them
   std::unique_ptr<wbi::runtime::ComponentRunner> runner;
 
   Host() {
-    wbi::controllers::register_components(registry);
+    wbi::runtime::load_plugins(catalog, {});
+    const auto& registry = catalog.registry<wbi::runtime::Registry>();
     wbi::runtime::RunnerOptions options;
     options.rate_hz = 200.0;
     runner = std::make_unique<wbi::runtime::ComponentRunner>(

@@ -86,7 +86,8 @@ inline wbi::runtime::Registry registry_with_toy(Seen& seen,
     return engine;
   });
   wbi::runtime::Registry registry;
-  wbi::sim_robot::register_components(registry, std::move(engines));
+  wbi::sim_robot::register_components(
+      registry, std::make_shared<const wbi::sim_robot::EngineRegistry>(std::move(engines)));
   return registry;
 }
 

@@ -41,6 +41,8 @@ int run_launch(Args args) {
     }
     deploy = launch::in_one_process(std::move(deploy));
   }
+  // A bad plugin is refused before anything starts (one line, exit 1).
+  launch::check_plugins(deploy);
   return launch::run_launch(deploy, launch_options, std::cout);
 }
 

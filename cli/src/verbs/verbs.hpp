@@ -14,6 +14,7 @@ int run_launch(Args args);
 int run_model(Args args);
 int run_param(Args args);
 int run_play(Args args);
+int run_plugins(Args args);
 int run_render(Args args);
 int run_record(Args args);
 int run_robot(Args args);

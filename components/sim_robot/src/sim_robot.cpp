@@ -21,23 +21,26 @@ std::filesystem::path config_path(const runtime::Parameters& parameters) {
 
 }  // namespace
 
-void register_components(runtime::Registry& registry, EngineRegistry engines) {
-  const auto shared = std::make_shared<const EngineRegistry>(std::move(engines));
-  const std::string names = shared->names_text();
+void register_components(runtime::Registry& registry,
+                         std::shared_ptr<const EngineRegistry> engines) {
   robot::register_simulation(
       registry, "sim_robot",
-      [shared, names](const runtime::Parameters& parameters) {
+      [engines](const runtime::Parameters& parameters) {
         const auto engine = parameters.get<std::string>("engine", "wbi");
-        if (!shared->contains(engine)) {
+        if (!engines->contains(engine)) {
           throw runtime::ParameterError(parameters.where("engine") + ": unknown engine '" + engine +
-                                        "' (registered: " + names + ")");
+                                        "' (registered: " + engines->names_text() + ")");
         }
         const EngineContext context{parameters.require<std::string>("robot"),
                                     config_path(parameters), parameters};
-        return shared->create(engine, context);
+        return engines->create(engine, context);
       },
-      "simulated robot (engine: " + names +
-          "): sensor samples, ground truth and clock out, commands in");
+      "simulated robot on an engine by name (`wbi plugins` lists them): sensor samples, ground "
+      "truth and clock out, commands in");
+}
+
+void register_components(runtime::Registry& registry) {
+  register_components(registry, std::make_shared<const EngineRegistry>(builtin_engines()));
 }
 
 }  // namespace wbi::sim_robot

@@ -1,29 +1,15 @@
+// The controller host's setup and its tick: run the active controllers (each
+// on its joints, hold on the free ones), compose one command, blend the joints
+// that changed hands, send. Switches and fallbacks: controller_host_switch.cpp.
 #include "wbi/controllers/controller_host.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
+#include "controller_host_hosted.hpp"
+
 namespace wbi::controllers {
-
-struct ControllerHost::Hosted {
-  std::string name, type;
-  std::unique_ptr<Controller> controller;
-  std::unique_ptr<ParameterTable> parameters;
-  std::vector<std::unique_ptr<ReferenceInput>> inputs;  // one per declared reference
-  std::vector<std::uint64_t> stale_said;                // per input: episodes printed
-  bool configured = false;
-  bool ran = false;  // was active at least once: its summary is printed
-  std::string configure_error = "not configured";
-};
-
-namespace {
-std::string seconds(double t) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3f s", t);
-  return text;
-}
-}  // namespace
 
 ControllerHost::ControllerHost(WholeBodyInterface& robot, runtime::StatusReport& report,
                                runtime::EventLog& events, Options options)
@@ -31,10 +17,16 @@ ControllerHost::ControllerHost(WholeBodyInterface& robot, runtime::StatusReport&
       report_(report),
       events_(events),
       options_(options),
+      owner_(static_cast<std::size_t>(robot.dofs()), nullptr),
       measured_(robot.dofs()),
+      command_(Eigen::VectorXd::Zero(robot.dofs())),
       last_command_(Eigen::VectorXd::Zero(robot.dofs())),
       before_switch_(Eigen::VectorXd::Zero(robot.dofs())),
       blend_(Eigen::VectorXd::Zero(robot.dofs())),
+      blend_start_s_(Eigen::VectorXd::Zero(robot.dofs())),
+      blend_pending_(static_cast<std::size_t>(robot.dofs()), 0),
+      blending_(static_cast<std::size_t>(robot.dofs()), 0),
+      switched_(static_cast<std::size_t>(robot.dofs()), 0),
       switches_(&report.counter("switches")),
       refused_(&report.counter("refused_switches")),
       fallbacks_(&report.counter("fallbacks")),
@@ -80,16 +72,98 @@ ParameterTable& ControllerHost::add(const std::string& name, const std::string& 
     inputs.push_back(hosted->inputs.back().get());
   }
   hosted->stale_said.assign(inputs.size(), 0);
+  hosted->chained.assign(inputs.size(), 0);
   controller->bind_references(inputs);
+  std::vector<ReferenceOutput*> outputs;
+  for (auto& spec : controller->outputs()) {
+    const std::string owner = name + "/" + spec.name;
+    hosted->outputs.push_back(std::make_unique<ReferenceOutput>(owner, std::move(spec)));
+    outputs.push_back(hosted->outputs.back().get());
+  }
+  controller->bind_outputs(outputs);
+  if (controller->commands_joints()) {
+    for (int j = 0; j < robot_.dofs(); ++j) {
+      hosted->joints.push_back(j);
+    }
+  }
   hosted->controller = std::move(controller);
+  if (name == kHoldController) {
+    hold_ = hosted.get();
+  }
   hosted_.push_back(std::move(hosted));
+  active_.reserve(hosted_.size());
+  running_.reserve(hosted_.size());
+  tick_order_.reserve(hosted_.size());
+  running_controllers_.reserve(hosted_.size());
   return *hosted_.back()->parameters;
+}
+
+void ControllerHost::set_joints(const std::string& name, const std::vector<std::string>& joints) {
+  Hosted& hosted = find(name);
+  if (&hosted == hold_) {
+    throw Error("controller 'hold' takes whatever joints no other controller commands");
+  }
+  const IdList& all = robot_.joint_list();
+  std::vector<int> indices;
+  for (const auto& joint : joints) {
+    const auto it = std::find(all.begin(), all.end(), joint);
+    if (it == all.end()) {
+      std::string known;
+      for (const auto& own : all) {
+        known += (known.empty() ? "" : ", ") + own;
+      }
+      throw Error("controller '" + name + "': joint '" + joint + "' is not the host's (" + known +
+                  ")");
+    }
+    const int index = static_cast<int>(it - all.begin());
+    if (std::find(indices.begin(), indices.end(), index) != indices.end()) {
+      throw Error("controller '" + name + "': joint '" + joint + "' is named twice");
+    }
+    indices.push_back(index);
+  }
+  std::sort(indices.begin(), indices.end());
+  hosted.joints = std::move(indices);
+}
+
+void ControllerHost::chain(const std::string& downstream, const std::string& input,
+                           const std::string& upstream, const std::string& output) {
+  Hosted& to = find(downstream);
+  Hosted& from = find(upstream);
+  const auto named = [](const auto& list, const std::string& wanted, const std::string& owner,
+                        const char* what) -> std::size_t {
+    std::string known;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      if (list[i]->spec().name == wanted) {
+        return i;
+      }
+      known += (known.empty() ? "" : ", ") + list[i]->spec().name;
+    }
+    throw Error("controller '" + owner + "' has no reference " + what + " '" + wanted + "' (" +
+                (known.empty() ? std::string("none") : known) + ")");
+  };
+  const std::size_t in = named(to.inputs, input, downstream, "input");
+  const std::size_t out = named(from.outputs, output, upstream, "output");
+  if (&to == &from || to.feeds(from)) {
+    throw Error("chaining " + upstream + " into " + downstream + " makes a cycle");
+  }
+  if (to.chained[in]) {
+    throw Error("the reference input " + downstream + "/" + input + " is chained already");
+  }
+  from.outputs[out]->connect(*to.inputs[in]);
+  to.chained[in] = 1;
+  if (std::find(to.upstream.begin(), to.upstream.end(), &from) == to.upstream.end()) {
+    to.upstream.push_back(&from);
+  }
+  if (std::find(from.downstream.begin(), from.downstream.end(), &to) == from.downstream.end()) {
+    from.downstream.push_back(&to);
+  }
 }
 
 void ControllerHost::configure(const std::string& name) {
   Hosted& hosted = find(name);
+  hosted.view = std::make_unique<JointSetInterface>(robot_, name, hosted.joints);
   try {
-    hosted.controller->configure(robot_, *hosted.parameters);
+    hosted.controller->configure(*hosted.view, *hosted.parameters);
     hosted.configured = true;
     hosted.configure_error.clear();
   } catch (const std::exception& e) {
@@ -99,143 +173,60 @@ void ControllerHost::configure(const std::string& name) {
   }
 }
 
-void ControllerHost::set_initial(const std::string& name) {
-  Hosted& hosted = find(name);
-  if (!hosted.configured) {
-    throw Error("controller '" + name + "' cannot start: " + hosted.configure_error);
-  }
-  initial_ = &hosted;
-}
-
-const std::string& ControllerHost::active() const {
-  static const std::string none;
+std::string ControllerHost::active() const {
   std::lock_guard lock(switch_mutex_);
-  return active_ ? active_->name : none;
+  std::string names;
+  for (const Hosted* hosted : active_) {
+    names += (names.empty() ? "" : ", ") + hosted->name;
+  }
+  if (hold_active_) {
+    names += (names.empty() ? "" : ", ") + std::string(kHoldController);
+  }
+  return names;
 }
 
 Controller* ControllerHost::active_controller() {
-  return active_ ? active_->controller.get() : nullptr;
+  return running_controllers_.empty() ? nullptr : running_controllers_.front();
 }
 
-bool ControllerHost::activate(Hosted& hosted, bool first_start) {
-  try {
-    robot_.state().read_robot_state(measured_, ReadMode::latest);
-  } catch (const StaleDataError&) {
-    stale_->add();
-    return false;  // no state to continue from: tried again at the next tick
-  }
-  for (auto& input : hosted.inputs) {
-    input->reset_episode();
-  }
-  hosted.controller->activate(measured_);
-  // At a switch, the new controller's commands start from the last one sent.
-  blend_pending_ = !first_start && options_.blend_s > 0.0;
-  blending_ = false;
-  std::lock_guard lock(switch_mutex_);
-  active_ = &hosted;
-  hosted.ran = true;
-  overruns_in_a_row_ = 0;
-  return true;
-}
-
-void ControllerHost::deactivate(Hosted& hosted) {
-  try {
-    hosted.controller->deactivate();
-  } catch (const std::exception& e) {
-    report_.set_error("controller '" + hosted.name + "' threw in deactivate: " + e.what());
-  }
-  std::lock_guard lock(switch_mutex_);
-  if (active_ == &hosted) {
-    active_ = nullptr;
-  }
-}
-
-void ControllerHost::fall_back(const std::string& reason, double time_s) {
-  const std::string from = active_ ? active_->name : std::string("none");
-  if (active_) {
-    deactivate(*active_);
-  }
-  fallbacks_->add();
-  std::string line = "controller '" + from + "' " + reason + ": fell back to '" + kHoldController +
-                     "' at t = " + seconds(time_s);
-  Hosted* hold = nullptr;
-  try {
-    hold = &find(kHoldController);
-  } catch (const Error&) {
-  }
-  if (from == kHoldController || !hold || !hold->configured) {
-    line = "controller '" + from + "' " + reason + ": no controller active (" +
-           (from == kHoldController ? "hold itself failed" : "no hold configured") +
-           "); the robot's watchdog takes over";
-  } else {
-    try {
-      if (!activate(*hold, false)) {
-        initial_ = hold;  // activated at the first tick with a fresh state
+void ControllerHost::rebuild_running() {
+  // Upstream first: a planner before the controllers it feeds, else as activated.
+  std::vector<Hosted*> ordered;
+  ordered.reserve(active_.size());
+  while (ordered.size() < active_.size()) {
+    for (Hosted* hosted : active_) {
+      const auto placed = [&](const Hosted* h) {
+        return std::find(ordered.begin(), ordered.end(), h) != ordered.end();
+      };
+      if (placed(hosted)) {
+        continue;
       }
-    } catch (const TimeoutError& e) {
-      line += std::string("; hold did not activate yet (tried again each tick): ") + e.what();
-      initial_ = hold;
-    } catch (const std::exception& e) {
-      line += std::string("; hold did not activate: ") + e.what();
+      const bool ready = std::all_of(hosted->upstream.begin(), hosted->upstream.end(),
+                                     [&](const Hosted* up) { return !up->active || placed(up); });
+      if (ready) {
+        ordered.push_back(hosted);
+      }
     }
   }
-  report_.set_error(line);
-  std::fprintf(stderr, "%s\n", line.c_str());
-  std::fflush(stderr);
-  events_.emit(EventSeverity::warning, EventKind::controller_fallback, line);
+  std::lock_guard lock(switch_mutex_);
+  active_ = std::move(ordered);
+  running_ = active_;
+  if (hold_active_) {
+    running_.push_back(hold_);
+  }
+  running_controllers_.clear();
+  for (Hosted* hosted : running_) {
+    running_controllers_.push_back(hosted->controller.get());
+  }
 }
 
-bool ControllerHost::apply_switch(double time_s) {
-  std::unique_lock lock(switch_mutex_, std::try_to_lock);
-  if (!lock.owns_lock() || !switch_.pending) {
-    return false;  // the requester holds the lock for a moment: at the next tick
-  }
-  Hosted* from = switch_.deactivate;
-  Hosted* to = switch_.activate;
-  lock.unlock();
-  if (from) {
-    deactivate(*from);
-  }
-  bool activated = true;
-  std::string failure;
-  if (to) {
-    try {
-      activated = activate(*to, false);
-      if (!activated) {
-        failure = "no fresh state to activate it from";
-      }
-    } catch (const std::exception& e) {
-      activated = false;
-      failure = e.what();
-    }
-  }
-  lock.lock();
-  switch_.result.time_s = time_s;
-  switch_.result.from = from ? from->name : std::string("none");
-  switch_.result.to = to ? to->name : std::string("none");
-  if (activated) {
-    switch_.result.done = true;
-    switch_.result.text = (from ? from->name : std::string("none")) + " → " +
-                          (to ? to->name : std::string("none")) + " at t = " + seconds(time_s);
-  } else {
-    switch_.result.text = "'" + to->name + "' did not activate: " + failure;
-  }
-  lock.unlock();
-  if (!activated && from) {
-    fall_back("was switched out but '" + to->name + "' did not activate (" + failure + ")", time_s);
-  }
-  return true;
-}
-
-void ControllerHost::run_active(double time_s, double period_s) {
-  Hosted& hosted_active = *active_;  // a fallback in update() changes active_
-  Controller& controller = *active_->controller;
-  ParameterTable& parameters = *active_->parameters;
-  if (state_source_changed_.exchange(false)) {
+int ControllerHost::run(Hosted& hosted, double time_s, double period_s, bool source_changed) {
+  Controller& controller = *hosted.controller;
+  if (source_changed) {
     controller.state_source_changed();
   }
-  if (parameters.apply_staged()) {
-    controller.parameters_changed(parameters);
+  if (hosted.parameters->apply_staged()) {
+    controller.parameters_changed(*hosted.parameters);
     changes_->add();
     parameters_applied_ = true;
   }
@@ -245,84 +236,106 @@ void ControllerHost::run_active(double time_s, double period_s) {
     fresh = controller.update(time_s, period_s);
   } catch (const StaleDataError&) {
     stale_->add();  // no fresh state this tick: no command; the robot's watchdog guards
-    return;
+    return 0;
   } catch (const TimeoutError&) {
     // A service it needs is late (a remote model restarting): the controller
     // is not at fault, and hold would need the same service. Tried again next tick.
     late_->add();
-    return;
+    return 0;
   } catch (const std::exception& e) {
-    fall_back(std::string("threw in update (") + e.what() + ")", time_s);
-    if (active_ && active_ != &hosted_active) {
-      run_active(time_s, period_s);  // hold commands this tick already: no tick goes unanswered
-    }
-    return;
+    fall_back(hosted, std::string("threw in update (") + e.what() + ")", time_s);
+    return -1;
   }
   const double took_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  report_references(hosted_active, time_s);
+  report_references(hosted, time_s);
   if (took_s > period_s) {
     overruns_->add();
-    if (++overruns_in_a_row_ >= options_.overrun_limit && options_.overrun_limit > 0) {
+    if (++hosted.overruns_in_a_row >= options_.overrun_limit && options_.overrun_limit > 0) {
       char reason[128];
       std::snprintf(reason, sizeof reason,
                     "overran its %.3f ms period %d ticks in a row (last %.3f ms)", 1e3 * period_s,
-                    overruns_in_a_row_, 1e3 * took_s);
-      fall_back(reason, time_s);
+                    hosted.overruns_in_a_row, 1e3 * took_s);
+      fall_back(hosted, reason, time_s);
+      return -1;
     }
   } else {
-    overruns_in_a_row_ = 0;
+    hosted.overruns_in_a_row = 0;
   }
-  if (fresh && active_ == &hosted_active) {
-    send(time_s);
+  if (!fresh) {
+    return 0;
   }
+  if (hosted.joints.empty()) {
+    return 1;  // a planner: its outputs are written
+  }
+  const Eigen::VectorXd& command = controller.command();
+  if (command.size() != robot_.dofs()) {
+    char reason[128];
+    std::snprintf(reason, sizeof reason, "gave a command of %d values for the host's %d joints",
+                  static_cast<int>(command.size()), robot_.dofs());
+    fall_back(hosted, reason, time_s);
+    return -1;
+  }
+  for (const int j : hosted.joints) {
+    if (owner_[static_cast<std::size_t>(j)] == &hosted ||
+        (&hosted == hold_ && owner_[static_cast<std::size_t>(j)] == nullptr)) {
+      command_[j] = command[j];
+    }
+  }
+  return 1;
 }
 
 void ControllerHost::send(double time_s) {
-  const Eigen::VectorXd& command = active_->controller->command();
-  if (blend_pending_) {  // the first command after a switch: keep the difference to the last
-    blend_ = last_command_ - command;
-    blend_pending_ = false;
-    blending_ = true;
-    blend_start_s_ = time_s;
+  for (int j = 0; j < command_.size(); ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    if (blend_pending_[k]) {  // its first command after a switch: keep the difference to the last
+      blend_pending_[k] = 0;
+      blend_[j] = last_command_[j] - command_[j];
+      blend_start_s_[j] = time_s;
+      blending_joints_ += blending_[k] ? 0 : 1;
+      blending_[k] = 1;
+    }
   }
-  double weight = 0.0;
-  if (blending_) {
-    weight = std::exp(-(time_s - blend_start_s_) / options_.blend_s);
-    blending_ = weight > 1e-9;
+  // The new command: the controllers' plus what remains of each joint's blend.
+  double change_squared = 0.0;
+  for (int j = 0; j < command_.size(); ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    double out = command_[j];
+    if (blending_[k]) {
+      const double weight = std::exp(-(time_s - blend_start_s_[j]) / options_.blend_s);
+      if (!(weight > 1e-9)) {
+        blending_[k] = 0;
+        --blending_joints_;
+      }
+      if (weight > 0.0) {
+        out = command_[j] + weight * blend_[j];
+      }
+    }
+    change_squared += (out - last_command_[j]) * (out - last_command_[j]);
+    last_command_[j] = out;
   }
   // How smooth the commands are: the change since the last tick.
-  const double change = (command + weight * blend_ - last_command_).norm();
+  const double change = std::sqrt(change_squared);
   if (settle_until_s_ >= 0.0) {
     settling_.largest_change = std::max(settling_.largest_change, change);
   } else {
     largest_change_ = std::max(largest_change_, change);
   }
-  if (weight > 0.0) {
-    last_command_ = command + weight * blend_;
-  } else {
-    last_command_ = command;
-  }
   robot_.actuators().set_control_reference(last_command_);
 }
 
 void ControllerHost::tick(double time_s, double period_s) {
-  if (initial_ && !active_) {
-    try {
-      if (activate(*initial_, true)) {
-        initial_ = nullptr;
-      }
-    } catch (const TimeoutError&) {
-      late_->add();  // a service it needs is late: tried again at the next tick
-    } catch (const std::exception& e) {
-      initial_ = nullptr;
-      fall_back(std::string("threw in activate (") + e.what() + ")", time_s);
-    }
+  if (!started_) {
+    started_ = start(time_s);
+  } else if (hold_pending_) {
+    take_free_joints_to_hold();
   }
   const bool switching = switch_requested_.load(std::memory_order_acquire) && apply_switch(time_s);
   // Inactive controllers take their staged values too (they use them when activated).
   for (auto& hosted : hosted_) {
-    if (hosted.get() != active_ && hosted->configured && hosted->parameters->apply_staged()) {
+    const bool running =
+        std::find(running_.begin(), running_.end(), hosted.get()) != running_.end();
+    if (!running && hosted->configured && hosted->parameters->apply_staged()) {
       hosted->controller->parameters_changed(*hosted->parameters);
       changes_->add();
       parameters_applied_ = true;
@@ -331,8 +344,31 @@ void ControllerHost::tick(double time_s, double period_s) {
   if (switching) {
     before_switch_ = last_command_;
   }
-  if (active_) {
-    run_active(time_s, period_s);
+  const bool source_changed = state_source_changed_.exchange(false);
+  // One command when every controller on joints had something new (each
+  // answers the same state); a planner's outputs do not count. A fallback
+  // changes running_: this tick runs the controllers that were running and
+  // still are, then hold when it took joints meanwhile.
+  bool any = false, all = true, hold_ran = false;
+  const auto run_one = [&](Hosted& hosted) {
+    const int ran = run(hosted, time_s, period_s, source_changed);
+    if (ran >= 0 && !hosted.joints.empty()) {
+      any = any || ran > 0;
+      all = all && ran > 0;
+    }
+  };
+  tick_order_.assign(running_.begin(), running_.end());  // capacity reserved: no allocation
+  for (Hosted* hosted : tick_order_) {
+    if (hosted == hold_ ? hold_active_ : hosted->active) {
+      hold_ran = hold_ran || hosted == hold_;
+      run_one(*hosted);
+    }
+  }
+  if (hold_active_ && !hold_ran) {
+    run_one(*hold_);
+  }
+  if (any && all) {
+    send(time_s);
   }
   if (switching) {
     finish_switch();
@@ -365,125 +401,6 @@ void ControllerHost::wake_parameter_waiters() {
   parameters_applied_ = false;
 }
 
-// After the switch tick's command: its step, then the requester is answered.
-void ControllerHost::finish_switch() {
-  std::unique_lock lock(switch_mutex_);
-  if (!switch_.pending) {
-    return;
-  }
-  if (switch_.result.done && active_) {
-    // The first command sent after the switch against the last one before it.
-    const double before = before_switch_.norm();
-    switch_.result.torque_step =
-        before > 0.0 ? (last_command_ - before_switch_).norm() / before : 0.0;
-    char step[96];
-    std::snprintf(step, sizeof step, "; torque step %.2f %% of the %.3g N m applied",
-                  100.0 * switch_.result.torque_step, before);
-    switch_.result.text += step;
-    switch_.result.torque_before = before;
-    switch_.result.largest_change_before = before > 0.0 ? largest_change_ / before : 0.0;
-    largest_change_ = 0.0;
-    settling_ = switch_.result;
-    settling_.largest_change = 0.0;
-    settle_until_s_ = switch_.result.time_s + std::max(5.0 * options_.blend_s, 0.05);
-  }
-  switch_.pending = false;
-  switch_requested_.store(false, std::memory_order_release);
-  last_switch_ = switch_.result;
-  ++switches_done_;
-  lock.unlock();
-  switch_done_.notify_all();
-  if (last_switch_.done) {  // one that did not activate fell back: that is its event
-    events_.emit(EventSeverity::info, EventKind::controller_switched, last_switch_.text);
-  }
-}
-
-SwitchResult ControllerHost::check_switch(Hosted* to, Hosted* from) const {
-  SwitchResult refused;
-  if (switch_.pending) {
-    refused.text = "another switch is pending";
-  } else if (to && !to->configured) {
-    refused.text = "'" + to->name + "' cannot be activated: " + to->configure_error;
-  } else if (from && from != active_) {
-    refused.text = "'" + from->name +
-                   "' is not active (active: " + (active_ ? active_->name : std::string("none")) +
-                   ")";
-  } else if (to && to == active_ && from != to) {
-    refused.text = "'" + to->name + "' is already active";
-  } else if (to && active_ && !from) {
-    refused.text = "'" + active_->name + "' is active on the same joints: deactivate it in the " +
-                   "same switch (--deactivate " + active_->name + ")";
-  } else if (!to) {
-    refused.text = std::string("nothing would command the joints: activate '") + kHoldController +
-                   "' to hold the posture";
-  }
-  return refused;
-}
-
-SwitchResult ControllerHost::request_switch(const std::vector<std::string>& activate,
-                                            const std::vector<std::string>& deactivate) {
-  SwitchResult refused;
-  const auto refuse = [&](std::string text) {
-    refused_->add();
-    refused.text = std::move(text);
-    return refused;
-  };
-  if (activate.size() > 1 || deactivate.size() > 1) {
-    return refuse(
-        "the host runs one controller at a time on its joints: name at most one to "
-        "activate and one to deactivate");
-  }
-  Hosted* to = nullptr;
-  Hosted* from = nullptr;
-  try {
-    to = activate.empty() ? nullptr : &find(activate[0]);
-    from = deactivate.empty() ? nullptr : &find(deactivate[0]);
-  } catch (const Error& e) {
-    return refuse(e.what());
-  }
-  std::unique_lock lock(switch_mutex_);
-  if (const SwitchResult problem = check_switch(to, from); !problem.text.empty()) {
-    return refuse(problem.text);
-  }
-  switch_ = PendingSwitch{.pending = true, .activate = to, .deactivate = from, .result = {}};
-  switch_requested_.store(true, std::memory_order_release);
-  const std::uint64_t id = switches_done_;
-  const bool applied =
-      switch_done_.wait_for(lock, options_.switch_timeout, [&] { return switches_done_ > id; });
-  if (!applied) {
-    switch_.pending = false;
-    switch_requested_.store(false, std::memory_order_release);
-    return refuse("the switch did not take effect within " +
-                  std::to_string(options_.switch_timeout.count()) +
-                  " ms: is the host's loop running?");
-  }
-  if (switch_.result.done) {
-    switches_->add();
-  } else {
-    refused_->add();
-  }
-  return switch_.result;
-}
-
-std::string ControllerHost::schedule_switch(const std::string& activate) {
-  Hosted* to = nullptr;
-  try {
-    to = &find(activate);
-  } catch (const Error& e) {
-    refused_->add();
-    return e.what();
-  }
-  std::lock_guard lock(switch_mutex_);
-  if (const SwitchResult problem = check_switch(to, active_); !problem.text.empty()) {
-    refused_->add();
-    return problem.text;
-  }
-  switch_ = PendingSwitch{.pending = true, .activate = to, .deactivate = active_, .result = {}};
-  switch_requested_.store(true, std::memory_order_release);
-  switches_->add();  // applied by the next tick
-  return "";
-}
-
 void ControllerHost::set_parameter(const std::string& controller, const std::string& parameter,
                                    const std::vector<double>& values) {
   Hosted& hosted = find(controller);
@@ -491,7 +408,7 @@ void ControllerHost::set_parameter(const std::string& controller, const std::str
   bool active = false;
   {
     std::lock_guard lock(switch_mutex_);
-    active = active_ == &hosted;
+    active = std::find(running_.begin(), running_.end(), &hosted) != running_.end();
   }
   hosted.parameters->stage(index, values, active);
   const std::string& unit = hosted.parameters->spec(index).unit;
@@ -515,7 +432,9 @@ std::vector<ControllerInfo> ControllerHost::list() const {
   std::lock_guard lock(switch_mutex_);
   std::vector<ControllerInfo> out;
   for (const auto& hosted : hosted_) {
-    out.push_back({hosted->name, hosted->type, hosted.get() == active_, hosted->configure_error});
+    const bool running =
+        std::find(running_.begin(), running_.end(), hosted.get()) != running_.end();
+    out.push_back({hosted->name, hosted->type, running, hosted->configure_error});
   }
   return out;
 }
@@ -548,9 +467,12 @@ void ControllerHost::report_references(Hosted& active, double time_s) {
 }
 
 std::vector<ReferenceInput*> ControllerHost::references(const std::string& controller) const {
+  const Hosted& hosted = find(controller);
   std::vector<ReferenceInput*> inputs;
-  for (const auto& input : find(controller).inputs) {
-    inputs.push_back(input.get());
+  for (std::size_t i = 0; i < hosted.inputs.size(); ++i) {
+    if (!hosted.chained[i]) {
+      inputs.push_back(hosted.inputs[i].get());
+    }
   }
   return inputs;
 }
@@ -558,8 +480,8 @@ std::vector<ReferenceInput*> ControllerHost::references(const std::string& contr
 void ControllerHost::set_reference_wait(std::int64_t wait_ns) {
   reference_wait_ns_ = wait_ns;
   for (auto& hosted : hosted_) {
-    for (auto& input : hosted->inputs) {
-      input->set_wait(wait_ns);
+    for (std::size_t i = 0; i < hosted->inputs.size(); ++i) {
+      hosted->inputs[i]->set_wait(hosted->chained[i] ? 0 : wait_ns);
     }
   }
 }
@@ -567,8 +489,10 @@ void ControllerHost::set_reference_wait(std::int64_t wait_ns) {
 bool ControllerHost::wait_for_first_references(std::int64_t time_ns) {
   bool all = true;
   for (auto& hosted : hosted_) {
-    for (auto& input : hosted->inputs) {
-      all = input->wait_for(time_ns, reference_wait_ns_) && all;
+    for (std::size_t i = 0; i < hosted->inputs.size(); ++i) {
+      if (!hosted->chained[i]) {
+        all = hosted->inputs[i]->wait_for(time_ns, reference_wait_ns_) && all;
+      }
     }
   }
   return all;

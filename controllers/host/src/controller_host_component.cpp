@@ -6,7 +6,6 @@
 #include <optional>
 
 #include <wbi/controllers/controller_host.hpp>
-#include <wbi/controllers/controller_types.hpp>
 #include <wbi/controllers/interface_options.hpp>
 #include <wbi/dds/publisher.hpp>
 #include <wbi/dds/subscriber.hpp>
@@ -54,7 +53,8 @@ class ControllerHostComponent final : public runtime::Component {
  public:
   // single: the type of the one controller a `<type>` component hosts; empty
   // for a controller_host, whose controllers come from its `controllers:` map.
-  explicit ControllerHostComponent(std::string single) : single_(std::move(single)) {}
+  ControllerHostComponent(std::shared_ptr<const ControllerRegistry> types, std::string single)
+      : types_(std::move(types)), single_(std::move(single)) {}
 
   void on_configure(const runtime::Parameters& parameters,
                     const runtime::ComponentContext& context) override {
@@ -84,6 +84,14 @@ class ControllerHostComponent final : public runtime::Component {
                                     std::to_string(switch_at_s_.size()) + " times, switch_to " +
                                     std::to_string(switch_to_.size()) + " controllers");
     }
+    // Whose joints each scheduled switch takes ("": the controllers on them).
+    switch_from_ = parameters.get<std::vector<std::string>>(
+        "switch_from", std::vector<std::string>(switch_to_.size()));
+    if (switch_from_.size() != switch_to_.size()) {
+      throw runtime::ParameterError(
+          parameters.where("switch_from") + ": switch_to has " + std::to_string(switch_to_.size()) +
+          " controllers, switch_from " + std::to_string(switch_from_.size()));
+    }
     for (std::size_t i = 1; i < switch_at_s_.size(); ++i) {
       if (!(switch_at_s_[i] > switch_at_s_[i - 1])) {
         throw runtime::ParameterError(parameters.where("switch_at_s") +
@@ -112,20 +120,29 @@ class ControllerHostComponent final : public runtime::Component {
     robot_->init(std::chrono::milliseconds(static_cast<std::int64_t>(init_timeout_s * 1000)));
     host_.emplace(*robot_, report(), events(), host_options);
 
-    std::string active = kHoldController;
+    std::vector<std::string> active{kHoldController};
     if (!single_.empty()) {
       // Named after the component: its signals, references and parameters
       // are the instance's (wbi/<robot>/references/<instance>/…).
       add(context.instance, single_, parameters);
-      active = context.instance;
+      active = {context.instance};
     } else {
       const runtime::Parameters controllers = parameters.child("controllers", "controllers");
+      std::vector<std::pair<std::string, runtime::Parameters>> owns;
       for (const auto& name : controllers.keys()) {
-        const runtime::Parameters own = controllers.child(name, "controller '" + name + "'");
-        add(name, own.get<std::string>("type", name), own);
+        owns.emplace_back(name, controllers.child(name, "controller '" + name + "'"));
+        add(name, owns.back().second.get<std::string>("type", name), owns.back().second);
+      }
+      // Once all are in: a planner may be listed after the controller it feeds.
+      for (const auto& [name, own] : owns) {
+        if (own.has("inputs")) {
+          const runtime::Parameters inputs = own.child("inputs", "inputs");
+          chain(name, inputs);
+          inputs.reject_unknown();
+        }
         own.reject_unknown();
       }
-      active = parameters.get<std::string>("active", active);
+      active = names(parameters, "active", active);
     }
     if (!host_->list().empty() && !has(kHoldController)) {
       add(kHoldController, kHoldController, runtime::Parameters());
@@ -134,6 +151,12 @@ class ControllerHostComponent final : public runtime::Component {
       host_->set_initial(active);
     } catch (const Error& e) {
       throw runtime::ParameterError(parameters.where("active") + ": " + e.what());
+    }
+    for (const auto& name : switch_from_) {
+      if (!name.empty() && !has(name)) {
+        throw runtime::ParameterError(parameters.where("switch_from") + ": no controller '" + name +
+                                      "' among this host's");
+      }
     }
     for (const auto& name : switch_to_) {
       if (!has(name)) {
@@ -193,7 +216,8 @@ class ControllerHostComponent final : public runtime::Component {
     const double period_s = 1e-9 * static_cast<double>(period_ns);
     const double t = robot_time(period_s);
     if (next_switch_ < switch_at_s_.size() && t >= switch_at_s_[next_switch_]) {
-      const std::string refused = host_->schedule_switch(switch_to_[next_switch_]);
+      const std::string refused =
+          host_->schedule_switch(switch_to_[next_switch_], switch_from_[next_switch_]);
       if (!refused.empty()) {
         std::printf("switch at t = %.3f s refused: %s\n", t, refused.c_str());
       }
@@ -226,7 +250,9 @@ class ControllerHostComponent final : public runtime::Component {
     Controller* active = host_->active_controller();
     if (active) {
       publish_signals(*active);
-      if (active->finished() && !exit_requested_) {
+    }
+    for (Controller* running : host_->active_controllers()) {
+      if (running->finished() && !exit_requested_) {
         // The run is over: end the hosting process (wbi_host shuts the
         // components down, so the summary is printed), and `wbi launch` with it.
         exit_requested_ = true;
@@ -304,16 +330,57 @@ class ControllerHostComponent final : public runtime::Component {
            const runtime::Parameters& parameters) {
     std::unique_ptr<Controller> controller;
     try {
-      controller = controller_types().create(type);
+      // hold is the host's own; every other type comes from the plugins.
+      controller = type == kHoldController ? make_hold_controller() : types_->create(type);
     } catch (const std::invalid_argument& e) {
       throw runtime::ParameterError(parameters.where("type") + ": " + e.what());
     }
     ParameterTable& table = host_->add(name, type, std::move(controller));
+    // In a host's `controllers:` map, the joints it commands (a subset of the
+    // host's; none for a planner); one controller of its own type commands them all.
+    if (single_.empty() && parameters.has("joints")) {
+      try {
+        host_->set_joints(name, parameters.require<std::vector<std::string>>("joints"));
+      } catch (const Error& e) {
+        throw runtime::ParameterError(parameters.where("joints") + ": " + e.what());
+      }
+    }
     read_declared(parameters, table);
     try {
       host_->configure(name);
     } catch (const Error& e) {
       throw runtime::ParameterError(parameters.where() + ": " + e.what());
+    }
+  }
+
+  // `inputs: {INPUT: PLANNER[/OUTPUT]}` of controller `name`: each input fed
+  // in the same tick by a planner of this host (its output of the same name
+  // unless named), not from the input's topic.
+  void chain(const std::string& name, const runtime::Parameters& inputs) {
+    for (const auto& input : inputs.keys()) {
+      const std::string source = inputs.require<std::string>(input);
+      const auto slash = source.find('/');
+      const std::string planner = source.substr(0, slash);
+      const std::string output = slash == std::string::npos ? input : source.substr(slash + 1);
+      try {
+        host_->chain(name, input, planner, output);
+      } catch (const Error& e) {
+        throw runtime::ParameterError(inputs.where(input) + ": " + e.what());
+      }
+    }
+  }
+
+  // A name or a list of names.
+  static std::vector<std::string> names(const runtime::Parameters& parameters,
+                                        const std::string& key,
+                                        const std::vector<std::string>& fallback) {
+    if (!parameters.has(key)) {
+      return fallback;
+    }
+    try {
+      return {parameters.require<std::string>(key)};
+    } catch (const runtime::ParameterError&) {
+      return parameters.require<std::vector<std::string>>(key);
     }
   }
 
@@ -367,6 +434,7 @@ class ControllerHostComponent final : public runtime::Component {
     return 0;
   }
 
+  std::shared_ptr<const ControllerRegistry> types_;
   std::string single_;
   std::unique_ptr<WholeBodyInterface> robot_;
   std::optional<ControllerHost> host_;
@@ -379,7 +447,7 @@ class ControllerHostComponent final : public runtime::Component {
   Transform base_pose_ = Transform::Identity();
   double exit_after_s_ = 0.0;
   std::vector<double> switch_at_s_;
-  std::vector<std::string> switch_to_;
+  std::vector<std::string> switch_to_, switch_from_;
   std::size_t next_switch_ = 0;
   std::uint64_t switches_settled_ = 0;
   std::uint64_t event_timeouts_ = 0;
@@ -398,17 +466,23 @@ class ControllerHostComponent final : public runtime::Component {
 
 }  // namespace
 
-void register_components(runtime::Registry& registry) {
+void register_components(runtime::Registry& registry,
+                         std::shared_ptr<const ControllerRegistry> types) {
   registry.add(
-      "controller_host", [] { return std::make_unique<ControllerHostComponent>(""); },
+      "controller_host", [types] { return std::make_unique<ControllerHostComponent>(types, ""); },
       "runs controllers on a robot's joints: lifecycle, switching, live parameters, hold");
-  for (const auto& type : controller_types().names()) {
-    if (type == kHoldController) {
-      continue;
+}
+
+void register_single_controller_hosts(runtime::Registry& registry,
+                                      std::shared_ptr<const ControllerRegistry> types) {
+  for (const auto& type : types->names()) {
+    if (registry.contains(type)) {
+      continue;  // a component type of that name (e.g. its own host type): the map form only
     }
+    registry.set_provider(types->provider(type));
     registry.add(
-        type, [type] { return std::make_unique<ControllerHostComponent>(type); },
-        controller_types().description(type) + " (a controller host with this one controller)");
+        type, [types, type] { return std::make_unique<ControllerHostComponent>(types, type); },
+        types->description(type) + " (a controller host with this one controller)");
   }
 }
 

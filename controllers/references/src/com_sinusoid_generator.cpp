@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <optional>
 
+#include <wbi/controllers/com_measures.hpp>
 #include <wbi/controllers/com_sinusoid.hpp>
 #include <wbi/controllers/interface_options.hpp>
 #include <wbi/controllers/reference_generators.hpp>
@@ -129,19 +130,9 @@ class ComSinusoidGenerator final : public runtime::Component {
     }
   }
 
-  Eigen::Vector3d com() {
-    Eigen::Vector3d c;
-    robot_->com(state_.q, state_.world_H_base, c);
-    return c;
-  }
-
+  Eigen::Vector3d com() { return measured_com(*robot_, state_); }
   Eigen::Vector3d feet_center() {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (const int sole : {left_, right_}) {
-      robot_->frame_pose(state_.q, state_.world_H_base, sole, sole_pose_);
-      sum += sole_pose_.topRightCorner<3, 1>();
-    }
-    return 0.5 * sum;
+    return controllers::feet_center(*robot_, state_, left_, right_, sole_pose_);
   }
 
   void send(std::int64_t stamp_ns, double t) {

@@ -5,7 +5,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <wbi/catalog.hpp>
 #include <wbi/deploy/placement.hpp>
+#include <wbi/runtime/plugins.hpp>
 
 namespace wbi::launch {
 
@@ -112,10 +114,11 @@ RespawnPolicy read_respawn(const Reader& in, const YAML::Node& node, const std::
   return policy;
 }
 
-ProcessSpec read_process(const Reader& in, const YAML::Node& node, const std::string& field) {
+ProcessSpec read_process(const Reader& in, const YAML::Node& node, const std::string& field,
+                         const std::vector<std::string>& plugins) {
   in.only_keys(node, field,
                {"name", "command", "components", "environment", "required", "respawn", "wait_for",
-                "shutdown_on_exit", "hang_timeout", "host"});
+                "shutdown_on_exit", "hang_timeout", "host", "plugins"});
   ProcessSpec process;
   if (!node["name"]) {
     in.fail(node, field + ".name", "missing");
@@ -152,6 +155,18 @@ ProcessSpec read_process(const Reader& in, const YAML::Node& node, const std::st
         process.components.push_back(component["name"].as<std::string>());
       }  // else wbi_host names the mistake
     }
+  }
+  if (node["plugins"]) {
+    if (!has_components) {
+      in.fail(node["plugins"], field + ".plugins",
+              "needs 'components' (plugins bring the types of components and controllers)");
+    }
+    process.plugins = plugins;
+    for (auto& plugin : in.string_list(node["plugins"], field + ".plugins")) {
+      process.plugins.push_back(std::move(plugin));
+    }
+  } else if (has_components) {
+    process.plugins = plugins;
   }
   if (node["host"] && !has_components) {
     in.fail(node["host"], field + ".host", "needs 'components' (it is the program that runs them)");
@@ -198,6 +213,21 @@ ProcessSpec read_process(const Reader& in, const YAML::Node& node, const std::st
 
 }  // namespace
 
+void check_plugins(const DeployFile& deploy) {
+  for (const ProcessSpec& process : deploy.processes) {
+    if (!process.hosts_components) {
+      continue;
+    }
+    Catalog catalog;
+    try {
+      runtime::load_plugins(catalog, process.plugins, deploy.path.parent_path());
+    } catch (const std::exception& e) {
+      throw std::runtime_error(deploy.path.string() + ": process '" + process.name +
+                               "': " + e.what());
+    }
+  }
+}
+
 DeployFile load_deploy_file(const std::filesystem::path& path) {
   Reader in(path);
   YAML::Node root;
@@ -214,7 +244,7 @@ DeployFile load_deploy_file(const std::filesystem::path& path) {
                              ": a deploy file is a mapping with a 'processes' list");
   }
   in.only_keys(root, "",
-               {"domain_id", "qos_file", "environment", "summary", "processes",
+               {"domain_id", "qos_file", "environment", "summary", "processes", "plugins",
                 wbi::deploy::kNetworkKey, wbi::deploy::kSecurityKey});
   DeployFile deploy;
   deploy.path = path;
@@ -239,10 +269,12 @@ DeployFile load_deploy_file(const std::filesystem::path& path) {
   if (!processes || !processes.IsSequence() || processes.size() == 0) {
     in.fail(processes ? processes : root, "processes", "expected a non-empty list of processes");
   }
+  const std::vector<std::string> plugins =
+      root["plugins"] ? in.string_list(root["plugins"], "plugins") : std::vector<std::string>{};
   std::set<std::string> names;
   for (std::size_t i = 0; i < processes.size(); ++i) {
     const std::string field = "processes[" + std::to_string(i) + "]";
-    auto process = read_process(in, processes[i], field);
+    auto process = read_process(in, processes[i], field, plugins);
     if (!names.insert(process.name).second) {
       in.fail(processes[i]["name"], field + ".name", "'" + process.name + "' is used twice");
     }

@@ -46,6 +46,7 @@ DeployFile in_one_process(DeployFile deploy) {
       }
     }
     names += (names.empty() ? "" : ",") + process.name;
+    one.plugins.insert(one.plugins.end(), process.plugins.begin(), process.plugins.end());
     one.components.insert(one.components.end(), process.components.begin(),
                           process.components.end());
     one.hang_timeout_s = std::max(one.hang_timeout_s, process.hang_timeout_s);

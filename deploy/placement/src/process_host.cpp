@@ -37,8 +37,19 @@ YAML::Node process_host_document(const YAML::Node& deploy, const std::string& fi
     throw std::runtime_error(file + ": no process named to host");
   }
   YAML::Node components(YAML::NodeType::Sequence);
+  // The deploy file's plugins, then each process's (the loader skips a repeat).
+  YAML::Node plugins(YAML::NodeType::Sequence);
+  const auto add_plugins = [&](const YAML::Node& list) {
+    if (list && list.IsSequence()) {
+      for (const auto& plugin : list) {
+        plugins.push_back(plugin);
+      }
+    }
+  };
+  add_plugins(deploy["plugins"]);
   for (const auto& name : processes) {
     const YAML::Node entry = find_process(deploy, file, name);
+    add_plugins(entry["plugins"]);
     if (!entry["components"]) {
       throw std::runtime_error(line_of(file, entry) + ": process '" + name +
                                "' has no 'components' to host");
@@ -49,6 +60,9 @@ YAML::Node process_host_document(const YAML::Node& deploy, const std::string& fi
   }
   YAML::Node host;
   host["components"] = components;
+  if (plugins.size() > 0) {
+    host["plugins"] = plugins;
+  }
   for (const char* key : {"domain_id", "qos_file", kNetworkKey, kSecurityKey}) {
     if (deploy[key]) {
       host[key] = deploy[key];

@@ -5,6 +5,9 @@
 //   domain_id: 3              # optional; WBI_DOMAIN_ID wins (else 0)
 //   clock: system             # system | simulation (wbi/clock)
 //   status_period_s: 1.0      # heartbeat period on wbi/status
+//   plugins: [my_lab]         # loaded before the components are made, by the
+//                             # program (plugins.hpp; the registry passed here
+//                             # already has their types)
 //   components:
 //     - name: model           # instance name, unique
 //       type: model_service   # a registered type
@@ -53,6 +56,10 @@ struct PlacementReader {
 
 // The participant joins as dds/README.md "Joining a deployment" says:
 // defaults < the file (domain_id, qos_file, the placement reader's blocks) < WBI_* environment.
+// Reads a host file (for its `plugins:` before the Host is made). Throws
+// ParameterError naming the file (and line).
+YAML::Node read_host_file(const std::string& file);
+
 class Host {
  public:
   // Reads the file and creates the participant, the clock and the components

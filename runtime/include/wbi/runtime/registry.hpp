@@ -1,7 +1,8 @@
 // Component types by name, so that a host process creates the components a
 // deploy file lists (wbi::Registry, wbi/registry.hpp). Component libraries
 // export a registration function (e.g.
-// wbi::model_service::register_components(Registry&)) that the host calls.
+// wbi::model_service::register_components(Registry&)) that a plugin calls
+// (wbi/plugin.hpp; the project's own: apps/plugins/builtin).
 #pragma once
 
 #include <memory>
@@ -15,6 +16,7 @@ namespace wbi::runtime {
 
 class Registry : public wbi::Registry<Component> {
  public:
+  static constexpr const char* kKind = "component type";  // its name in a wbi::Catalog
   Registry() : wbi::Registry<Component>("component type") {}
 
   using wbi::Registry<Component>::add;

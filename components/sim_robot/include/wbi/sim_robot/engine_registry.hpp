@@ -2,8 +2,8 @@
 // An engine is a factory of SimulationBackend (wbi/actuation/simulation_backend.hpp):
 // the robot loop, the DDS sides, lockstep and the ground truth are the robot
 // driver's (wbi/robot/robot_driver.hpp), the same for every engine. Adding an
-// engine is one registration (builtin_engines() in src/builtin_engines.cpp,
-// or EngineRegistry::add in your own host); no loop code changes.
+// engine is one registration: EngineRegistry::add in a plugin (wbi/plugin.hpp;
+// the project's own in src/builtin_engines.cpp); no loop code changes.
 #pragma once
 
 #include <filesystem>
@@ -34,10 +34,13 @@ using EngineFactory =
 
 class EngineRegistry : public Registry<actuation::SimulationBackend, const EngineContext&> {
  public:
+  static constexpr const char* kKind = "engine";  // its name in a wbi::Catalog
   EngineRegistry() : Registry("engine") {}
 };
 
-// The engines built into wbi::sim_robot: "wbi" (the project's own plant, wbi::sim).
-EngineRegistry builtin_engines();
+// The engines built into wbi::sim_robot: "wbi" (the project's own plant,
+// wbi::sim) and, when built with it, "mujoco".
+void register_builtin_engines(EngineRegistry& engines);
+EngineRegistry builtin_engines();  // a registry with just those
 
 }  // namespace wbi::sim_robot

@@ -27,13 +27,20 @@
 // The loop runs on its own thread while ACTIVE (the simulation paces itself).
 #pragma once
 
+#include <memory>
+
 #include <wbi/runtime/registry.hpp>
 
 #include "wbi/sim_robot/engine_registry.hpp"
 
 namespace wbi::sim_robot {
 
-// Registers "sim_robot" over `engines`.
-void register_components(runtime::Registry& registry, EngineRegistry engines = builtin_engines());
+// Registers "sim_robot" over `engines`, looked up when a robot is made (so an
+// engine a later plugin registers is found). A plugin passes the catalog's
+// registry without owning it (it outlives the components).
+void register_components(runtime::Registry& registry,
+                         std::shared_ptr<const EngineRegistry> engines);
+// Over the built-in engines only (tests, and programs without plugins).
+void register_components(runtime::Registry& registry);
 
 }  // namespace wbi::sim_robot

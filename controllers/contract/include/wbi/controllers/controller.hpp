@@ -9,7 +9,9 @@
 //               parameters. May allocate, may throw wbi::Error (the host then
 //               refuses to run it, naming why).
 //   activate    INACTIVE → ACTIVE, at a tick boundary, on the loop thread:
-//               `measured` is the state of that tick; sets its control mode.
+//               `measured` is the state of that tick; sets its control mode
+//               (on the joints it commands: the host's interface applies a
+//               mode to those only).
 //   update      ACTIVE, once per tick: reads the state and computes
 //               command(); returns false when there is nothing new to send
 //               (e.g. that state was answered already). The host sends the
@@ -36,6 +38,7 @@
 
 #include "wbi/controllers/parameter_table.hpp"
 #include "wbi/controllers/reference_input.hpp"
+#include "wbi/controllers/reference_output.hpp"
 #include "wbi/whole_body_interface.hpp"
 
 namespace wbi::controllers {
@@ -55,6 +58,17 @@ class Controller {
   // Before configure: the host's inputs, one per references() entry, in
   // order. They live as long as the controller.
   virtual void bind_references(std::span<ReferenceInput* const> /*inputs*/) {}
+  // Its reference outputs (reference_output.hpp): a planner's points, written
+  // in update() into the input of another controller of the same host that
+  // the deploy file chains to it (that controller updates after it, in the
+  // same tick). Bound before configure, one per outputs() entry, in order.
+  virtual std::vector<ReferenceSpec> outputs() const { return {}; }
+  virtual void bind_outputs(std::span<ReferenceOutput* const> /*outputs*/) {}
+  // The joints it commands, unless the deploy file names them (`joints:` in
+  // its entry): true, all of the host's; false, none (a planner, whose work
+  // is its outputs). Active controllers command disjoint joints; the host's
+  // joints that none commands are held by `hold`.
+  virtual bool commands_joints() const { return true; }
 
   virtual void configure(WholeBodyInterface& robot, const ParameterTable& parameters) = 0;
   virtual void activate(const RobotState& measured) = 0;
@@ -69,7 +83,9 @@ class Controller {
   // length): the host then ends its process.
   virtual bool finished() const { return false; }
 
-  // The joint torques (or references, in the mode activate() set) of the last update().
+  // The joint torques (or references, in the mode activate() set) of the last
+  // update(), one per host joint: the host sends the entries of the joints
+  // it commands.
   virtual const Eigen::VectorXd& command() const = 0;
   // Values of signal_names() at the last update(), and the source stamp of the
   // state they come from (the host publishes them once per new stamp).
@@ -88,10 +104,11 @@ class Controller {
   Controller() = default;
 };
 
-// Controller types by name. A controller library exports a registration
-// function; controllers/host/src/controller_types.cpp calls each (one line).
+// Controller types by name. A plugin (wbi/plugin.hpp) registers its
+// controllers here, one add<C>(type, description) each.
 class ControllerRegistry : public wbi::Registry<Controller> {
  public:
+  static constexpr const char* kKind = "controller type";  // its name in a wbi::Catalog
   ControllerRegistry() : wbi::Registry<Controller>("controller type") {}
   using wbi::Registry<Controller>::add;
   template <class C>

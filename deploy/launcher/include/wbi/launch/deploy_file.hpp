@@ -50,6 +50,9 @@ struct ProcessSpec {
   // came for this long (after the first); handled as a failure (respawn, or
   // required). 0: not watched.
   double hang_timeout_s = 0.0;
+  // The plugins its wbi_host loads after the built-in one (wbi/runtime/plugins.hpp):
+  // the deploy file's `plugins:`, then the process's own, as written.
+  std::vector<std::string> plugins;
 };
 
 // The launch repeats, as its last lines, the last line of `process` that
@@ -88,5 +91,10 @@ DeployFile load_deploy_file(const std::filesystem::path& path);
 // that disagree, or a secured deployment (one identity per process).
 inline constexpr const char* kOneProcessName = "all";
 DeployFile in_one_process(DeployFile deploy);
+
+// Loads every process's plugins as its wbi_host will (the built-in one first),
+// so that a launch refuses a bad plugin before it starts anything. Throws
+// std::runtime_error "FILE: process 'NAME': plugin …: why" (one line).
+void check_plugins(const DeployFile& deploy);
 
 }  // namespace wbi::launch
