@@ -365,14 +365,15 @@ TEST(ControllerHostJointSets, TwoControllersActiveOnDisjointJoints) {
   arm.run(1500);
   EXPECT_EQ(arm.host().active(), "shoulder, wrist");
   EXPECT_LT(arm.error_to_target(), 0.02) << "each set reached its target";
-  // The wrist to hold and back: the shoulder's command at the switch tick is
+  // The wrist to hold and back, staged on the loop's thread (as a schedule
+  // does) so that the switch is this tick's: the shoulder's command then is
   // the one of the run without a switch, to the bit (lockstep: the same state).
   const auto tick_of = [](double time_s) {
     return static_cast<std::size_t>(std::lround((time_s - 1.5) / kPeriod));
   };
-  auto to_hold = std::async(std::launch::async,
-                            [&] { return arm.host().request_switch({"hold"}, {"wrist"}); });
-  const auto held = arm.tick_until(to_hold);
+  ASSERT_EQ(arm.host().schedule_switch("hold", "wrist"), "");
+  arm.run(1);
+  const auto held = arm.host().last_switch();
   ASSERT_TRUE(held.done) << held.text;
   std::printf("%s\n", held.text.c_str());
   EXPECT_EQ(held.from, "wrist");
@@ -380,6 +381,7 @@ TEST(ControllerHostJointSets, TwoControllersActiveOnDisjointJoints) {
   EXPECT_EQ(arm.host().active(), "shoulder, hold");
   EXPECT_LT(held.torque_step_switched, 0.05) << held.text;
   ASSERT_LT(tick_of(held.time_s), plain.size());
+
   EXPECT_EQ(arm.host().last_command().head(4), plain[tick_of(held.time_s)].head(4))
       << "the switch changed the shoulder's command";
   arm.run(300);

@@ -113,7 +113,7 @@ TEST_F(DeployFileTest, MistakesNameFileLineAndField) {
   EXPECT_EQ(error_of("processes: []\n"), ":1: processes: expected a non-empty list of processes");
   EXPECT_EQ(error_of("processes:\n  - name: a\n    command: [x]\n    colour: red\n"),
             ":4: processes[0].colour: unknown key (known: command, components, environment, "
-            "hang_timeout, host, name, required, respawn, shutdown_on_exit, wait_for)");
+            "hang_timeout, host, name, plugins, required, respawn, shutdown_on_exit, wait_for)");
   EXPECT_EQ(error_of("processes:\n  - {name: a, command: [x], host: my_host}\n"),
             ":2: processes[0].host: needs 'components' (it is the program that runs them)");
   EXPECT_EQ(error_of("processes:\n  - {name: a, command: [x], hang_timeout: 2}\n"),

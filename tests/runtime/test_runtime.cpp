@@ -494,7 +494,7 @@ TEST(HostFile, RunsItsComponentsAndStopsThemInReverse) {
 TEST(HostFile, BadFilesGetErrorsNamingFileLineAndKey) {
   EXPECT_EQ(host_error("components:\n  - {name: a, type: idle}\nlogging: on\n"),
             "robot.yaml:3: host file: unknown key 'logging' (known: clock, components, domain_id, "
-            "network, qos_file, security, status_period_s)");
+            "network, plugins, qos_file, security, status_period_s)");
   EXPECT_EQ(host_error("qos_file: no_such_qos.xml\ncomponents: []\n"),
             "robot.yaml:1: host file: 'qos_file': no such file: no_such_qos.xml");
   EXPECT_EQ(host_error("components:\n  - name: a\n    type: idle\n    rate: 5\n"),
@@ -528,7 +528,7 @@ TEST(HostFile, PlacementKeysAreThePlacementReadersOwn) {
   } catch (const wbi::runtime::ParameterError& error) {
     EXPECT_STREQ(error.what(),
                  "robot.yaml:2: host file: unknown key 'network' (known: clock, components, "
-                 "domain_id, qos_file, status_period_s)");
+                 "domain_id, plugins, qos_file, status_period_s)");
   }
   std::string read;
   wbi::runtime::PlacementReader reader = stub_placement();
@@ -547,7 +547,7 @@ TEST(HostFile, PlacementKeysAreThePlacementReadersOwn) {
   } catch (const wbi::runtime::ParameterError& error) {
     EXPECT_STREQ(error.what(),
                  "robot.yaml:2: host file: unknown key 'network' (known: clock, components, "
-                 "domain_id, placement, qos_file, status_period_s)");
+                 "domain_id, placement, plugins, qos_file, status_period_s)");
   }
 }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include "controller_host_hosted.hpp"
 
@@ -19,6 +20,7 @@ ControllerHost::ControllerHost(WholeBodyInterface& robot, runtime::StatusReport&
       options_(options),
       owner_(static_cast<std::size_t>(robot.dofs()), nullptr),
       measured_(robot.dofs()),
+      pinned_(std::make_unique<PinnedState>(PinnedState{RobotState(robot.dofs()), false})),
       command_(Eigen::VectorXd::Zero(robot.dofs())),
       last_command_(Eigen::VectorXd::Zero(robot.dofs())),
       before_switch_(Eigen::VectorXd::Zero(robot.dofs())),
@@ -151,6 +153,7 @@ void ControllerHost::chain(const std::string& downstream, const std::string& inp
   }
   from.outputs[out]->connect(*to.inputs[in]);
   to.chained[in] = 1;
+  pin_state_ = true;  // a planner and what it feeds answer the same state
   if (std::find(to.upstream.begin(), to.upstream.end(), &from) == to.upstream.end()) {
     to.upstream.push_back(&from);
   }
@@ -161,7 +164,8 @@ void ControllerHost::chain(const std::string& downstream, const std::string& inp
 
 void ControllerHost::configure(const std::string& name) {
   Hosted& hosted = find(name);
-  hosted.view = std::make_unique<JointSetInterface>(robot_, name, hosted.joints);
+  hosted.view = std::make_unique<JointSetInterface>(robot_, name, hosted.joints, *pinned_);
+  hosted.controller->bind_joints(hosted.joints);
   try {
     hosted.controller->configure(*hosted.view, *hosted.parameters);
     hosted.configured = true;
@@ -186,27 +190,31 @@ std::string ControllerHost::active() const {
 }
 
 Controller* ControllerHost::active_controller() {
+  for (std::size_t i = 0; i < running_.size(); ++i) {
+    if (!running_[i]->joints.empty()) {
+      return running_controllers_[i];  // a planner's progress and signals are not the host's
+    }
+  }
   return running_controllers_.empty() ? nullptr : running_controllers_.front();
 }
 
 void ControllerHost::rebuild_running() {
-  // Upstream first: a planner before the controllers it feeds, else as activated.
+  // As activated, each planner placed just before the first controller it feeds.
   std::vector<Hosted*> ordered;
   ordered.reserve(active_.size());
-  while (ordered.size() < active_.size()) {
-    for (Hosted* hosted : active_) {
-      const auto placed = [&](const Hosted* h) {
-        return std::find(ordered.begin(), ordered.end(), h) != ordered.end();
-      };
-      if (placed(hosted)) {
-        continue;
-      }
-      const bool ready = std::all_of(hosted->upstream.begin(), hosted->upstream.end(),
-                                     [&](const Hosted* up) { return !up->active || placed(up); });
-      if (ready) {
-        ordered.push_back(hosted);
+  const std::function<void(Hosted*)> place = [&](Hosted* hosted) {
+    if (std::find(ordered.begin(), ordered.end(), hosted) != ordered.end()) {
+      return;
+    }
+    for (Hosted* up : hosted->upstream) {
+      if (up->active) {
+        place(up);  // chain() refuses cycles
       }
     }
+    ordered.push_back(hosted);
+  };
+  for (Hosted* hosted : active_) {
+    place(hosted);
   }
   std::lock_guard lock(switch_mutex_);
   active_ = std::move(ordered);
@@ -345,6 +353,14 @@ void ControllerHost::tick(double time_s, double period_s) {
     before_switch_ = last_command_;
   }
   const bool source_changed = state_source_changed_.exchange(false);
+  if (pin_state_) {  // one state for the whole tick (joint_set_interface.hpp)
+    try {
+      robot_.state().read_robot_state(pinned_->state, ReadMode::latest);
+      pinned_->valid = true;
+    } catch (const StaleDataError&) {
+      pinned_->valid = false;  // each controller meets it in its own read
+    }
+  }
   // One command when every controller on joints had something new (each
   // answers the same state); a planner's outputs do not count. A fallback
   // changes running_: this tick runs the controllers that were running and
@@ -367,6 +383,7 @@ void ControllerHost::tick(double time_s, double period_s) {
   if (hold_active_ && !hold_ran) {
     run_one(*hold_);
   }
+  pinned_->valid = false;
   if (any && all) {
     send(time_s);
   }

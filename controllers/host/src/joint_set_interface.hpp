@@ -1,9 +1,11 @@
 // What a hosted controller sees of the host's whole-body interface: all of it
 // (every joint's state, the whole model), but its Actuators reach only the
-// joints it commands. Several controllers active on disjoint joint sets thus
-// each set their own joints' control mode in activate(), as a controller run
-// alone does, and never another's. References are the host's to send
-// (command()); a controller that sends them itself is told so.
+// joints it commands, and, in a host with chains, its State gives the state
+// the tick began with (read once by the host: a planner and the controller it
+// feeds answer the same estimate, whatever arrives meanwhile). Several controllers active on
+// disjoint joint sets thus each set their own joints' control mode in activate(), as a controller
+// run alone does, and never another's. References are the host's to send (command()); a controller
+// that sends them itself is told so.
 #pragma once
 
 #include <string>
@@ -14,11 +16,20 @@
 
 namespace wbi::controllers {
 
+// The state a tick began with, when the host pinned one (valid).
+struct PinnedState {
+  RobotState state;
+  bool valid = false;
+};
+
 class JointSetInterface final : public WholeBodyInterface {
  public:
-  // joints: indices into robot.joint_list(); all of them when `all`.
-  JointSetInterface(WholeBodyInterface& robot, std::string controller, std::vector<int> joints)
-      : robot_(robot), actuators_(robot, std::move(controller), std::move(joints)) {}
+  // joints: indices into robot.joint_list(). pinned: the host's, alive as long as this.
+  JointSetInterface(WholeBodyInterface& robot, std::string controller, std::vector<int> joints,
+                    const PinnedState& pinned)
+      : robot_(robot),
+        actuators_(robot, std::move(controller), std::move(joints)),
+        state_(robot, pinned) {}
 
   void add_joints(const IdList& /*joints*/) override {
     throw Error("controller '" + actuators_.controller + "': the host chose the joints");
@@ -28,11 +39,11 @@ class JointSetInterface final : public WholeBodyInterface {
   const IdList& joint_list() const override { return robot_.joint_list(); }
   Actuators& actuators() override { return actuators_; }
   Sensors& sensors() override { return robot_.sensors(); }
-  State& state() override { return robot_.state(); }
+  State& state() override { return state_; }
   Model& model() override { return robot_.model(); }
   const Model& model() const override { return std::as_const(robot_).model(); }
   const Sensors& sensors() const override { return std::as_const(robot_).sensors(); }
-  const State& state() const override { return std::as_const(robot_).state(); }
+  const State& state() const override { return state_; }
 
  private:
   struct JointSetActuators final : Actuators {
@@ -86,8 +97,44 @@ class JointSetInterface final : public WholeBodyInterface {
     const std::vector<int> joints;
   };
 
+  // read_robot_state and read_base_pose (latest) give the pinned state while
+  // there is one; everything else is the host's State.
+  struct TickState final : State {
+    TickState(WholeBodyInterface& host, const PinnedState& tick) : robot(host), pinned(tick) {}
+    Stamp read_estimates(EstimateKind kind, VectorRef values, ReadMode mode) override {
+      return robot.state().read_estimates(kind, values, mode);
+    }
+    Stamp read_estimate(EstimateKind kind, int index, VectorRef values, ReadMode mode) override {
+      return robot.state().read_estimate(kind, index, values, mode);
+    }
+    Stamp read_robot_state(RobotState& out, ReadMode mode) override {
+      if (pinned.valid && mode == ReadMode::latest) {
+        out = pinned.state;  // same sizes: no allocation
+        return out.stamp;
+      }
+      return robot.state().read_robot_state(out, mode);
+    }
+    const IdList& external_wrench_links() const override {
+      return std::as_const(robot).state().external_wrench_links();
+    }
+    Stamp read_base_pose(Transform& world_H_base, ReadMode mode) override {
+      if (pinned.valid && mode == ReadMode::latest) {
+        world_H_base = pinned.state.world_H_base;
+        return pinned.state.stamp;
+      }
+      return robot.state().read_base_pose(world_H_base, mode);
+    }
+    void set_estimation_parameter(const std::string& name, double value) override {
+      robot.state().set_estimation_parameter(name, value);
+    }
+
+    WholeBodyInterface& robot;
+    const PinnedState& pinned;
+  };
+
   WholeBodyInterface& robot_;
   JointSetActuators actuators_;
+  TickState state_;
 };
 
 }  // namespace wbi::controllers

@@ -88,6 +88,14 @@ void PdGravityController::apply_gain_scale(double scale) {
   gain_scale_ = scale;
   kp_.noalias() = scale * unscaled_kp_;
   kd_.noalias() = scale * unscaled_kd_;
+  // Commanding some of the host's joints, it follows its own targets only:
+  // the others' errors (another controller's business) couple in nothing.
+  for (int j = 0; j < kp_.cols(); ++j) {
+    if (!joints_.empty() && std::find(joints_.begin(), joints_.end(), j) == joints_.end()) {
+      kp_.col(j).setZero();
+      kd_.col(j).setZero();
+    }
+  }
   law_->set_gains(kp_, kd_);
 }
 
@@ -148,17 +156,23 @@ bool PdGravityController::update(double time_s, double /*period_s*/) {
   law_->compute(ReadMode::latest);
   command_ = law_->torques();
   signals_[0] = law_->max_error();
+  if (!joints_.empty()) {  // on its own joints (a host may give the others to another)
+    signals_[0] = 0.0;
+    for (const int j : joints_) {
+      signals_[0] = std::max(signals_[0], std::abs(law_->state().q[j] - reference_[j]));
+    }
+  }
   signals_[1] = (reference_ - goal_).cwiseAbs().maxCoeff();
   return true;
 }
 
 void PdGravityController::progress(char* line, std::size_t size) const {
-  std::snprintf(line, size, "max joint error %.4f rad", law_->max_error());
+  std::snprintf(line, size, "max joint error %.4f rad", signals_[0]);
 }
 
 std::string PdGravityController::summary() const {
   char line[64];
-  std::snprintf(line, sizeof line, "final max joint error: %.9g rad", law_->max_error());
+  std::snprintf(line, sizeof line, "final max joint error: %.9g rad", signals_[0]);
   return line;
 }
 

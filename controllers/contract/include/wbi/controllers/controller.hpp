@@ -69,6 +69,9 @@ class Controller {
   // is its outputs). Active controllers command disjoint joints; the host's
   // joints that none commands are held by `hold`.
   virtual bool commands_joints() const { return true; }
+  // Before configure: the joints it commands (indices into robot.joint_list()),
+  // for a controller that reports on them alone (its error figures).
+  virtual void bind_joints(std::span<const int> /*joints*/) {}
 
   virtual void configure(WholeBodyInterface& robot, const ParameterTable& parameters) = 0;
   virtual void activate(const RobotState& measured) = 0;

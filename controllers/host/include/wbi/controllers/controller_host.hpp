@@ -94,6 +94,8 @@ struct SwitchResult {
   double settled_after_s = 0.0;
 };
 
+struct PinnedState;  // src/joint_set_interface.hpp
+
 class ControllerHost {
  public:
   struct Options {
@@ -162,7 +164,8 @@ class ControllerHost {
   // The active controllers' names in update order, then "hold" when it holds
   // joints ("pd", "balance, arms", "balance, hold"); "" before the first tick.
   std::string active() const;
-  // The first active controller (hold when it alone holds the joints), or null.
+  // The first active controller on joints (hold when it alone holds them), or
+  // null: the one whose progress and signals the host's component shows.
   Controller* active_controller();
   // Every active controller, hold last when it holds joints (loop thread).
   std::span<Controller* const> active_controllers() const { return running_controllers_; }
@@ -255,6 +258,10 @@ class ControllerHost {
   std::vector<Controller*> running_controllers_;
   std::vector<Hosted*> owner_;     // per joint: the active controller commanding it; null: free
   RobotState measured_;            // read at an activation
+  // With chains, the state each tick began with, which every controller reads
+  // (src/joint_set_interface.hpp); pin_state_: there is a chain.
+  std::unique_ptr<PinnedState> pinned_;
+  bool pin_state_ = false;
   Eigen::VectorXd command_;        // composed from the controllers' commands this tick
   Eigen::VectorXd last_command_;   // the last command sent
   Eigen::VectorXd before_switch_;  // last_command_ when a switch began

@@ -3,7 +3,8 @@
 // activated: controllers/host/src/hold_controller.hpp.)
 //
 // pd_gravity's parameters:
-//   target        q_d, one per controlled joint [rad]                 live
+//   target        q_d, one per host joint [rad]; hosted on some of the
+//                 host's joints, only theirs count                    live
 //   bandwidth_hz  gains from the joint block of M(q_d): K_p = ω² M_jj,
 //                 K_d = 2ω M_jj, ω = 2π bandwidth (default 5)          at configure
 //   kp, kd        diagonal gains instead, one per joint (both or neither)
@@ -30,6 +31,9 @@ class PdGravityController final : public Controller {
   void activate(const RobotState& measured) override;
   bool update(double time_s, double period_s) override;
   void parameters_changed(const ParameterTable& parameters) override;
+  void bind_joints(std::span<const int> joints) override {
+    joints_.assign(joints.begin(), joints.end());
+  }
   const Eigen::VectorXd& command() const override { return command_; }
   std::span<const double> signals() const override { return signals_; }
   std::int64_t signals_stamp_ns() const override { return law_->state().stamp.source_ns; }
@@ -55,6 +59,7 @@ class PdGravityController final : public Controller {
   double transition_s_ = 0.0;
   double transition_start_s_ = -1.0;  // < 0: at the next update
   std::array<double, 2> signals_{};   // max joint error, reference's distance to the target
+  std::vector<int> joints_;           // the ones it commands: its error figures' (empty: all)
 
   struct Indices {
     std::size_t target, bandwidth, kp, kd, scale, transition;
