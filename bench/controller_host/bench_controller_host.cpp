@@ -165,6 +165,35 @@ void BM_HostTick(benchmark::State& state) {
   state.counters["fallbacks"] = static_cast<double>(report.counter("fallbacks").value());
 }
 
+// Ticks `direct` (the controllers' updates and the send, by hand) and the
+// host in turn, each timed on its own, and sets the counters of both and of
+// their difference (the host's part) from their medians.
+template <class Direct>
+void time_paired(benchmark::State& state, Direct&& direct, ControllerHost& host) {
+  std::vector<double> direct_ns, host_ns;
+  direct_ns.reserve(static_cast<std::size_t>(state.max_iterations));
+  host_ns.reserve(static_cast<std::size_t>(state.max_iterations));
+  double t = 0.001;
+  for (auto _ : state) {
+    const auto begin = std::chrono::steady_clock::now();
+    direct(t);
+    const auto between = std::chrono::steady_clock::now();
+    host.tick(t, 0.001);
+    const auto end = std::chrono::steady_clock::now();
+    direct_ns.push_back(std::chrono::duration<double, std::nano>(between - begin).count());
+    host_ns.push_back(std::chrono::duration<double, std::nano>(end - between).count());
+    t += 0.001;
+  }
+  const double direct_p50 = wbi::bench::percentile(direct_ns, 0.5);
+  const double host_p50 = wbi::bench::percentile(host_ns, 0.5);
+  state.counters["direct_p50_ns"] = direct_p50;
+  state.counters["host_p50_ns"] = host_p50;
+  state.counters["overhead_p50_ns"] = host_p50 - direct_p50;
+  state.counters["direct_p99_ns"] = wbi::bench::percentile(direct_ns, 0.99);
+  state.counters["host_p99_ns"] = wbi::bench::percentile(host_ns, 0.99);
+  state.counters["active"] = static_cast<double>(host.active_controllers().size());
+}
+
 // The same two, tick by tick in turn (direct, then the host), each timed on
 // its own: the machine's load (the simulation runs on the other core) and the
 // publish's own spread fall on both alike, so the difference of the medians
@@ -182,29 +211,14 @@ void BM_HostOverheadPaired(benchmark::State& state) {
   wbi::runtime::EventLog events;
   ControllerHost host(*robot.interface, report, events, {});
   host_fixed_and_hold(host);
-  std::vector<double> direct_ns, host_ns;
-  direct_ns.reserve(static_cast<std::size_t>(state.max_iterations));
-  host_ns.reserve(static_cast<std::size_t>(state.max_iterations));
-  double t = 0.0;
-  for (auto _ : state) {
-    const auto begin = std::chrono::steady_clock::now();
-    if (direct.update(t, 0.001)) {
-      robot.interface->set_control_reference(direct.command());
-    }
-    const auto between = std::chrono::steady_clock::now();
-    host.tick(t, 0.001);
-    const auto end = std::chrono::steady_clock::now();
-    direct_ns.push_back(std::chrono::duration<double, std::nano>(between - begin).count());
-    host_ns.push_back(std::chrono::duration<double, std::nano>(end - between).count());
-    t += 0.001;
-  }
-  const double direct_p50 = wbi::bench::percentile(direct_ns, 0.5);
-  const double host_p50 = wbi::bench::percentile(host_ns, 0.5);
-  state.counters["direct_p50_ns"] = direct_p50;
-  state.counters["host_p50_ns"] = host_p50;
-  state.counters["overhead_p50_ns"] = host_p50 - direct_p50;
-  state.counters["direct_p99_ns"] = wbi::bench::percentile(direct_ns, 0.99);
-  state.counters["host_p99_ns"] = wbi::bench::percentile(host_ns, 0.99);
+  time_paired(
+      state,
+      [&](double t) {
+        if (direct.update(t, 0.001)) {
+          robot.interface->set_control_reference(direct.command());
+        }
+      },
+      host);
   state.counters["joints"] = static_cast<double>(robot.interface->dofs());
   state.counters["controllers"] = static_cast<double>(host.list().size());
   state.counters["fallbacks"] = static_cast<double>(report.counter("fallbacks").value());
@@ -381,36 +395,22 @@ void BM_HostOverheadThreeControllers(benchmark::State& state) {
   host.configure("hold");
   host.set_initial(std::vector<std::string>{"legs", "arms"});
   host.tick(0.0, 0.001);
-  std::vector<double> direct_ns, host_ns;
-  direct_ns.reserve(static_cast<std::size_t>(state.max_iterations));
-  host_ns.reserve(static_cast<std::size_t>(state.max_iterations));
-  double t = 0.001;
-  for (auto _ : state) {
-    const auto begin = std::chrono::steady_clock::now();
-    planner.update(t, 0.001);
-    legs.update(t, 0.001);
-    arms.update(t, 0.001);
-    for (const int j : leg_joints) {
-      command[j] = legs.command()[j];
-    }
-    for (const int j : arm_joints) {
-      command[j] = arms.command()[j];
-    }
-    robot.interface->set_control_reference(command);
-    const auto between = std::chrono::steady_clock::now();
-    host.tick(t, 0.001);
-    const auto end = std::chrono::steady_clock::now();
-    direct_ns.push_back(std::chrono::duration<double, std::nano>(between - begin).count());
-    host_ns.push_back(std::chrono::duration<double, std::nano>(end - between).count());
-    t += 0.001;
-  }
-  const double direct_p50 = wbi::bench::percentile(direct_ns, 0.5);
-  const double host_p50 = wbi::bench::percentile(host_ns, 0.5);
-  state.counters["direct_p50_ns"] = direct_p50;
-  state.counters["host_p50_ns"] = host_p50;
-  state.counters["overhead_p50_ns"] = host_p50 - direct_p50;
+  time_paired(
+      state,
+      [&](double t) {
+        planner.update(t, 0.001);
+        legs.update(t, 0.001);
+        arms.update(t, 0.001);
+        for (const int j : leg_joints) {
+          command[j] = legs.command()[j];
+        }
+        for (const int j : arm_joints) {
+          command[j] = arms.command()[j];
+        }
+        robot.interface->set_control_reference(command);
+      },
+      host);
   state.counters["joints"] = n;
-  state.counters["active"] = static_cast<double>(host.active_controllers().size());
   state.counters["fallbacks"] = static_cast<double>(report.counter("fallbacks").value());
 }
 

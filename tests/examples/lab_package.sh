@@ -23,7 +23,8 @@ build=$(cd "$1" && pwd) src=$(cd "$2" && pwd) work=$3
 generator=$4 make_program=$5 cxx=$6 launcher=${7:-}
 
 # Bounds: a few times the figures measured (examples/lab_package/README.md):
-# final error 0.21-0.32 mrad; torque steps 0.00 % (the host's bumpless blend).
+# final error 0.21-0.34 mrad (when the stiffness change lands varies); torque
+# steps 0.00 % (the host's bumpless blend).
 max_final_error=0.001     # rad
 max_torque_step=1.0       # % of the torque applied before the switch
 
@@ -35,15 +36,17 @@ wbi="$prefix/bin/wbi"
 launch_pid="" children=""
 start=$SECONDS
 
+# On exit: the launch stopped (SIGINT: it stops its processes in order), then
+# killed with whatever it started that is still there.
 cleanup() {
   if [[ -n "$launch_pid" ]] && kill -0 "$launch_pid" 2>/dev/null; then
-    children=$(pgrep -P "$launch_pid" || true)
+    children="$children $(pgrep -P "$launch_pid" || true)"
     kill -INT "$launch_pid" 2>/dev/null || true
     local deadline=$((SECONDS + 20))
     while kill -0 "$launch_pid" 2>/dev/null && ((SECONDS < deadline)); do sleep 0.2; done
     kill -KILL "$launch_pid" 2>/dev/null || true
-    for pid in $children; do kill -KILL "$pid" 2>/dev/null || true; done
   fi
+  for pid in $children; do kill -KILL "$pid" 2>/dev/null || true; done
 }
 trap cleanup EXIT
 fail() {
@@ -106,6 +109,7 @@ done
 launch_pid=$!
 wait_until 120 in_log "switch: hold → lab_impedance" || fail "no switch to lab_impedance"
 echo "lab_impedance active after $((SECONDS - start)) s"
+children=$(pgrep -P "$launch_pid" || true)  # its four processes, for cleanup
 
 # Its live parameter, while it runs: set, read back, used by the controller.
 stiffness=(300 300 90 120 15 15 3)
@@ -137,7 +141,7 @@ done
 set +e
 wait "$launch_pid"; code=$?
 set -e
-launch_pid=""
+launch_pid="" children=""  # it waited for its processes
 [[ $code -eq 0 ]] || fail "wbi launch exited $code"
 
 # The engine's delay.
@@ -161,9 +165,12 @@ line=$(grep -m 1 -- "reference lab_impedance/posture: " "$log") ||
 received=$(first_number "$line" "posture:")
 malformed=$(first_number "$line" "points (")
 stale=$(grep -o '[0-9]* stale in' <<<"$line" | grep -o '^[0-9]*')
-((received > 0 && received <= sent)) ||
+# One per tick of the 12 s run (and a few more): the host missed none but the
+# first ones, sent before it joined and sent again until it had.
+((received >= 11000 && received <= sent)) ||
   fail "the input received $received of the planner's $sent points: '$line'"
 ((malformed == 0 && stale == 0)) || fail "posture input: $malformed malformed, $stale stale: '$line'"
+in_log "posture stale\|posture missing" && fail "a progress line of lab_impedance without a fresh posture"
 echo "posture: $sent points sent, $received received; $line"
 # The final error, bounded; the launch's summary repeats it as its last line.
 final=$(grep -m 1 -- "\[controller\] lab_impedance: final max joint error" "$log")

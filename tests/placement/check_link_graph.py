@@ -5,7 +5,8 @@ top-level README), when a simulation engine reaches another engine, or when a
 target outside cli/ reaches one of cli/.
 
 The layer of a target is the top folder it is declared in. Among what this
-enforces: components never depend on controllers or on the deploy-file reader
+enforces: the controller host and wbi_host link no concrete controller (they
+come from plugins); components never depend on controllers or on the deploy-file reader
 (deploy/); the runtime reads no deploy format; the robot side (and so a real
 robot's driver interface) uses no DDS; dds/ uses only the IDL and the vocabulary.
 
@@ -35,6 +36,11 @@ LAYERS = {
 }
 # The programs on top may use every layer.
 TOP = {"apps", "cli", "python"}
+
+# Concrete controllers come from plugins (wbi/plugin.hpp): the controller host
+# and the programs that host controllers load them by name, never link them.
+CONCRETE_CONTROLLERS = {"wbi_pd_gravity", "wbi_momentum_balance", "wbi_reference_generators"}
+CONTROLLER_HOSTS = {"wbi_controller_host", "wbi_host"}
 
 # Simulation engines: none reaches another (what they share is wbi_sim_models).
 ENGINES = {"robot_side/sim": "wbi_sim", "robot_side/mujoco_sim": "wbi_mujoco_sim"}
@@ -108,6 +114,17 @@ def engine_failures(edges, folder_of):
     return failures
 
 
+def concrete_failures(edges, folder_of):
+    """The controller host, or a program hosting controllers, that links a concrete one."""
+    failures = []
+    for target in sorted(CONTROLLER_HOSTS & set(folder_of)):
+        for dependency, path_to in sorted(reachable(edges, target).items()):
+            if dependency in CONCRETE_CONTROLLERS:
+                failures.append(f"{target} ({folder_of[target]}) links the concrete controller "
+                                f"{dependency} (it comes from a plugin): " + " -> ".join(path_to))
+    return failures
+
+
 def main(path):
     edges, folder_of = {}, {}
     with open(path) as graph:
@@ -118,14 +135,16 @@ def main(path):
             folder_of[target] = folder
             edges[target] = {name_of(d) for d in dependencies.split(";") if d.strip()}
     layer_failed, checked = layer_failures(edges, folder_of)
-    engine_failed = engine_failures(edges, folder_of) + cli_failures(edges, folder_of)
+    engine_failed = (engine_failures(edges, folder_of) + cli_failures(edges, folder_of) +
+                     concrete_failures(edges, folder_of))
     missing = [f"no target in {layer}/" for layer in ("vocabulary", "dds", "components",
                                                        "robot_side", "runtime")
                if not any(layer_of(f) == layer for f in folder_of.values())]
     for failure in layer_failed + engine_failed + missing:
         print("FAIL:", failure)
     print(f"{checked} targets in {len(LAYERS)} layers checked: {len(layer_failed)} reach a layer "
-          f"theirs may not use; {len(engine_failed)} reach another engine or cli/")
+          f"theirs may not use; {len(engine_failed)} reach another engine, cli/ or link a "
+          "concrete controller")
     return 1 if layer_failed or engine_failed or missing else 0
 
 

@@ -38,13 +38,9 @@ std::vector<std::string> HoldController::signal_names() const {
 void HoldController::configure(WholeBodyInterface& robot, const ParameterTable& parameters) {
   robot_ = &robot;
   const int n = robot.dofs();
-  law_.emplace(robot, PdGravityGains{Eigen::MatrixXd::Zero(n, n), Eigen::MatrixXd::Zero(n, n)},
-               Eigen::VectorXd::Zero(n));
+  law_.emplace(robot);
   mass_matrix_.setZero(n + 6, n + 6);
-  unscaled_kp_.setZero(n, n);
-  unscaled_kd_.setZero(n, n);
-  kp_.setZero(n, n);
-  kd_.setZero(n, n);
+  gains_.resize(n);
   held_.setZero(n);
   command_.setZero(n);
   bandwidth_index_ = parameters.index("bandwidth_hz");
@@ -87,9 +83,7 @@ void HoldController::configure(WholeBodyInterface& robot, const ParameterTable& 
 
 void HoldController::apply_gain_scale(double scale) {
   gain_scale_ = scale;
-  kp_.noalias() = scale * unscaled_kp_;
-  kd_.noalias() = scale * unscaled_kd_;
-  law_->set_gains(kp_, kd_);
+  gains_.apply(scale, *law_);
 }
 
 void HoldController::weight_on_contacts(const RobotState& measured) {
@@ -173,10 +167,10 @@ void HoldController::gains_on_contacts(double bandwidth_hz) {
   }
   standing_.noalias() += locked_ * m_jj * locked_;
   const double omega = 2.0 * M_PI * bandwidth_hz;
-  unscaled_kp_ = omega * omega * standing_;
-  unscaled_kd_.setZero();
+  gains_.unscaled_kp = omega * omega * standing_;
+  gains_.unscaled_kd.setZero();
   for (int i = 0; i < n; ++i) {
-    unscaled_kd_(i, i) = std::min(2.0 * omega * standing_(i, i), m_jj(i, i) / loop_delay_s_);
+    gains_.unscaled_kd(i, i) = std::min(2.0 * omega * standing_(i, i), m_jj(i, i) / loop_delay_s_);
   }
 }
 
@@ -193,8 +187,8 @@ void HoldController::activate(const RobotState& measured) {
   robot_->mass_matrix(measured.q, measured.world_H_base, mass_matrix_);
   PdGravityGains gains =
       PdGravityGains::from_inertia(mass_matrix_.bottomRightCorner(n, n), bandwidth_hz_);
-  unscaled_kp_ = std::move(gains.kp);
-  unscaled_kd_ = std::move(gains.kd);
+  gains_.unscaled_kp = std::move(gains.kp);
+  gains_.unscaled_kd = std::move(gains.kd);
   weight_on_contacts(measured);
   gains_on_contacts(bandwidth_hz_);
   apply_gain_scale(gain_scale_);

@@ -56,7 +56,8 @@ class HoldController final : public Controller {
   std::optional<PdGravity> law_;
   std::size_t bandwidth_index_ = 0, scale_index_ = 0, delay_index_ = 0;
   double bandwidth_hz_ = 2.0, loop_delay_s_ = 0.004, gain_scale_ = 1.0;
-  Eigen::MatrixXd mass_matrix_, unscaled_kp_, unscaled_kd_, kp_, kd_;
+  Eigen::MatrixXd mass_matrix_;
+  ScaledPdGains gains_;
   Eigen::VectorXd held_, command_;
   std::array<double, 2> signals_{};  // max joint error, 0 (pd_gravity's pair: one plot for both)
   std::vector<int> contacts_;        // frame indices

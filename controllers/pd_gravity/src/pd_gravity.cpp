@@ -1,5 +1,7 @@
 #include "wbi/controllers/pd_gravity.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 #include <string>
 
@@ -49,6 +51,33 @@ PdGravity::PdGravity(WholeBodyInterface& robot, PdGravityGains gains, Eigen::Vec
   error_.setZero(n);
   tau_.setZero(n);
   g_.setZero(n + 6);
+}
+
+PdGravity::PdGravity(WholeBodyInterface& robot)
+    : PdGravity(robot,
+                PdGravityGains{Eigen::MatrixXd::Zero(robot.dofs(), robot.dofs()),
+                               Eigen::MatrixXd::Zero(robot.dofs(), robot.dofs())},
+                Eigen::VectorXd::Zero(robot.dofs())) {}
+
+void ScaledPdGains::resize(int n) {
+  unscaled_kp.setZero(n, n);
+  unscaled_kd.setZero(n, n);
+  kp.setZero(n, n);
+  kd.setZero(n, n);
+}
+
+void ScaledPdGains::apply(double scale, PdGravity& law, std::span<const int> own) {
+  kp.noalias() = scale * unscaled_kp;
+  kd.noalias() = scale * unscaled_kd;
+  if (!own.empty()) {
+    for (int j = 0; j < kp.cols(); ++j) {
+      if (std::find(own.begin(), own.end(), j) == own.end()) {
+        kp.col(j).setZero();
+        kd.col(j).setZero();
+      }
+    }
+  }
+  law.set_gains(kp, kd);
 }
 
 void PdGravity::start() { robot_.set_control_mode(ControlMode::torque); }

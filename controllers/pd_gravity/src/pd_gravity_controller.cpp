@@ -61,13 +61,9 @@ std::vector<std::string> PdGravityController::signal_names() const {
 void PdGravityController::size_for(WholeBodyInterface& robot) {
   robot_ = &robot;
   const int n = robot.dofs();
-  law_.emplace(robot, PdGravityGains{Eigen::MatrixXd::Zero(n, n), Eigen::MatrixXd::Zero(n, n)},
-               Eigen::VectorXd::Zero(n));
+  law_.emplace(robot);
   mass_matrix_.setZero(n + 6, n + 6);
-  unscaled_kp_.setZero(n, n);
-  unscaled_kd_.setZero(n, n);
-  kp_.setZero(n, n);
-  kd_.setZero(n, n);
+  gains_.resize(n);
   from_.setZero(n);
   goal_.setZero(n);
   reference_.setZero(n);
@@ -80,23 +76,14 @@ void PdGravityController::gains_from_inertia(const Eigen::VectorXd& posture,
   robot_->mass_matrix(posture, world_H_base, mass_matrix_);
   PdGravityGains gains =
       PdGravityGains::from_inertia(mass_matrix_.bottomRightCorner(n, n), bandwidth_hz);
-  unscaled_kp_ = std::move(gains.kp);
-  unscaled_kd_ = std::move(gains.kd);
+  gains_.unscaled_kp = std::move(gains.kp);
+  gains_.unscaled_kd = std::move(gains.kd);
 }
 
 void PdGravityController::apply_gain_scale(double scale) {
   gain_scale_ = scale;
-  kp_.noalias() = scale * unscaled_kp_;
-  kd_.noalias() = scale * unscaled_kd_;
-  // Commanding some of the host's joints, it follows its own targets only:
-  // the others' errors (another controller's business) couple in nothing.
-  for (int j = 0; j < kp_.cols(); ++j) {
-    if (!joints_.empty() && std::find(joints_.begin(), joints_.end(), j) == joints_.end()) {
-      kp_.col(j).setZero();
-      kd_.col(j).setZero();
-    }
-  }
-  law_->set_gains(kp_, kd_);
+  // Commanding some of the host's joints, it follows its own targets only.
+  gains_.apply(scale, *law_, joints_);
 }
 
 void PdGravityController::configure(WholeBodyInterface& robot, const ParameterTable& parameters) {
@@ -110,9 +97,9 @@ void PdGravityController::configure(WholeBodyInterface& robot, const ParameterTa
   goal_ = Eigen::Map<const Eigen::VectorXd>(parameters.values(index_.target).data(), robot.dofs());
   if (parameters.is_set(index_.kp)) {
     const auto n = robot.dofs();
-    unscaled_kp_ =
+    gains_.unscaled_kp =
         Eigen::Map<const Eigen::VectorXd>(parameters.values(index_.kp).data(), n).asDiagonal();
-    unscaled_kd_ =
+    gains_.unscaled_kd =
         Eigen::Map<const Eigen::VectorXd>(parameters.values(index_.kd).data(), n).asDiagonal();
   } else {
     // Every mode critically damped at the bandwidth, from the inertia at the target.

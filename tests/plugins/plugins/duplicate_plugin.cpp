@@ -2,14 +2,11 @@
 #include <wbi/plugin.hpp>
 #include <wbi/runtime/registry.hpp>
 
-namespace {
-class Quiet final : public wbi::runtime::Component {
- public:
-  void on_configure(const wbi::runtime::Parameters& /*parameters*/,
-                    const wbi::runtime::ComponentContext& /*context*/) override {}
-};
-}  // namespace
+#include "quiet_component.hpp"
+
+namespace {}  // namespace
 
 WBI_PLUGIN(catalog) {
-  catalog.registry<wbi::runtime::Registry>().add<Quiet>("estimator", "not the estimator");
+  catalog.registry<wbi::runtime::Registry>().add<wbi::test::QuietComponent>("estimator",
+                                                                            "not the estimator");
 }

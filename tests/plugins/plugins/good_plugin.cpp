@@ -3,6 +3,8 @@
 #include <wbi/plugin.hpp>
 #include <wbi/runtime/registry.hpp>
 
+#include "quiet_component.hpp"
+
 namespace {
 
 // Sends zero torques: enough to be hosted, listed and made by name.
@@ -21,15 +23,10 @@ class Zero final : public wbi::controllers::Controller {
   Eigen::VectorXd command_;
 };
 
-class Quiet final : public wbi::runtime::Component {
- public:
-  void on_configure(const wbi::runtime::Parameters& /*parameters*/,
-                    const wbi::runtime::ComponentContext& /*context*/) override {}
-};
-
 }  // namespace
 
 WBI_PLUGIN(catalog) {
   catalog.registry<wbi::controllers::ControllerRegistry>().add<Zero>("test_zero", "zero torques");
-  catalog.registry<wbi::runtime::Registry>().add<Quiet>("test_quiet", "does nothing");
+  catalog.registry<wbi::runtime::Registry>().add<wbi::test::QuietComponent>("test_quiet",
+                                                                            "does nothing");
 }

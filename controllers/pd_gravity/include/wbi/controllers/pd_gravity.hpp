@@ -5,6 +5,8 @@
 // Written against the whole-body interface only.
 #pragma once
 
+#include <span>
+
 #include <Eigen/Core>
 
 #include "wbi/whole_body_interface.hpp"
@@ -28,12 +30,28 @@ struct PdGravityGains {
   static PdGravityGains from_inertia(const Eigen::MatrixXd& joint_inertia, double bandwidth_hz);
 };
 
+class PdGravity;
+
+// K_p and K_d as a controller holds them (pd_gravity, and the host's hold):
+// unscaled (from the inertia, or given) and times a live gain_scale, set on
+// the law without allocating.
+struct ScaledPdGains {
+  Eigen::MatrixXd unscaled_kp, unscaled_kd, kp, kd;
+
+  void resize(int n);  // all zero
+  // K = scale × unscaled; with `own` (the joints a controller commands, of
+  // the host's), the other joints' columns zero: their errors couple in nothing.
+  void apply(double scale, PdGravity& law, std::span<const int> own = {});
+};
+
 class PdGravity {
  public:
   // robot: initialized, with the controlled joints of this controller.
   // Throws wbi::Error when a size does not match robot.dofs().
   PdGravity(WholeBodyInterface& robot, PdGravityGains gains, Eigen::VectorXd q_desired,
             Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81));
+  // Zero gains and target, sized for robot.dofs(): set them before computing.
+  explicit PdGravity(WholeBodyInterface& robot);
 
   // Puts the controlled joints in torque mode.
   void start();

@@ -53,7 +53,8 @@ class PdGravityController final : public Controller {
 
   WholeBodyInterface* robot_ = nullptr;
   std::optional<PdGravity> law_;
-  Eigen::MatrixXd mass_matrix_, unscaled_kp_, unscaled_kd_, kp_, kd_;
+  Eigen::MatrixXd mass_matrix_;
+  ScaledPdGains gains_;
   Eigen::VectorXd from_, goal_, reference_, command_;
   double gain_scale_ = 1.0;
   double transition_s_ = 0.0;
