@@ -5,20 +5,23 @@
 # run with the installed `wbi launch` (lockstep, paced at real time):
 #   - without WBI_PLUGIN_PATH, `wbi plugins lab_plugin` and `wbi launch` say
 #     in one line that the plugin is not found, exit 1; with it, `wbi
-#     plugins` lists the three types, each from lab_plugin;
+#     plugins` lists the four types, each from lab_plugin;
 #   - the engine says its delay; the host switches hold → lab_impedance and
 #     back, each with its torque step (bounded);
 #   - while lab_impedance runs, `wbi param set` changes its live stiffness
 #     (the answer, `wbi param get` and the controller's next progress line
 #     show it) and refuses its damping (not live);
 #   - the planner's points reach the controller's input (none malformed, no
-#     stale tick); the final error is bounded; the launch exits 0.
+#     stale tick); the final error is bounded; the launch exits 0;
+#   - lab_arm_chained.yaml: the same planner chained in the controller's host
+#     (lab_posture): a point per tick, none carried (no tick of delay), the
+#     switches with their planner, the final error bounded.
 #   lab_package.sh BUILD_DIR SOURCE_DIR WORK_DIR GENERATOR MAKE_PROGRAM CXX_COMPILER [LAUNCHER]
 # BUILD_DIR: a built wbi; SOURCE_DIR: wbi's sources; WORK_DIR: emptied, then
 # holds the prefix, the package's build and the logs; LAUNCHER: a compiler
 # launcher (ccache) or empty. Exit 0 pass, 1 fail.
 set -euo pipefail
-[[ $# -ge 6 ]] || { sed -n '2,19p' "$0"; exit 2; }
+[[ $# -ge 6 ]] || { sed -n '2,22p' "$0"; exit 2; }
 build=$(cd "$1" && pwd) src=$(cd "$2" && pwd) work=$3
 generator=$4 make_program=$5 cxx=$6 launcher=${7:-}
 
@@ -98,7 +101,7 @@ set -e
   fail "wbi launch without WBI_PLUGIN_PATH: exit $code, '$message'"
 export WBI_PLUGIN_PATH="$lab"
 listing=$("$wbi" plugins lab_plugin) || fail "wbi plugins lab_plugin: exit $?"
-for type in lab_impedance lab_posture_planner lab_delayed; do
+for type in lab_impedance lab_posture lab_posture_planner lab_delayed; do
   grep -Eq "^  $type +lab_plugin  " <<<"$listing" ||
     fail "wbi plugins lab_plugin does not list $type from lab_plugin:
 $listing"
@@ -178,4 +181,24 @@ error=$(first_number "$final" "error:")
 below "$error" "$max_final_error" || fail "final max joint error $error rad (bound $max_final_error)"
 [[ $(tail -n 1 "$log") == *"lab_impedance: final max joint error: $error rad" ]] ||
   fail "the launch's last line is not the final error: '$(tail -n 1 "$log")'"
+
+# 5. The same planner chained in the controller's host (lab_arm_chained.yaml):
+# its points reach the input in the same tick, without DDS; no planner process.
+chained_log="$work/launch_chained.log"
+timeout 120 "$wbi" launch "$lab/deploy/lab_arm_chained.yaml" --duration 100 >"$chained_log" 2>&1 ||
+  fail "wbi launch lab_arm_chained.yaml exited $? (log: $chained_log)"
+grep -q -- "\[controller\] switch: hold → lab_impedance, planner at t = 1.000 s; torque step 0.00 %" \
+  "$chained_log" || fail "lab_arm_chained.yaml: no switch to lab_impedance and its planner"
+grep -q -- "\[controller\] switch: planner, lab_impedance → hold at t = 11.000 s; torque step 0.00 %" \
+  "$chained_log" || fail "lab_arm_chained.yaml: no switch back to hold"
+line=$(grep -m 1 -- "reference lab_impedance/posture: " "$chained_log") ||
+  fail "lab_arm_chained.yaml: the host did not summarise the posture input"
+# One point per tick while lab_impedance ran (10 s), each for its own tick.
+received=$(first_number "$line" "posture:")
+carried=$(grep -o '[0-9]* carried' <<<"$line" | grep -o '^[0-9]*')
+((received >= 9990 && carried == 0)) || fail "lab_arm_chained.yaml: '$line'"
+chained_error=$(first_number "$(grep -m 1 -- "lab_impedance: final max joint error" "$chained_log")" "error:")
+below "$chained_error" "$max_final_error" ||
+  fail "lab_arm_chained.yaml: final max joint error $chained_error rad (bound $max_final_error)"
+echo "chained: $line; final max joint error $chained_error rad"
 echo "PASS: final max joint error $error rad; $((SECONDS - start)) s in all"

@@ -6,11 +6,15 @@
 
 #include "lab_delayed_engine.hpp"
 #include "lab_impedance.hpp"
+#include "lab_posture.hpp"
 #include "lab_posture_planner.hpp"
 
 WBI_PLUGIN(catalog) {
   catalog.registry<wbi::controllers::ControllerRegistry>().add<lab::LabImpedance>(
       "lab_impedance", "joint impedance + gravity compensation about a planner's posture");
+
+  catalog.registry<wbi::controllers::ControllerRegistry>().add<lab::LabPosture>(
+      "lab_posture", "the planner's posture, chained to lab_impedance's input in its host");
 
   catalog.registry<wbi::runtime::Registry>().add<lab::LabPosturePlanner>(
       "lab_posture_planner",
