@@ -341,9 +341,7 @@ void ControllerHost::tick(double time_s, double period_s) {
   const bool switching = switch_requested_.load(std::memory_order_acquire) && apply_switch(time_s);
   // Inactive controllers take their staged values too (they use them when activated).
   for (auto& hosted : hosted_) {
-    const bool running =
-        std::find(running_.begin(), running_.end(), hosted.get()) != running_.end();
-    if (!running && hosted->configured && hosted->parameters->apply_staged()) {
+    if (!is_running(*hosted) && hosted->configured && hosted->parameters->apply_staged()) {
       hosted->controller->parameters_changed(*hosted->parameters);
       changes_->add();
       parameters_applied_ = true;
@@ -375,7 +373,7 @@ void ControllerHost::tick(double time_s, double period_s) {
   };
   tick_order_.assign(running_.begin(), running_.end());  // capacity reserved: no allocation
   for (Hosted* hosted : tick_order_) {
-    if (hosted == hold_ ? hold_active_ : hosted->active) {
+    if (is_running(*hosted)) {
       hold_ran = hold_ran || hosted == hold_;
       run_one(*hosted);
     }
@@ -384,6 +382,7 @@ void ControllerHost::tick(double time_s, double period_s) {
     run_one(*hold_);
   }
   pinned_->valid = false;
+  count_references();
   if (any && all) {
     send(time_s);
   }
@@ -425,7 +424,7 @@ void ControllerHost::set_parameter(const std::string& controller, const std::str
   bool active = false;
   {
     std::lock_guard lock(switch_mutex_);
-    active = std::find(running_.begin(), running_.end(), &hosted) != running_.end();
+    active = is_running(hosted);
   }
   hosted.parameters->stage(index, values, active);
   const std::string& unit = hosted.parameters->spec(index).unit;
@@ -449,17 +448,13 @@ std::vector<ControllerInfo> ControllerHost::list() const {
   std::lock_guard lock(switch_mutex_);
   std::vector<ControllerInfo> out;
   for (const auto& hosted : hosted_) {
-    const bool running =
-        std::find(running_.begin(), running_.end(), hosted.get()) != running_.end();
-    out.push_back({hosted->name, hosted->type, running, hosted->configure_error});
+    out.push_back({hosted->name, hosted->type, is_running(*hosted), hosted->configure_error});
   }
   return out;
 }
 
-// A stale reference is the controller's to handle (its declared rule); the
-// host keeps the status counters at the inputs' totals and says once per
-// episode that the rule applies.
-void ControllerHost::report_references(Hosted& active, double time_s) {
+// The status counters at the inputs' totals, once per tick.
+void ControllerHost::count_references() {
   std::uint64_t stale = 0, late = 0;
   for (const auto& hosted : hosted_) {
     for (const auto& input : hosted->inputs) {
@@ -469,6 +464,11 @@ void ControllerHost::report_references(Hosted& active, double time_s) {
   }
   stale_references_->set(stale);
   late_references_->set(late);
+}
+
+// A stale reference is the controller's to handle (its declared rule); the
+// host says once per episode that the rule applies.
+void ControllerHost::report_references(Hosted& active, double time_s) {
   for (std::size_t i = 0; i < active.inputs.size(); ++i) {
     const ReferenceInput& input = *active.inputs[i];
     if (input.stale_episodes() != active.stale_said[i]) {

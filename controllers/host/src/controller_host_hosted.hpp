@@ -49,4 +49,8 @@ struct ControllerHost::Hosted {
   }
 };
 
+inline bool ControllerHost::is_running(const Hosted& hosted) const {
+  return &hosted == hold_ ? hold_active_ : hosted.active;
+}
+
 }  // namespace wbi::controllers

@@ -184,7 +184,7 @@ void ControllerHost::fall_back(Hosted& hosted, const std::string& reason, double
     }
   }
   for (Hosted* leaving : out) {
-    if (leaving == hold_ ? hold_active_ : leaving->active) {
+    if (is_running(*leaving)) {
       deactivate(*leaving);
     }
   }
@@ -245,7 +245,6 @@ ControllerHost::PendingSwitch ControllerHost::plan_switch(const std::vector<Host
                                                           const std::vector<Hosted*>& deactivate,
                                                           bool to_hold) const {
   PendingSwitch plan;
-  plan.to_hold = to_hold;
   const auto refuse = [&](std::string text) {
     plan.result.text = std::move(text);
     return plan;
@@ -258,7 +257,7 @@ ControllerHost::PendingSwitch ControllerHost::plan_switch(const std::vector<Host
     active_names += (active_names.empty() ? "" : ", ") + std::string(kHoldController);
   }
   for (const Hosted* off : deactivate) {
-    if (off == hold_ ? !hold_active_ : !off->active) {
+    if (!is_running(*off)) {
       return refuse("'" + off->name + "' is not active (active: " +
                     (active_names.empty() ? std::string("none") : active_names) + ")");
     }

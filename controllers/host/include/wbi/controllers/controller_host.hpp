@@ -212,12 +212,10 @@ class ControllerHost {
   struct PendingSwitch {
     bool pending = false;
     std::vector<Hosted*> activate, deactivate;  // closed over the chains; hold not in them
-    bool to_hold = false;                       // joints go to hold
     SwitchResult result;
   };
 
   Hosted& find(const std::string& name) const;
-  Hosted* hold() const { return hold_; }
   // The switch that does what was asked, with the chains' planners added or
   // removed; its result's text is the refusal when it cannot be done.
   PendingSwitch plan_switch(const std::vector<Hosted*>& activate,
@@ -239,7 +237,10 @@ class ControllerHost {
   // Runs one controller's update; its command on its joints. 1 fresh, 0 nothing new, -1 it failed.
   int run(Hosted& hosted, double time_s, double period_s, bool source_changed);
   void send(double time_s);
-  void report_references(Hosted& hosted, double time_s);
+  void report_references(Hosted& hosted, double time_s);  // its stale episodes
+  void count_references();                                // the status counters
+  // Whether it runs this tick (hold: while it holds joints). Changed under switch_mutex_.
+  bool is_running(const Hosted& hosted) const;
   void rebuild_running();  // running_ and running_controllers_ from active_ (at a change)
 
   WholeBodyInterface& robot_;
@@ -256,8 +257,8 @@ class ControllerHost {
   std::vector<Hosted*> running_;     // active_ then hold when active: this tick's updates
   std::vector<Hosted*> tick_order_;  // running_ as the tick began
   std::vector<Controller*> running_controllers_;
-  std::vector<Hosted*> owner_;     // per joint: the active controller commanding it; null: free
-  RobotState measured_;            // read at an activation
+  std::vector<Hosted*> owner_;  // per joint: the active controller commanding it; null: free
+  RobotState measured_;         // read at an activation
   // With chains, the state each tick began with, which every controller reads
   // (src/joint_set_interface.hpp); pin_state_: there is a chain.
   std::unique_ptr<PinnedState> pinned_;
