@@ -3,8 +3,10 @@
 // them cleanly (deactivate, cleanup, shutdown, in reverse order); started by
 // `wbi launch`, also when the launcher dies. Its types come from plugins: the
 // built-in one, then those the file names (`plugins:`, wbi/runtime/plugins.hpp).
-// Exit codes: 0 after SIGTERM, 130 after SIGINT, 1 on error (one line on stderr);
-// a component that ends the process (wbi/runtime/process_exit.hpp) gives its code.
+// Exit codes: 0 after SIGTERM, 130 after SIGINT, 78 on a configuration error
+// (bad command line, file, plugin, type or parameter: `wbi launch` does not
+// respawn it), 1 on another error (one line on stderr); a component that ends
+// the process (wbi/runtime/process_exit.hpp) gives its code.
 #include <csignal>
 #include <cstring>
 #include <filesystem>
@@ -23,8 +25,10 @@
 #include <wbi/launch/launcher.hpp>
 #include <wbi/runtime/console_line.hpp>
 #include <wbi/runtime/host.hpp>
+#include <wbi/runtime/parameters.hpp>
 #include <wbi/runtime/plugins.hpp>
 #include <wbi/runtime/process_exit.hpp>
+#include <wbi/runtime/runner.hpp>
 
 namespace {
 
@@ -75,6 +79,11 @@ Arguments parse(int argc, char** argv) {
   return arguments;
 }
 
+int configuration_error(const std::exception& error) {
+  wbi::runtime::print_line(stderr, std::string("wbi_host: configuration error: ") + error.what());
+  return wbi::runtime::kExitConfigurationError;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -84,7 +93,7 @@ int main(int argc, char** argv) {
   } catch (const std::invalid_argument& error) {
     std::cerr << "wbi_host: " << error.what() << "\n";
     usage(std::cerr);
-    return 1;
+    return wbi::runtime::kExitConfigurationError;
   }
   // Declared first: it outlives every component made from it.
   wbi::Catalog catalog;
@@ -116,6 +125,9 @@ int main(int argc, char** argv) {
   wbi::runtime::set_process_exit_handler([](int) { ::kill(::getpid(), SIGTERM); });
   const std::string& file = arguments.file;
   const bool from_deploy = !arguments.processes.empty();
+  // Reading the file, loading the plugins and making the components: any
+  // error here is the configuration's (respawning cannot fix it).
+  std::unique_ptr<wbi::runtime::Host> made;
   try {
     // One process of a deploy file: the deploy reader picks it out (the
     // runtime reads host documents only).
@@ -132,8 +144,14 @@ int main(int argc, char** argv) {
     const wbi::runtime::PlacementReader placement{
         {wbi::deploy::kPlacementKeys.begin(), wbi::deploy::kPlacementKeys.end()},
         wbi::deploy::read_placement};
-    wbi::runtime::Host host(document, file, from_deploy ? arguments.processes : "",
-                            catalog.registry<wbi::runtime::Registry>(), placement);
+    made =
+        std::make_unique<wbi::runtime::Host>(document, file, from_deploy ? arguments.processes : "",
+                                             catalog.registry<wbi::runtime::Registry>(), placement);
+  } catch (const std::exception& error) {
+    return configuration_error(error);
+  }
+  wbi::runtime::Host& host = *made;
+  try {
     host.start();
     // The components already run and print: this line goes out whole (console_line.hpp).
     wbi::runtime::print_line(stdout, "wbi_host: running " + std::to_string(host.size()) +
@@ -157,6 +175,10 @@ int main(int argc, char** argv) {
       return *requested;
     }
     return signal_number == SIGINT ? 130 : 0;
+  } catch (const wbi::runtime::ConfigurationError& error) {
+    return configuration_error(error);
+  } catch (const wbi::runtime::ParameterError& error) {
+    return configuration_error(error);
   } catch (const std::exception& error) {
     wbi::runtime::print_line(stderr, std::string("wbi_host: ") + error.what());
     return 1;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -16,7 +17,7 @@ class Error {
  public:
   explicit Error(std::string source) : source_(std::move(source)) {}
   [[noreturn]] void fail(const std::string& what) const {
-    throw std::runtime_error("URDF '" + source_ + "': " + what);
+    throw std::invalid_argument("URDF '" + source_ + "': " + what);
   }
 
  private:

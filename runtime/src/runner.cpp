@@ -90,12 +90,16 @@ void ComponentRunner::require(LifecycleState from, const char* transition) const
   }
 }
 
-void ComponentRunner::fail(const char* transition, const std::exception& error) {
+void ComponentRunner::fail(const char* transition, const std::exception& error,
+                           bool configuration) {
   const std::string text = "component '" + context_.instance + "' (" + context_.type +
                            "): " + transition + " failed: " + error.what();
   component_->report().set_error(error.what());
   lifecycle_event(EventSeverity::error, std::string(transition) + " failed: " + error.what());
   publish_status();
+  if (configuration) {
+    throw ConfigurationError(text);
+  }
   throw TransitionError(text);
 }
 
@@ -118,13 +122,15 @@ void ComponentRunner::configure(const Parameters& parameters) {
       component_->events().set_default_robot(parameters.get<std::string>("robot", ""));
     }
   } catch (const std::exception& error) {
-    if (dynamic_cast<const ParameterError*>(&error) != nullptr) {
+    const bool bad_parameter = dynamic_cast<const ParameterError*>(&error) != nullptr;
+    if (bad_parameter) {
       try {
         component_->on_cleanup();  // undo what on_configure did before the bad key was found
       } catch (...) {
       }
     }
-    fail("configure", error);
+    fail("configure", error,
+         bad_parameter || dynamic_cast<const std::invalid_argument*>(&error) != nullptr);
   }
   set_state(LifecycleState::inactive);
 }

@@ -22,6 +22,7 @@
 #include <unistd.h>
 
 #include "child_process.hpp"
+#include "deploy_text.hpp"
 #include "progress_lines.hpp"
 #include "test_support.hpp"
 
@@ -30,34 +31,18 @@ namespace {
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 
-std::string read(const fs::path& file) {
-  std::ifstream in(file);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-void replace_all(std::string& text, const std::string& from, const std::string& to) {
-  for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
-    text.replace(at, from.size(), to);
-  }
-}
-
 // deploy/balance.yaml with absolute paths, 8 s long, no respawn (a crash is a
 // failure here), its com_reference component moved to a process of its own
 // ("reference", not required: its death does not end the launch), started once
 // the state is published, as the controller is.
 fs::path write_deploy(const fs::path& dir) {
-  const fs::path source = wbi::test::source_dir();
-  std::string text = read(source / "deploy" / "balance.yaml");
-  replace_all(text, "../models/", (source / "models").string() + "/");
-  replace_all(text, "config: robots/", "config: " + (source / "deploy" / "robots").string() + "/");
-  replace_all(text, "exit_after_s: 21.0", "exit_after_s: 8.0");
+  std::string text = wbi::test::deploy_text("balance.yaml");
+  wbi::test::replace_all(text, "exit_after_s: 21.0", "exit_after_s: 8.0");
   // The generator's process may start after the controller's first tick: that
   // tick waits reference_wait_s (0.5 s, shorter than max_age_s, so that the
   // state it answers is not stale by then) and the balancer holds the measured
   // CoM until the first point.
-  replace_all(text, "    respawn: {enabled: true, delay: 0.5, max_retries: 3}\n", "");
+  wbi::test::replace_all(text, "    respawn: {enabled: true, delay: 0.5, max_retries: 3}\n", "");
   const auto generator_at = text.find("      - name: com_reference\n");
   const auto joints_at = text.find("joints: &joints");
   const auto joints_end = text.find(']', joints_at);
@@ -70,7 +55,7 @@ fs::path write_deploy(const fs::path& dir) {
   }
   const std::string joints = text.substr(joints_at + 16, joints_end + 1 - (joints_at + 16));
   std::string generator = text.substr(generator_at);
-  replace_all(generator, "joints: *joints", "joints: " + joints);
+  wbi::test::replace_all(generator, "joints: *joints", "joints: " + joints);
   text.erase(text.rfind('\n', text.rfind("# The CoM reference", generator_at)) + 1);
   text +=
       "  - name: reference\n"

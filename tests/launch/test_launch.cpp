@@ -97,7 +97,9 @@ TEST_F(LaunchTest, RespawnsThenFailsWhenARequiredProcessKeepsFailing) {
   EXPECT_TRUE(contains(out, "flaky: exit code 3, 2 restart(s)")) << out;
 }
 
-TEST_F(LaunchTest, OptionalProcessFailureDoesNotStopTheLaunch) {
+// An optional process's failure does not stop the launch, but the launch's
+// exit code and summary still say it (a script must not read success).
+TEST_F(LaunchTest, OptionalProcessFailureDoesNotStopTheLaunchButFailsIt) {
   const auto deploy = write("optional.yaml",
                             "processes:\n"
                             "  - {name: helper, command: [sh, -c, \"exit 5\"], required: false}\n"
@@ -106,9 +108,37 @@ TEST_F(LaunchTest, OptionalProcessFailureDoesNotStopTheLaunch) {
   const auto code = launch.wait(60s);
   ASSERT_TRUE(code.has_value());
   const std::string out = launch.output();
-  EXPECT_EQ(*code, 0) << out;
+  EXPECT_EQ(*code, 1) << out;
   EXPECT_TRUE(contains(out, "duration of 1.5")) << out;
   EXPECT_TRUE(contains(out, "sleeper: stopped")) << out;
+  EXPECT_TRUE(contains(out, "  helper: exit code 5: FAILED, ended in error\n")) << out;
+  EXPECT_TRUE(contains(out, "  sleeper: stopped (exit code 143)\n")) << out;
+}
+
+// A configuration error (exit code 78: here a parameter the component does not
+// know, then a type no plugin registers) cannot heal: the process is not
+// respawned, whatever its policy, and the launch fails naming it.
+TEST_F(LaunchTest, ConfigurationErrorIsNotRespawned) {
+  for (const std::string component : {"{name: idle_bad, type: idle, parameters: {bogus: 1}}",
+                                      "{name: idle_bad, type: no_such}"}) {
+    const auto deploy = write("config_error.yaml",
+                              "processes:\n"
+                              "  - name: host\n"
+                              "    components: [" +
+                                  component +
+                                  "]\n"
+                                  "    respawn: {enabled: true, delay: 0.05, max_retries: 3}\n");
+    ChildProcess launch(wbi_exe(), {"launch", deploy.string(), "--duration", "30"});
+    const auto code = launch.wait(60s);
+    ASSERT_TRUE(code.has_value()) << launch.output();
+    const std::string out = launch.output();
+    EXPECT_EQ(*code, 1) << out;
+    EXPECT_TRUE(contains(out, "[host] wbi_host: configuration error: ")) << out;
+    EXPECT_TRUE(contains(out, "host: failed with exit code 78 (configuration error)")) << out;
+    EXPECT_TRUE(contains(out, "host: not respawned")) << out;
+    EXPECT_FALSE(contains(out, "respawn 1 of 3")) << out;
+    EXPECT_TRUE(contains(out, "  host: exit code 78: FAILED, configuration error\n")) << out;
+  }
 }
 
 TEST_F(LaunchTest, CtrlCStopsEverything) {
@@ -307,8 +337,10 @@ TEST_F(LaunchTest, ProcessIgnoringSigtermIsKilled) {
   ChildProcess launch(wbi_exe(), {"launch", deploy.string(), "--duration", "1", "--grace", "0.5"});
   const auto code = launch.wait(60s);
   ASSERT_TRUE(code.has_value()) << launch.output();
-  EXPECT_EQ(*code, 0) << launch.output();
+  EXPECT_EQ(*code, 1) << launch.output();  // a process that must be killed did not stop cleanly
   EXPECT_TRUE(contains(launch.output(), "stubborn: did not stop within")) << launch.output();
+  EXPECT_TRUE(contains(launch.output(), "FAILED, did not stop within the grace period: SIGKILL"))
+      << launch.output();
 }
 
 TEST_F(LaunchTest, BadDeployFileFailsWithItsName) {

@@ -333,7 +333,7 @@ TEST(RepairInertia, TalosGrippersAreTheLinksRepaired) {
   // strict_inertia rejects them; with repair_inertia as well, they are repaired
   wm::LoadOptions strict;
   strict.strict_inertia = true;
-  EXPECT_THROW(wm::load_urdf_file(path, strict), std::runtime_error);
+  EXPECT_THROW(wm::load_urdf_file(path, strict), std::invalid_argument);
   strict.repair_inertia = true;
   EXPECT_EQ(wm::load_urdf_file(path, strict).repaired_inertia_links.size(), 2U);
 }

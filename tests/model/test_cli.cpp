@@ -161,7 +161,7 @@ TEST(Cli, BadInput) {
       run(args);
     } catch (const wbi::cli::UsageError& e) {
       return std::string("usage: ") + e.what();
-    } catch (const std::runtime_error& e) {
+    } catch (const std::exception& e) {
       return e.what();
     }
     return "no error";

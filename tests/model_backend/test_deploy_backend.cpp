@@ -15,6 +15,7 @@
 
 #include "backend_test_common.hpp"
 #include "child_process.hpp"
+#include "deploy_text.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -22,31 +23,17 @@ namespace {
 using namespace std::chrono_literals;
 namespace fs = std::filesystem;
 
-void replace_all(std::string& text, const std::string& from, const std::string& to) {
-  for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
-    text.replace(at, from.size(), to);
-  }
-}
-
 // deploy/<name> with its relative paths made absolute (it is written elsewhere)
 // and `line` inserted after the controller's line `after`.
 fs::path deploy_variant(const std::string& name, const std::string& after, const std::string& line,
                         const std::string& tag) {
-  const fs::path deploy = wbi::test::source_dir() / "deploy";
-  std::ifstream in(deploy / name);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  std::string text = buffer.str();
-  replace_all(text, "../models/", (wbi::test::source_dir() / "models").string() + "/");
-  replace_all(text, "config: robots/", "config: " + (deploy / "robots").string() + "/");
+  std::string text = wbi::test::deploy_text(name);
   const auto at = text.find(after);
   EXPECT_NE(at, std::string::npos) << after << " not in " << name;
   if (at != std::string::npos && !line.empty()) {
     text.insert(text.find('\n', at) + 1, line + "\n");
   }
-  const fs::path out = wbi::test::binary_dir() / "tests" / ("backend_" + tag + "_" + name);
-  std::ofstream(out) << text;
-  return out;
+  return wbi::test::write_test_file("backend_" + tag + "_" + name, text);
 }
 
 // Runs `wbi launch FILE --duration S` and returns the number in its summary
@@ -94,13 +81,9 @@ TEST(DeployBackend, BalancingGivesTheSameComTrackingWithDart) {
   const std::string marker = "com tracking rms";
   auto variant = [&](const std::string& line, const std::string& tag) {
     const fs::path file = deploy_variant("balance.yaml", "exit_after_s: 21.0", line, tag);
-    std::ifstream in(file);
-    std::stringstream buffer;
-    buffer << in.rdbuf();
-    std::string text = buffer.str();
-    replace_all(text, "exit_after_s: 21.0", "exit_after_s: 5.0");
-    std::ofstream(file) << text;
-    return file;
+    std::string text = wbi::test::read_text(file);
+    wbi::test::replace_all(text, "exit_after_s: 21.0", "exit_after_s: 5.0");
+    return wbi::test::write_test_file(file.filename().string(), text);
   };
   // The controller ends the run (shutdown_on_exit); --duration is a bound.
   const double with_wbi = launch_summary(variant("", "wbi"), marker, 120);

@@ -244,8 +244,7 @@ class ControllerHostComponent final : public runtime::Component {
       std::fflush(stdout);
     }
     if (exit_after_s_ > 0.0 && t >= exit_after_s_ && !exit_requested_) {
-      exit_requested_ = true;
-      runtime::request_process_exit(0);
+      end_run();
     }
     Controller* active = host_->active_controller();
     if (active) {
@@ -253,10 +252,7 @@ class ControllerHostComponent final : public runtime::Component {
     }
     for (Controller* running : host_->active_controllers()) {
       if (running->finished() && !exit_requested_) {
-        // The run is over: end the hosting process (wbi_host shuts the
-        // components down, so the summary is printed), and `wbi launch` with it.
-        exit_requested_ = true;
-        runtime::request_process_exit(0);
+        end_run();
       }
     }
     if (active && progress_period_s_ > 0 && t >= next_progress_s_) {
@@ -286,6 +282,22 @@ class ControllerHostComponent final : public runtime::Component {
   }
 
  private:
+  // The run is over: end the hosting process (wbi_host shuts the components
+  // down, so the summary is printed), and `wbi launch` with it; failed when a
+  // controller's figures are computed over nothing.
+  void end_run() {
+    exit_requested_ = true;
+    int code = 0;
+    for (Controller* running : host_->active_controllers()) {
+      if (const std::string why = running->figures_missing(); !why.empty()) {
+        std::fprintf(stderr, "the run failed: %s\n", why.c_str());
+        std::fflush(stderr);
+        code = runtime::kExitRunFailed;
+      }
+    }
+    runtime::request_process_exit(code);
+  }
+
   // The robot's time since the first tick: the newest state's source stamp
   // (the simulation's time in lockstep), so that times in the deploy file
   // (switch_at_s, transitions) mean the same in every run. Without a fresh

@@ -201,7 +201,7 @@ bool MomentumBalanceController::update(double /*time_s*/, double /*period_s*/) {
   balance_->compute();
   // The run's figures end at exit_after_s: the ticks answered while the
   // process shuts down are not counted (how many depends on timing).
-  if (t >= settle_s_ && !finished_) {
+  if (t >= settle_s_ && !finished_ && reference_came_) {
     const double error = (balance_->com() - balance_->com_reference()).norm();
     squared_error_ += error * error;
     max_error_ = std::max(max_error_, error);
@@ -217,7 +217,11 @@ bool MomentumBalanceController::update(double /*time_s*/, double /*period_s*/) {
 
 void MomentumBalanceController::follow_reference(std::int64_t stamp_ns) {
   ReferenceInput& com = *com_input_;
-  com.at(stamp_ns, [&] { return Eigen::Vector3d(balance_->com_of_state() - frame_shift_); });
+  const ReferenceStatus status =
+      com.at(stamp_ns, [&] { return Eigen::Vector3d(balance_->com_of_state() - frame_shift_); });
+  // Before the first point the reference is the measured CoM itself: an
+  // error against it would say nothing of tracking.
+  reference_came_ = reference_came_ || status != ReferenceStatus::missing;
   balance_->set_com_reference(com.position() + frame_shift_, com.velocity(), com.acceleration());
 }
 
@@ -235,9 +239,24 @@ void MomentumBalanceController::progress(char* line, std::size_t size) const {
                 c.y(), c.z(), (c - balance_->com_reference()).norm(), w[2], w[8]);
 }
 
+std::string MomentumBalanceController::figures_missing() const {
+  if (samples_ > 0) {
+    return {};
+  }
+  return reference_came_ ? "no tick counted after settle_s (the run ended first)"
+                         : "no CoM reference point came on " + com_input_->owner() +
+                               ": is its planner running?";
+}
+
 std::string MomentumBalanceController::summary() const {
-  const double samples = samples_ > 0 ? static_cast<double>(samples_) : 1.0;
   char text[256];
+  if (samples_ == 0) {
+    std::snprintf(
+        text, sizeof text, "qp failures: %llu\nmax com error: none\ncom tracking rms: none (%s)",
+        static_cast<unsigned long long>(balance_->qp_failures()), figures_missing().c_str());
+    return text;
+  }
+  const auto samples = static_cast<double>(samples_);
   std::snprintf(text, sizeof text,
                 "qp failures: %llu\nmax com error: %.6f m\ncom tracking rms: %.6f m",
                 static_cast<unsigned long long>(balance_->qp_failures()), max_error_,

@@ -17,6 +17,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <wbi/runtime/process_exit.hpp>
+
 #include "launcher_impl.hpp"
 
 namespace wbi::launch {
@@ -72,12 +74,55 @@ int Launcher::run() {
   }
   stop_all();
   drain_output();
+  note_never_healthy();
   print_summary();
   if (stop_signal != 0) {
     return 130;
   }
-  return failed ? 1 : 0;
+  // A launch whose processes all ran is not enough: one that ended in error
+  // (even an optional one) or never came up fails it too, so that a script
+  // reads the truth from the exit code (the summary names each).
+  const bool any_failure = std::any_of(processes_.begin(), processes_.end(),
+                                       [](const Managed& p) { return !p.failure.empty(); });
+  return failed || any_failure ? 1 : 0;
 }
+
+// A components: process whose last start never said its components run
+// (wbi_host: running) did not do its part, whatever its exit code.
+void Launcher::note_never_healthy() {
+  for (auto& process : processes_) {
+    if (process.failure.empty() && process.spec->hosts_components && process.exit_code &&
+        !process.running) {
+      process.failure = "never became healthy (its components did not say they run)";
+    }
+  }
+}
+
+namespace {
+
+// Why a run that ended with exit_code (not 0) failed, for the summary.
+std::string failure_of(int exit_code) {
+  switch (exit_code) {
+    case runtime::kExitConfigurationError:
+      return "configuration error";
+    case runtime::kExitRunFailed:
+      return "its run failed its checks";
+    default:
+      return "ended in error";
+  }
+}
+
+// Exit codes that respawning cannot change (wbi/runtime/process_exit.hpp).
+bool is_final(int exit_code) {
+  return exit_code == runtime::kExitConfigurationError || exit_code == runtime::kExitRunFailed;
+}
+
+// A process we stopped ended cleanly: exit 0, or SIGTERM/SIGINT's usual codes.
+bool stopped_cleanly(int exit_code) {
+  return exit_code == 0 || exit_code == 128 + SIGTERM || exit_code == 128 + SIGINT;
+}
+
+}  // namespace
 
 bool Launcher::wait_until_ready(const Managed& process) {
   const auto& topics = process.spec->wait_for_topics;
@@ -145,16 +190,29 @@ bool Launcher::reap(bool& failed) {
     }
     tell_exit(process, status);
     process.pid = -1;
-    process.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    process.exit_code = code;
     if (process.stopped_by_us) {
-      say(process.spec->name + ": stopped");
+      if (stopped_cleanly(code)) {
+        say(process.spec->name + ": stopped");
+      } else {
+        process.failure = "did not stop cleanly";
+        say(process.spec->name + ": stopped with exit code " + std::to_string(code));
+      }
       continue;
     }
-    const bool ok = *process.exit_code == 0;
-    say(process.spec->name +
-        (ok ? ": exited" : ": failed with exit code " + std::to_string(*process.exit_code)));
-    const bool will_respawn =
-        process.spec->respawn.enabled && process.restarts < process.spec->respawn.max_retries;
+    const bool ok = code == 0;
+    if (!ok) {
+      process.failure = failure_of(code);
+    }
+    say(process.spec->name + (ok ? ": exited"
+                                 : ": failed with exit code " + std::to_string(code) +
+                                       (is_final(code) ? " (" + process.failure + ")" : "")));
+    const bool will_respawn = !is_final(code) && process.spec->respawn.enabled &&
+                              process.restarts < process.spec->respawn.max_retries;
+    if (!ok && is_final(code) && process.spec->respawn.enabled) {
+      say(process.spec->name + ": not respawned (starting it again cannot change that)");
+    }
     // A shutdown_on_exit process that ends cleanly ends the run; one that
     // fails is respawned first when it may be (a crashed controller of an
     // experiment that ends itself).
@@ -298,6 +356,7 @@ void Launcher::stop_all() {
       waitpid(process.pid, &status, 0);
       tell_exit(process, status);
       process.exit_code = 128 + SIGKILL;
+      process.failure = "did not stop within the grace period: SIGKILL";
       process.pid = -1;
     }
   }

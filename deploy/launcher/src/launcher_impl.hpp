@@ -38,6 +38,7 @@ struct Managed {
   bool hang_reported = false;              // silent past its hang_timeout, said once
   bool heard = false;                      // a heartbeat of this start was heard (said once)
   bool running = false;                    // a components: process printed "wbi_host: running"
+  std::string failure;  // why its last run failed the launch (empty: it did not), for the summary
 };
 
 class Launcher {
@@ -69,6 +70,7 @@ class Launcher {
   bool supervise(Clock::time_point start);
   void stop_all();
   void drain_output();
+  void note_never_healthy();
   void print_summary();
   // The launcher's events (launcher_events.cpp): about `process`, its source.
   void start_events();

@@ -113,6 +113,9 @@ void Launcher::print_summary() {
     if (process.restarts > 0) {
       state += ", " + std::to_string(process.restarts) + " restart(s)";
     }
+    if (!process.failure.empty()) {
+      state += ": FAILED, " + process.failure;
+    }
     out_ << "  " << process.spec->name << ": " << state << "\n";
   }
   for (std::size_t i = 0; i < deploy_.summaries.size(); ++i) {

@@ -123,6 +123,7 @@ bool Launcher::spawn(Managed& process) {
   process.hang_reported = false;
   process.heard = false;
   process.running = false;
+  process.failure.clear();  // judged by this run
   if (heartbeats_) {
     heartbeats_->forget(process.spec->components);  // the new ones are not late yet
   }

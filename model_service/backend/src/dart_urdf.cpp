@@ -86,7 +86,7 @@ void lock_joint(XMLElement* joint, double position) {
 std::string urdf_for_dart(const std::string& urdf, const Model& model) {
   std::ifstream file(urdf);
   if (!file) {
-    throw std::runtime_error(urdf + ": cannot open");
+    throw std::invalid_argument(urdf + ": cannot open");
   }
   std::ostringstream text;
   text << file.rdbuf();

@@ -37,7 +37,7 @@ mjModel* load_mjcf_from_memory(const std::string& xml, const std::vector<MemoryF
   mjModel* m = mj_loadXML(name.c_str(), vfs.get(), error, sizeof(error));
   mj_deleteVFS(vfs.get());
   if (m == nullptr) {
-    throw std::runtime_error(where + ": MuJoCo rejected the model: " + error);
+    throw std::invalid_argument(where + ": MuJoCo rejected the model: " + error);
   }
   return m;
 }

@@ -12,6 +12,15 @@
 
 namespace wbi::runtime {
 
+// Exit codes a supervisor reads (`wbi launch`, deploy/README.md "Exit codes").
+// A process ending with either is not respawned: starting it again cannot
+// change the outcome. The values are sysexits.h's, which shells and process
+// managers already know.
+inline constexpr int kExitConfigurationError = 78;  // EX_CONFIG: bad parameter, unknown type,
+                                                    // missing file, bad command line
+inline constexpr int kExitRunFailed = 65;  // EX_DATAERR: the run ended, but its figures are
+                                           // computed over nothing (no reference point came)
+
 // Installed once by the host program, before its components start.
 void set_process_exit_handler(std::function<void(int exit_code)> handler);
 

@@ -27,6 +27,14 @@ class TransitionError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// configure failed on the component's parameters or inputs (its on_configure
+// threw ParameterError or std::invalid_argument: a bad value, an unknown
+// joint, a missing file): starting the process again cannot fix it.
+class ConfigurationError : public TransitionError {
+ public:
+  using TransitionError::TransitionError;
+};
+
 struct RunnerOptions {
   double rate_hz = 0.0;          // periodic cycle rate; 0: no cycle (event-driven component)
   double status_period_s = 1.0;  // heartbeat period on wbi/status; 0: on transitions only
@@ -75,7 +83,8 @@ class ComponentRunner {
 
  private:
   void require(LifecycleState from, const char* transition) const;
-  void fail(const char* transition, const std::exception& error);
+  [[noreturn]] void fail(const char* transition, const std::exception& error,
+                         bool configuration = false);
   void set_state(LifecycleState state);
   void lifecycle_event(EventSeverity severity, const std::string& text);
   void run_loop();

@@ -102,6 +102,11 @@ class Controller {
   }
   // Printed when the host shuts down, e.g. "final max joint error: 0.0006 rad".
   virtual std::string summary() const { return {}; }
+  // Empty when summary()'s figures are computed over what they claim; else
+  // why they are not, e.g. "no CoM reference point came". Asked when the run
+  // ends (finished() or the host's exit_after_s): a non-empty answer fails it
+  // (the process exits with runtime::kExitRunFailed, `wbi launch` with 1).
+  virtual std::string figures_missing() const { return {}; }
 
  protected:
   Controller() = default;

@@ -50,6 +50,7 @@ class MomentumBalanceController final : public Controller {
   std::int64_t signals_stamp_ns() const override { return stamp_ns_; }
   void progress(char* line, std::size_t size) const override;
   std::string summary() const override;
+  std::string figures_missing() const override;
 
  private:
   void follow_reference(std::int64_t stamp_ns);
@@ -63,6 +64,7 @@ class MomentumBalanceController final : public Controller {
   double settle_s_ = 0.0, exit_after_s_ = 0.0;
   bool finished_ = false;
   bool new_estimator_ = false;
+  bool reference_came_ = false;  // the CoM figures count only from the first reference point
   std::int64_t start_ns_ = -1, stamp_ns_ = 0;
   std::uint64_t last_seq_ = 0;
   bool has_seq_ = false;
