@@ -8,6 +8,8 @@
 // respawn it), 1 on another error (one line on stderr); a component that ends
 // the process (wbi/runtime/process_exit.hpp) gives its code.
 #include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -24,6 +26,7 @@
 #include <wbi/deploy/process_host.hpp>
 #include <wbi/launch/launcher.hpp>
 #include <wbi/runtime/console_line.hpp>
+#include <wbi/runtime/handshake_watch.hpp>
 #include <wbi/runtime/host.hpp>
 #include <wbi/runtime/parameters.hpp>
 #include <wbi/runtime/plugins.hpp>
@@ -151,8 +154,18 @@ int main(int argc, char** argv) {
     return configuration_error(error);
   }
   wbi::runtime::Host& host = *made;
+  // Secured: a handshake that stalls while this process starts ends it with
+  // kExitStartStalled; `wbi launch` starts it again (no component has run yet).
+  wbi::runtime::HandshakeWatch handshakes(host.participant(), [](const std::string& why) {
+    wbi::runtime::print_line(
+        stderr, "wbi_host: start-up stalled: " + why + ": ending with exit code " +
+                    std::to_string(wbi::runtime::kExitStartStalled) + " to be started again");
+    std::fflush(nullptr);
+    std::_Exit(wbi::runtime::kExitStartStalled);
+  });
   try {
     host.start();
+    handshakes.started();
     // The components already run and print: this line goes out whole (console_line.hpp).
     wbi::runtime::print_line(stdout, "wbi_host: running " + std::to_string(host.size()) +
                                          " component(s) from " + file + " on domain " +

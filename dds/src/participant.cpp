@@ -129,6 +129,9 @@ namespace detail {
 
 ParticipantImpl::ParticipantImpl(const ParticipantOptions& options)
     : domain_id(options.domain_id), name(options.name), self(own_info(options.name)) {
+  secured_ = options.security.enabled();
+  const char* trace = std::getenv("WBI_DDS_TRACE_HANDSHAKES");
+  trace_handshakes_ = secured_ && trace != nullptr && std::string(trace) == "1";
   if (domain_id < 0 || domain_id > 232) {
     throw std::invalid_argument("DDS domain id must be in [0, 232], got " +
                                 std::to_string(domain_id));
@@ -245,6 +248,11 @@ bool Participant::participant_gone(const detail::Guid& guid) const {
 
 std::string Participant::describe_writer(const detail::Guid& writer) const {
   return impl_->describe_writer(writer);
+}
+
+std::vector<PendingHandshake> Participant::stalled_handshakes(
+    std::chrono::nanoseconds at_least) const {
+  return impl_->stalled_handshakes(at_least);
 }
 
 bool Participant::has_ended(const ParticipantInfo& other) const {

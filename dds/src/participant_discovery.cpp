@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <iterator>
 #include <mutex>
@@ -38,10 +39,19 @@ void ParticipantImpl::on_participant_discovery(
   using Status = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo::DISCOVERY_STATUS;
   const std::string prefix = prefix_text(discovered.info.m_guid.guidPrefix);
   std::lock_guard lock(discovery_mutex_);
+  if (trace_handshakes_) {
+    std::fprintf(stderr, "[dds %s] discovery of %s ('%s'): status %d\n", name.c_str(),
+                 prefix.c_str(), discovered.info.m_participantName.c_str(),
+                 static_cast<int>(discovered.status));
+  }
   if (discovered.status == Status::REMOVED_PARTICIPANT ||
       discovered.status == Status::DROPPED_PARTICIPANT) {
     remote_participants_.erase(prefix);
+    handshakes_.erase(prefix);
     return;
+  }
+  if (secured_) {
+    handshakes_.try_emplace(prefix, Handshake{std::chrono::steady_clock::now(), false});
   }
   ParticipantInfo remote;
   remote.guid_prefix = prefix;
@@ -58,6 +68,42 @@ void ParticipantImpl::on_participant_discovery(
     }
   }
   remote_participants_[prefix] = std::move(remote);
+}
+
+void ParticipantImpl::onParticipantAuthentication(
+    fdds::DomainParticipant* /*participant*/,
+    eprosima::fastrtps::rtps::ParticipantAuthenticationInfo&& info) {
+  const std::string prefix = prefix_text(info.guid.guidPrefix);
+  std::lock_guard lock(discovery_mutex_);
+  if (trace_handshakes_) {
+    std::fprintf(stderr, "[dds %s] handshake with %s: %s\n", name.c_str(), prefix.c_str(),
+                 info.status == info.AUTHORIZED_PARTICIPANT ? "authorized" : "refused");
+  }
+  auto [at, added] =
+      handshakes_.try_emplace(prefix, Handshake{std::chrono::steady_clock::now(), true});
+  at->second.ended = true;
+}
+
+std::vector<PendingHandshake> ParticipantImpl::stalled_handshakes(
+    std::chrono::nanoseconds at_least) const {
+  std::vector<PendingHandshake> stalled;
+  const auto now = std::chrono::steady_clock::now();
+  std::lock_guard lock(discovery_mutex_);
+  for (const auto& [prefix, handshake] : handshakes_) {
+    const auto waited = now - handshake.discovered_at;
+    if (handshake.ended || waited < at_least) {
+      continue;
+    }
+    PendingHandshake pending;
+    const auto known = remote_participants_.find(prefix);
+    if (known != remote_participants_.end()) {
+      pending.remote = known->second;
+    }
+    pending.remote.guid_prefix = prefix;
+    pending.waited_s = std::chrono::duration<double>(waited).count();
+    stalled.push_back(std::move(pending));
+  }
+  return stalled;
 }
 
 bool ended_on_host(const ParticipantInfo& other, const std::string& host) {

@@ -79,6 +79,8 @@ class ParticipantImpl : public fdds::DomainParticipantListener {
   // alive (the rule of a robot's name claim); all zero when none is known.
   Guid oldest_writer_of(const std::string& topic) const;
 
+  std::vector<PendingHandshake> stalled_handshakes(std::chrono::nanoseconds at_least) const;
+
   int domain_id;
   std::string name;
   ParticipantInfo self;  // announced by participant_qos()
@@ -90,6 +92,9 @@ class ParticipantImpl : public fdds::DomainParticipantListener {
                               eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override;
   void on_subscriber_discovery(fdds::DomainParticipant* participant,
                                eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) override;
+  void onParticipantAuthentication(
+      fdds::DomainParticipant* participant,
+      eprosima::fastrtps::rtps::ParticipantAuthenticationInfo&& info) override;
 
   std::vector<TopicInfo> collect_topics() const;  // caller holds discovery_mutex_
 
@@ -118,6 +123,15 @@ class ParticipantImpl : public fdds::DomainParticipantListener {
   mutable std::condition_variable discovery_changed_;
   std::map<std::string, RemoteEndpoint> remote_endpoints_;      // by GUID
   std::map<std::string, ParticipantInfo> remote_participants_;  // by GUID prefix
+
+  // Secured participants: each remote participant's handshake, by GUID prefix.
+  struct Handshake {
+    std::chrono::steady_clock::time_point discovered_at{};
+    bool ended = false;  // authenticated or refused
+  };
+  bool secured_ = false;
+  bool trace_handshakes_ = false;  // WBI_DDS_TRACE_HANDSHAKES=1: one stderr line per step
+  std::map<std::string, Handshake> handshakes_;
 };
 
 }  // namespace wbi::dds::detail

@@ -329,6 +329,40 @@ TEST_F(LaunchTest, FailedShutdownOnExitProcessIsRespawnedFirst) {
   EXPECT_TRUE(contains(launch.output(), "run ended: stopping the launch")) << launch.output();
 }
 
+// A process whose start stalled (exit 75: wbi_host's secured start-up,
+// wbi/runtime/handshake_watch.hpp) is started again at once, without a
+// respawn policy, 3 times at most; a later good run makes a good launch.
+TEST_F(LaunchTest, StalledStartIsStartedAgain) {
+  const auto counter = dir_ / "starts";
+  const std::string command = "echo x >> " + counter.string() + "; [ $(wc -l < " +
+                              counter.string() + ") -le STALLS ] && exit 75; echo ran; sleep 30";
+  for (const int stalls : {2, 4}) {
+    std::filesystem::remove(counter);
+    std::string script = command;
+    script.replace(script.find("STALLS"), 6, std::to_string(stalls));
+    const auto deploy = write(
+        "stall.yaml", "processes:\n  - {name: peer, command: [sh, -c, \"" + script + "\"]}\n");
+    ChildProcess launch(wbi_exe(), {"launch", deploy.string(), "--duration", "2"});
+    const auto code = launch.wait(60s);
+    ASSERT_TRUE(code.has_value()) << launch.output();
+    const std::string out = launch.output();
+    EXPECT_TRUE(contains(out, "peer: its start stalled (exit code 75): starting it again, 1 of 3"))
+        << out;
+    if (stalls == 2) {
+      EXPECT_EQ(*code, 0) << out;
+      EXPECT_TRUE(contains(out, "[peer] ran")) << out;
+      EXPECT_TRUE(contains(out,
+                           "  peer: stopped (exit code 143), started again after 2 stalled "
+                           "start(s)\n"))
+          << out;
+    } else {  // 1 start and 3 more, all stalled
+      EXPECT_EQ(*code, 1) << out;
+      EXPECT_FALSE(contains(out, "[peer] ran")) << out;
+      EXPECT_TRUE(contains(out, "FAILED, its start stalled every time")) << out;
+    }
+  }
+}
+
 TEST_F(LaunchTest, ProcessIgnoringSigtermIsKilled) {
   const auto deploy =
       write("stubborn.yaml",

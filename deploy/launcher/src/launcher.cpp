@@ -42,6 +42,9 @@ extern "C" void on_stop_signal(int signal_number) {
   [[maybe_unused]] const auto ignored = write(wake_pipe[1], &byte, 1);
 }
 
+// How many times a process whose start stalled is started again.
+constexpr int kStartRetries = 3;
+
 // Longest wait for a components: process to say it runs (configure may load
 // large models) before the next process starts anyway.
 constexpr double kStartTimeoutS = 60.0;
@@ -107,6 +110,8 @@ std::string failure_of(int exit_code) {
       return "configuration error";
     case runtime::kExitRunFailed:
       return "its run failed its checks";
+    case runtime::kExitStartStalled:
+      return "its start stalled every time";
     default:
       return "ended in error";
   }
@@ -138,6 +143,11 @@ bool Launcher::wait_until_ready(const Managed& process) {
       if (stop_signal != 0) {
         return false;
       }
+      // A process before this one may end meanwhile (a stalled start: started again).
+      bool failed = false;
+      if ((reap(failed) && failed) || !restart_due()) {
+        return false;
+      }
       if (Clock::now() >= deadline) {
         say(process.spec->name + ": not started: " + topic + " did not appear within " +
             std::to_string(process.spec->wait_timeout_s) + " s");
@@ -161,10 +171,10 @@ bool Launcher::wait_until_running(Managed& process) {
   while (!process.running && stop_signal == 0) {
     pump_output(std::chrono::milliseconds(50));
     bool failed = false;
-    if (reap(failed) && failed) {
+    if ((reap(failed) && failed) || !restart_due()) {
       return false;
     }
-    if (process.pid <= 0) {
+    if (process.pid <= 0 && !process.retry_start) {
       return true;  // ended, not fatal (reap said so; respawn may follow)
     }
     if (Clock::now() >= deadline) {
@@ -199,6 +209,16 @@ bool Launcher::reap(bool& failed) {
         process.failure = "did not stop cleanly";
         say(process.spec->name + ": stopped with exit code " + std::to_string(code));
       }
+      continue;
+    }
+    if (code == runtime::kExitStartStalled && process.start_retries < kStartRetries) {
+      // Not the process's fault, nor a run that went wrong: it started again at once.
+      ++process.start_retries;
+      process.retry_start = true;
+      process.restart_at = Clock::now();
+      say(process.spec->name + ": its start stalled (exit code " + std::to_string(code) +
+          "): starting it again, " + std::to_string(process.start_retries) + " of " +
+          std::to_string(kStartRetries));
       continue;
     }
     const bool ok = code == 0;
@@ -302,17 +322,8 @@ bool Launcher::supervise(Clock::time_point start) {
     if (reap(failed) || check_hangs(failed)) {
       return failed;
     }
-    for (auto& process : processes_) {
-      if (process.restart_at && Clock::now() >= *process.restart_at) {
-        ++process.restarts;
-        const std::string respawn = "respawn " + std::to_string(process.restarts) + " of " +
-                                    std::to_string(process.spec->respawn.max_retries);
-        say(process.spec->name + ": " + respawn);
-        tell(EventSeverity::warning, EventKind::process_respawned, process, respawn);
-        if (!spawn(process) && process.spec->required) {
-          return true;
-        }
-      }
+    if (!restart_due()) {
+      return true;
     }
     const bool all_ended = std::all_of(processes_.begin(), processes_.end(), [](const Managed& p) {
       return p.pid <= 0 && !p.restart_at;
@@ -328,6 +339,30 @@ bool Launcher::supervise(Clock::time_point start) {
   }
   say(std::string("interrupted (") + (stop_signal == SIGINT ? "SIGINT" : "SIGTERM") + ")");
   return failed;
+}
+
+bool Launcher::restart_due() {
+  for (auto& process : processes_) {
+    if (!process.restart_at || Clock::now() < *process.restart_at) {
+      continue;
+    }
+    std::string why;
+    if (process.retry_start) {
+      process.retry_start = false;
+      why = "start-up stalled: started again, " + std::to_string(process.start_retries) + " of " +
+            std::to_string(kStartRetries);
+    } else {
+      ++process.restarts;
+      why = "respawn " + std::to_string(process.restarts) + " of " +
+            std::to_string(process.spec->respawn.max_retries);
+      say(process.spec->name + ": " + why);
+    }
+    tell(EventSeverity::warning, EventKind::process_respawned, process, why);
+    if (!spawn(process) && process.spec->required) {
+      return false;
+    }
+  }
+  return true;
 }
 
 // SIGTERM to every running process group, last started first; SIGKILL after the grace period.

@@ -31,6 +31,8 @@ struct Managed {
   int output_fd = -1;   // read end of the pipe carrying its stdout and stderr
   std::string partial;  // output not yet ended by a newline
   int restarts = 0;
+  int start_retries = 0;         // starts again after a stalled start (exit kExitStartStalled)
+  bool retry_start = false;      // the pending restart_at is such a start again
   std::optional<int> exit_code;  // of the last run; 128 + signal when killed
   bool stopped_by_us = false;
   std::optional<Clock::time_point> restart_at;
@@ -68,6 +70,8 @@ class Launcher {
   bool reap(bool& failed);
   bool check_hangs(bool& failed);
   bool supervise(Clock::time_point start);
+  // Starts the processes whose restart is due; false when a required one cannot start.
+  bool restart_due();
   void stop_all();
   void drain_output();
   void note_never_healthy();

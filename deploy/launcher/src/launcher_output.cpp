@@ -113,6 +113,10 @@ void Launcher::print_summary() {
     if (process.restarts > 0) {
       state += ", " + std::to_string(process.restarts) + " restart(s)";
     }
+    if (process.start_retries > 0) {
+      state +=
+          ", started again after " + std::to_string(process.start_retries) + " stalled start(s)";
+    }
     if (!process.failure.empty()) {
       state += ": FAILED, " + process.failure;
     }

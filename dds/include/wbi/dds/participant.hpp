@@ -81,6 +81,13 @@ struct ParticipantInfo {
   std::int64_t start_ns = 0;  // system clock at creation
 };
 
+// A remote participant that a secured participant discovered but whose DDS
+// Security handshake has neither authenticated nor refused it since.
+struct PendingHandshake {
+  ParticipantInfo remote;
+  double waited_s = 0.0;  // since its discovery
+};
+
 class Participant {
  public:
   explicit Participant(const ParticipantOptions& options = {});
@@ -122,6 +129,12 @@ class Participant {
   // "participant 'pd' on host h, pid 12 (writer <32 hex digits>)", as far as
   // discovery knows it, for log lines.
   std::string describe_writer(const detail::Guid& writer) const;
+  // Secured participants only (empty otherwise): the remote participants whose
+  // handshake has been pending for at least `at_least`. Fast DDS 2.9's
+  // handshake race (dds/README.md, "Secured start-up") leaves such a pair stuck
+  // for good; a participant that left is forgotten at its lease's end (5 s).
+  // Allocates: for start-up, not for a loop.
+  std::vector<PendingHandshake> stalled_handshakes(std::chrono::nanoseconds at_least) const;
 
   detail::ParticipantImpl& impl() { return *impl_; }
 

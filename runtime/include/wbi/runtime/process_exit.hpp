@@ -20,6 +20,10 @@ inline constexpr int kExitConfigurationError = 78;  // EX_CONFIG: bad parameter,
                                                     // missing file, bad command line
 inline constexpr int kExitRunFailed = 65;  // EX_DATAERR: the run ended, but its figures are
                                            // computed over nothing (no reference point came)
+// EX_TEMPFAIL: its start stalled on something a new start cures (a DDS Security
+// handshake, handshake_watch.hpp): `wbi launch` starts it again at once,
+// whatever its respawn policy, a few times.
+inline constexpr int kExitStartStalled = 75;
 
 // Installed once by the host program, before its components start.
 void set_process_exit_handler(std::function<void(int exit_code)> handler);
