@@ -14,8 +14,12 @@ int run_launch(Args args) {
                   "Starts the processes of a deploy file, each once the topics it waits for\n"
                   "exist; prefixes their output with their name; restarts them by their\n"
                   "respawn policy; stops them all on Ctrl-C/SIGTERM (SIGKILL after the grace\n"
-                  "period), after --duration, or when a required process fails. Exits 1 when a\n"
-                  "required process failed, 130 when interrupted.");
+                  "period), after --duration, or when a required process fails. A process\n"
+                  "that ends with 78 (configuration error) or 65 (its run failed its checks) is\n"
+                  "never respawned; one whose start stalled (75) is started again at once.\n"
+                  "Exits 0 when every process did its part; 1 when any failed (even an optional\n"
+                  "one), never came up, or had to be killed (the summary names each); 130 when\n"
+                  "interrupted.");
   options.positional("FILE", "deploy file (YAML)");
   options.option("duration", "SECONDS", "stop everything after this long (0: no limit)", "0");
   options.option("grace", "SECONDS", "time between SIGTERM and SIGKILL when stopping", "5");

@@ -187,7 +187,8 @@ bool Launcher::wait_until_running(Managed& process) {
 }
 
 // Collects exits; returns true when the launch must stop, with `failed` set
-// when a required process failed.
+// when a required process failed. Each failed run's reason is kept for the
+// summary and the exit code (Managed::failure).
 bool Launcher::reap(bool& failed) {
   bool stop = false;
   for (auto& process : processes_) {
