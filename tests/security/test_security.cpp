@@ -20,6 +20,7 @@
 #include <wbi/dds/publisher.hpp>
 #include <wbi/dds/subscriber.hpp>
 #include <wbi/dds/topics.hpp>
+#include <wbi/runtime/handshake_watch.hpp>
 
 #include "child_process.hpp"
 #include "test_support.hpp"
@@ -141,6 +142,39 @@ TEST_F(Security, ParticipantWithoutIdentityCannotDiscoverNorCommandTheRobot) {
   }
   EXPECT_GE(moved, 0.1) << "the controller's identity could not command the robot\n"
                         << robot.output();
+}
+
+// The secured start-up watch (wbi/runtime/handshake_watch.hpp) restarts a
+// process whose handshake stays pending: every handshake that can end must
+// be seen to end, or a healthy start would be restarted. An authenticated
+// robot (its sensors arrive) and an unsecured intruder (refused) both leave
+// the observer with no pending handshake; a wrong answer would restart
+// every secured process 5 s into its start.
+TEST_F(Security, AuthorizedAndRefusedHandshakesAreNotPending) {
+  ChildProcess robot = start_robot();
+  wbi::dds::Participant observer(as("observer"));
+  wbi::dds::Subscriber<wbi::msg::SensorSample> sensors(observer, wbi::dds::topics::sensors("arm"),
+                                                       wbi::dds::qos::kStream);
+  wbi::dds::Received<wbi::msg::SensorSample> sample;
+  ASSERT_TRUE(sensors.wait_newer(sample, 0, 20s)) << robot.output();
+  EXPECT_TRUE(wbi::test::eventually([&] { return observer.stalled_handshakes(0s).empty(); }))
+      << "the robot's handshake, authenticated, is still listed as pending";
+  // No identity: refused. Pending for 1 s (2 s, on the intruder's turn), it
+  // would be reported by the watch below, which runs for 3 s.
+  wbi::dds::Participant intruder("intruder");
+  wbi::runtime::HandshakeWatchOptions quick;
+  quick.stall_s = 1.0;
+  std::string stall;
+  {
+    wbi::runtime::HandshakeWatch watch(
+        observer, [&](const std::string& why) { stall = why; }, quick);
+    const auto until = std::chrono::steady_clock::now() + 3s;
+    while (std::chrono::steady_clock::now() < until && stall.empty()) {
+      ASSERT_TRUE(sensors.wait_newer(sample, sample.count, 5s));  // the robot runs meanwhile
+    }
+  }
+  EXPECT_EQ(stall, "") << "a healthy secured participant was told to restart";
+  EXPECT_TRUE(observer.stalled_handshakes(0s).empty());
 }
 
 TEST_F(Security, IdentityWithoutCommandPermissionCannotCreateACommandWriter) {
