@@ -195,7 +195,7 @@ class RecordedRun : public ::testing::Test {
 
 TEST_F(RecordedRun, Mp4HasTheFrameCountAndDurationAskedFor) {
   if (!has_program("ffmpeg") || !has_program("ffprobe")) {
-    GTEST_SKIP() << "skipped: ffmpeg and ffprobe not found (Debian package ffmpeg)";
+    GTEST_SKIP() << "ffmpeg and ffprobe not found (Debian package ffmpeg)";
   }
   struct Case {
     std::vector<std::string> extra;
