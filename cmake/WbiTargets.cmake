@@ -104,13 +104,28 @@ function(wbi_next_test_domain out)
   set(${out} ${domain} PARENT_SCOPE)
 endfunction()
 
+# A test that ran nothing says so in one line that begins with "skipped: "
+# (tests/README.md, "Skipped tests"): a script prints it (and exits 77), a
+# GoogleTest program prints it when every test it ran was skipped and none
+# failed (tests/support/skip_report.cpp). ctest then reports the test as
+# skipped, not passed. A program of which only some tests skipped stays
+# passed (or failed): GoogleTest's own "[  SKIPPED ]" lines are not matched,
+# since a match would make ctest report "Skipped" even for a program whose
+# other tests failed. scripts/test lists both kinds and fails on any.
+set(WBI_TEST_SKIP_REGEX "(^|\n)skipped: ")
+
+# wbi_test_skips(<test>...): ctest reports these tests as skipped when they print that line.
+function(wbi_test_skips)
+  set_tests_properties(${ARGN} PROPERTIES SKIP_REGULAR_EXPRESSION "${WBI_TEST_SKIP_REGEX}")
+endfunction()
+
 # wbi_add_test(NAME <test> SOURCES ... [DEPS ...] [LABELS ...] [TIMEOUT s])
 # One GoogleTest executable, registered with ctest as one test (its cases run in one process).
 function(wbi_add_test)
   cmake_parse_arguments(ARG "" "NAME;TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
   add_executable(${ARG_NAME} ${ARG_SOURCES})
   target_link_libraries(${ARG_NAME} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main
-    wbi_test_crash_backtrace)
+    wbi_test_crash_backtrace wbi_test_skip_report)
   target_compile_options(${ARG_NAME} PRIVATE ${WBI_WARNINGS})
   set_target_properties(${ARG_NAME} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/tests)
   add_test(NAME ${ARG_NAME} COMMAND ${ARG_NAME})
@@ -124,6 +139,7 @@ function(wbi_add_test)
   set_tests_properties(${ARG_NAME} PROPERTIES TIMEOUT ${ARG_TIMEOUT}
     LABELS "${ARG_LABELS}"
     ENVIRONMENT "WBI_SOURCE_DIR=${PROJECT_SOURCE_DIR};WBI_BINARY_DIR=${PROJECT_BINARY_DIR};WBI_DOMAIN_ID=${domain}")
+  wbi_test_skips(${ARG_NAME})
 endfunction()
 
 # wbi_test_no_malloc(<test>): Eigen fails the test on any heap allocation

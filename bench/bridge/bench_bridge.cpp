@@ -11,7 +11,9 @@
 // receipt of every sensor sample (the message's receive time, set when the
 // bridge got the sample from DDS, against the system clock when the client has
 // read it: arrival → send plus the loopback hop and the client's read), and
-// the bridge process's CPU time (/proc/PID/stat).
+// the bridge process's CPU time (/proc/PID/stat), and the rate at which each
+// client gets the 30 Hz transforms (test_bridge checks only that they are
+// throttled, not how close to 30 Hz a loaded machine keeps them).
 // The last line is one JSON object. Runs on WBI_DOMAIN_ID (default 79).
 #include <atomic>
 #include <chrono>
@@ -136,6 +138,9 @@ class ReadingClient {
       if (channel["topic"] == "wbi/arm/sensors") {
         sensors_ = id;
       }
+      if (channel["topic"] == "wbi/arm/transforms") {
+        transforms_ = id;
+      }
       subscriptions.push_back({{"id", id++}, {"channelId", channel["id"]}});
     }
     client_.send_json({{"op", "subscribe"}, {"subscriptions", subscriptions}});
@@ -151,6 +156,7 @@ class ReadingClient {
     return latencies_us_;
   }
   std::uint64_t messages() const { return messages_; }
+  std::uint64_t transforms() const { return transform_messages_; }
 
  private:
   void read() {
@@ -160,6 +166,9 @@ class ReadingClient {
         return;
       }
       ++messages_;
+      if (!frame->text && frame->subscription() == transforms_) {
+        ++transform_messages_;
+      }
       if (!frame->text && frame->subscription() == sensors_) {
         const double us = 1e-3 * static_cast<double>(system_now_ns() - frame->receive_ns());
         std::lock_guard lock(mutex_);
@@ -169,8 +178,10 @@ class ReadingClient {
   }
   wbi::test::WsTestClient client_;
   std::uint32_t sensors_ = 0;
+  std::uint32_t transforms_ = 0;
   std::atomic<bool> stop_{false};
   std::atomic<std::uint64_t> messages_{0};
+  std::atomic<std::uint64_t> transform_messages_{0};
   std::mutex mutex_;
   std::vector<double> latencies_us_;
   std::thread thread_;
@@ -247,22 +258,28 @@ int main(int argc, char** argv) {
       const double cpu_before = bridge.cpu_seconds();
       const auto wall_before = std::chrono::steady_clock::now();
       std::uint64_t messages_before = 0;
+      std::uint64_t transforms_before = 0;
       for (auto& reader : readers) {
         messages_before += reader->messages();
+        transforms_before += reader->transforms();
       }
       window(every_channel ? "bridge_with_clients" : "bridge_with_clients_on_three_channels");
       const double wall =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_before).count();
       std::uint64_t messages = 0;
+      std::uint64_t transforms = 0;
       std::vector<double> forward;
       for (auto& reader : readers) {
         messages += reader->messages();
+        transforms += reader->transforms();
         const auto latencies = reader->latencies_us();
         forward.insert(forward.end(), latencies.begin(), latencies.end());
       }
       out[key]["bridge_cpu_percent_of_a_core"] = 100.0 * (bridge.cpu_seconds() - cpu_before) / wall;
       out[key]["messages_per_s_to_all_clients"] =
           static_cast<double>(messages - messages_before) / wall;
+      out[key]["transforms_per_s_per_client"] =
+          static_cast<double>(transforms - transforms_before) / wall / clients;
       out[key]["sensors_arrival_to_client_receipt"] = summary(forward);
     }
     window("bridge_no_client");

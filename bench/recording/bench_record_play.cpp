@@ -10,7 +10,10 @@
 //              inter-arrival interval against 1 ms, p50 / p99 / max, and of
 //              the intervals between writes (DDS source timestamps); with
 //              normal scheduling, at `wbi play --realtime-priority 20`, and at
-//              that with `--spin-us 900`
+//              that with `--spin-us 900`; and at `--rate 2` (against 0.5 ms).
+//              span_ratio: the arrivals' span over the recorded one / rate
+//              (1 when the player keeps the recorded timing; test_record_play
+//              only checks that it never plays faster)
 //
 // The streams' QoS is the built-in one (reliable) unless WBI_QOS_FILE names
 // another, e.g. deploy/qos_realtime.xml (best effort); the JSON says which.
@@ -140,7 +143,8 @@ nlohmann::json record_run(std::size_t topics, double duration_s, std::chrono::na
   };
 }
 
-nlohmann::json play_run(std::size_t count, int realtime_priority, std::chrono::nanoseconds spin) {
+nlohmann::json play_run(std::size_t count, int realtime_priority, std::chrono::nanoseconds spin,
+                        double rate = 1.0) {
   const auto file = scratch("play.mcap");
   {
     wbi::mcap::Writer writer(file);
@@ -178,6 +182,7 @@ nlohmann::json play_run(std::size_t count, int realtime_priority, std::chrono::n
   options.wait_for_subscribers = std::chrono::seconds(10);
   options.realtime_priority = realtime_priority;
   options.spin = spin;
+  options.rate = rate;
   std::string warnings;
   options.log = [&warnings](const std::string& line) { warnings += line + "\n"; };
   wbi::recording::Player player(player_side, options);
@@ -186,25 +191,30 @@ nlohmann::json play_run(std::size_t count, int realtime_priority, std::chrono::n
   listener.wait_newer(last, count - 1, std::chrono::seconds(5));
   std::filesystem::remove(file);
   std::lock_guard lock(mutex);
-  // Arrival intervals against 1 ms: what a subscriber sees, its own wake-ups included.
+  // Arrival intervals against 1 ms / rate: what a subscriber sees, its own wake-ups included.
+  const double interval_us = 1000.0 / rate;
   std::vector<double> errors_us;
   for (std::size_t i = 2; i < arrivals.size(); ++i) {  // the first comes after the start-up wait
     errors_us.push_back(
-        std::abs(1e-3 * static_cast<double>(arrivals[i] - arrivals[i - 1]) - 1000.0));
+        std::abs(1e-3 * static_cast<double>(arrivals[i] - arrivals[i - 1]) - interval_us));
   }
   // The same for the writes (their DDS source timestamps): the player's own
   // timing, without the delivery to the subscriber.
   std::vector<double> publish_errors_us;
   for (std::size_t i = 2; i < published.size(); ++i) {
     publish_errors_us.push_back(
-        std::abs(1e-3 * static_cast<double>(published[i] - published[i - 1]) - 1000.0));
+        std::abs(1e-3 * static_cast<double>(published[i] - published[i - 1]) - interval_us));
   }
   if (errors_us.empty()) {
     throw std::runtime_error("the listener received nothing");
   }
+  const double span_ratio = 1e-3 * static_cast<double>(arrivals.back() - arrivals[1]) /
+                            (interval_us * static_cast<double>(arrivals.size() - 2));
   return {
       {"messages", count},
       {"received", arrivals.size()},
+      {"rate", rate},
+      {"span_ratio", span_ratio},
       {"interval_error_us_p50", percentile(errors_us, 0.50)},
       {"interval_error_us_p99", percentile(errors_us, 0.99)},
       {"interval_error_us_max", percentile(errors_us, 1.0)},
@@ -262,6 +272,8 @@ int main(int argc, char** argv) {
     // wbi play --realtime-priority 20, then also --spin-us 900
     result["play_1khz_realtime"] = play_run(play_count, 20, defaults.spin);
     result["play_1khz_realtime_spin900"] = play_run(play_count, 20, std::chrono::microseconds(900));
+    // wbi play --rate 2: the same recording at twice its speed
+    result["play_1khz_rate2"] = play_run(play_count, 0, defaults.spin, 2.0);
     const char* qos_file = std::getenv("WBI_QOS_FILE");
     result["qos_file"] = qos_file != nullptr ? qos_file : "";  // "": the built-in profiles
     std::cout << result.dump(2) << std::endl;

@@ -363,32 +363,43 @@ BalanceRun run_balance(const std::string& robot, const std::vector<std::string>&
 // (w = 8 cm): below 0.03 rad every corner is still loaded.
 constexpr double kEdgeLifts = 0.03;
 
+// Bounds: a few times what the runs give (lockstep; 2026-12-02, 3 runs each,
+// printed by each test): CoM rms 1.1-1.5 mm, at the end 0.8-1.2 mm, the true
+// CoM's 1.4-2.5 mm, the base's velocity rms 0.18-1.7 mm/s. The runs are not
+// bit-identical: the same test gave a slip of 0.8505 or 0.8513 mm (all
+// joints), 0.838 or 0.859 mm (uncorrected contact forces), a least normal
+// force of 7.4 or 9.0 N (legs and torso).
 void expect_balanced(const BalanceRun& run, const char* what) {
   SCOPED_TRACE(what);
   // The sinusoid's peak acceleration is a ω² = 0.08 m/s²; with the feed-forward the CoM PD
   // (ω_n = 10 rad/s) only has to correct the one-tick delay and model mismatch (the
-  // locked joints' PD sag, contact compliance): millimetres. 1 cm is the issue's bound.
-  EXPECT_LT(run.com_rms, 0.01) << "m";
-  EXPECT_LT(run.final_com_error, 0.02) << "m";
-  // Stick/slip contacts: a sliding foot moves its anchors; 1 mm was the issue's bound.
-  // 1.1 mm since tick 0 is stepped with the controller's first torques (2026-11-27):
-  // before, a start-up race stepped it with one tick of zero torque, and the
-  // ground-truth-base run slid 0.921 mm; it slides 1.017 mm now (the others 0.86 mm).
-  EXPECT_LT(run.max_foot_slip, 1.1e-3) << "m";
+  // locked joints' PD sag, contact compliance): millimetres. The issue asked 1 cm.
+  EXPECT_LT(run.com_rms, 0.005) << "m";
+  EXPECT_LT(run.final_com_error, 0.005) << "m";
+  // Stick/slip contacts: a sliding foot moves its anchors. The runs slide 0.84-0.86 mm
+  // (estimated base), 1.00 mm (contact forces estimated, corrected by half) and
+  // 1.01-1.02 mm (ground-truth base; 0.921 mm before tick 0 was stepped with the
+  // controller's first torques, 2026-11-27). The issue asked 1 mm, which the
+  // ground-truth run does not keep (the corrected one only just); the bound was
+  // then moved to 1.1 mm, 8 % above one run's value. 2 mm: twice the largest,
+  // the issue's bound for the real robots (test_real_robot_balance_launch).
+  EXPECT_LT(run.max_foot_slip, 2e-3) << "m";
   EXPECT_LT(run.max_foot_tilt, kEdgeLifts) << "rad";
   EXPECT_GT(run.min_normal_force, 0.0) << "N: a foot lifted";
   EXPECT_EQ(run.qp_failures, 0u);
   EXPECT_EQ(run.control_allocations, 0) << "heap allocations in a control tick";
   // The estimate the controller balances on: the true CoM tracks as well as its estimate.
   EXPECT_GT(run.compared, run.ticks * 9 / 10) << "ticks compared with the ground truth";
-  EXPECT_LT(run.true_com_rms, 0.01) << "m";
-  EXPECT_LT(run.base_position_max, 0.005) << "m";
-  EXPECT_LT(run.base_velocity_rms, 0.01) << "m/s";
+  EXPECT_LT(run.true_com_rms, 0.007) << "m";
+  EXPECT_LT(run.base_position_max, 0.005) << "m";  // 2.7 mm (estimated base)
+  EXPECT_LT(run.base_velocity_rms, 0.005) << "m/s";
   std::printf(
-      "%s: com rms %.4f m (true CoM %.4f m), max %.4f m, slip %.2e m, tilt %.2e rad, min f_z "
-      "%.1f N; base vs ground truth: position max %.2e m, velocity rms %.2e m/s (%d ticks)\n",
-      what, run.com_rms, run.true_com_rms, run.com_max_error, run.max_foot_slip, run.max_foot_tilt,
-      run.min_normal_force, run.base_position_max, run.base_velocity_rms, run.compared);
+      "%s: com rms %.4f m (true CoM %.4f m), max %.4f m, final %.4f m, slip %.4e m, tilt %.2e "
+      "rad, min f_z %.1f N; base vs ground truth: position max %.2e m, velocity rms %.2e m/s (%d "
+      "ticks)\n",
+      what, run.com_rms, run.true_com_rms, run.com_max_error, run.final_com_error,
+      run.max_foot_slip, run.max_foot_tilt, run.min_normal_force, run.base_position_max,
+      run.base_velocity_rms, run.compared);
 }
 
 TEST(BalanceInProcess, AllJointsTrackTheLateralSinusoid) {
@@ -424,9 +435,10 @@ TEST(BalanceInProcess, RejectsAPushOnTheTorso) {
       "rad, min f_z %.1f N\n",
       run.com_max_error, run.com_error_end, run.max_foot_slip, run.max_foot_tilt,
       run.min_normal_force);
-  // Standing, the error is ~0.2 mm; the push moves the CoM by ~4 mm.
+  // Standing, the error is ~0.2 mm (0.0002 m over the last second, 2026-12-02); the push
+  // moves the CoM by ~4 mm (0.0043 m).
   EXPECT_GT(run.com_max_error, 0.002) << "m: the push did not move the CoM; the test is void";
-  EXPECT_LT(run.com_error_end, 0.003) << "m: not back to balance";
+  EXPECT_LT(run.com_error_end, 0.001) << "m: not back to balance";
   EXPECT_LT(run.max_foot_slip, 1e-3) << "m";
   EXPECT_LT(run.max_foot_tilt, kEdgeLifts) << "rad";
   EXPECT_GT(run.min_normal_force, 0.0) << "N: a foot lifted";

@@ -91,8 +91,11 @@ TEST(BalanceLaunch, ThreeProcessesTrackTheSinusoidFor20Seconds) {
   ASSERT_NE(at, std::string::npos) << out;
   const auto end = out.find(" m", at + 1);
   ASSERT_EQ(out.find('\n', end), out.size() - 1) << "the rms is not the last line:\n" << out;
-  // The issue's bound; the run gives about 1.5 mm.
-  EXPECT_LT(std::stod(out.substr(at + marker.size())), 0.01) << out;
+  // Lockstep: the run gives 1.281 mm (2026-12-02, the same in 3 runs); 5 mm
+  // is about 4 times that (the issue asked 1 cm).
+  const double com_rms = std::stod(out.substr(at + marker.size()));
+  EXPECT_LT(com_rms, 0.005) << out;
+  std::cout << "com tracking rms " << com_rms << " m\n";
 
   std::lock_guard lock(mutex);
   EXPECT_GE(signals, 10000u) << "one sample per tick over 21 s (a reliable stream may skip some)";

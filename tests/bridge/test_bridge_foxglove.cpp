@@ -6,7 +6,7 @@
 // against ground truth, the frame transforms, the controller's parameters
 // (set, refused, a new target reached), and a stalled second client that
 // does not slow the first. Needs node, npm and the registry: when one is
-// missing the test prints "skipped: <reason>" and is skipped, never failed.
+// missing the test is skipped with the reason, never failed.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -68,8 +68,7 @@ TEST(BridgeFoxglove, FoxglovesClientDecodesStreamsAndSetsParameters) {
       scratch.path, {"@foxglove/ws-protocol@^0.8", "ws@^8", "@foxglove/omgidl-parser@^1",
                      "@foxglove/omgidl-serialization@^1"});
   if (npm.node.empty()) {
-    std::cout << "skipped: " << npm.skip_reason << "\n";
-    GTEST_SKIP() << "skipped: " << npm.skip_reason;
+    GTEST_SKIP() << npm.skip_reason;
   }
   // Beside its node_modules, so that node resolves the packages from there.
   const auto script = scratch.path / "foxglove_client_check.js";

@@ -257,12 +257,13 @@ TEST(ReferenceInput, LockstepWaitsOnceForADeadGenerator) {
   in.at(1002 * kMs);
   EXPECT_GE(seconds_since(start), 0.4) << "the first tick without a point waits";
   EXPECT_EQ(in.input.late(), 1u);
-  start = std::chrono::steady_clock::now();
+  // 9 ticks after a timeout: none waits. A tick that waited here would time
+  // out (no point comes) and count as late: late() staying 1 proves it,
+  // without timing the ticks (how fast a tick runs is not this test's).
   for (std::int64_t t = 1003; t <= 1010; ++t) {
     in.at(t * kMs);
   }
   in.at(1100 * kMs);
-  EXPECT_LT(seconds_since(start), 0.2) << "9 ticks after a timeout: none waits";
   EXPECT_EQ(in.input.late(), 1u) << "the dead generator is late once";
   EXPECT_EQ(in.input.stale_ticks(), 1u) << "1.100 s: stale";
 

@@ -95,8 +95,9 @@ TEST(Rpc, CallReturnsTheReplyToItsOwnRequest) {
 
 // Connecting includes the probe's round trip (the server has matched the
 // client too). Issue #4's "< 1 s" is a speed target, measured by
-// wbi_bench_service (discovery_ms); here only a bound a loaded machine keeps
-// (seen: 1.2 s at load 17).
+// wbi_bench_service (discovery_ms, discovery_max_ms), not checked here: the
+// test checks that each new client connects (within the wait's 10 s) and is
+// answered (seen: 1.2 s to connect at load 17).
 TEST(Rpc, ANewClientConnectsToARunningServer) {
   Participant server_side("server");
   Server server(server_side, kService, wbi::test::toy_reply);
@@ -108,11 +109,11 @@ TEST(Rpc, ANewClientConnectsToARunningServer) {
     const auto elapsed = Clock::now() - start;
     std::cout << "connected in "
               << std::chrono::duration_cast<std::chrono::microseconds>(elapsed).count() << " us\n";
-    EXPECT_LT(elapsed, 5s);
     Request request;
     Reply reply;
     const auto call_start = Clock::now();
     client.call(request, reply, 5s);
+    EXPECT_EQ(wbi::test::toy_mismatch(request, reply), "");
     std::cout
         << "first call in "
         << std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - call_start).count()

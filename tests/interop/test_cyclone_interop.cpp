@@ -44,7 +44,7 @@ std::vector<double> numbers_after(const std::string& output, const std::string& 
 
 TEST(CycloneInterop, ReadsCommandsAndCallsTheModelServiceOfAWbiRobot) {
   if (kProgram.empty()) {
-    GTEST_SKIP() << "skipped: Cyclone DDS (or its idlc) not found when the build was configured "
+    GTEST_SKIP() << "Cyclone DDS (or its idlc) not found when the build was configured "
                     "(apt-get install cyclonedds-dev cyclonedds-tools, or scripts/install-deps; "
                     "then re-run cmake)";
   }

@@ -401,7 +401,7 @@ INSTANTIATE_TEST_SUITE_P(Robots, MujocoAgreement, ::testing::Range(0, 4), robot_
 #else
 
 TEST(MujocoAgreement, Skipped) {
-  GTEST_SKIP() << "skipped: MuJoCo not found at configure time (libmujoco-dev; "
+  GTEST_SKIP() << "MuJoCo not found at configure time (libmujoco-dev; "
                   "scripts/install-deps installs it)";
 }
 

@@ -51,9 +51,7 @@ std::string humanoid() { return wbi::test::project_model("humanoid.urdf").string
 }  // namespace
 
 TEST(Cli, EvalMatchesLibraryInModelOrder) {
-  if (!std::filesystem::exists(humanoid())) {
-    GTEST_SKIP() << "models/humanoid.urdf not there yet";
-  }
+  ASSERT_TRUE(std::filesystem::exists(humanoid())) << humanoid() << ": a model of this project";
   const wm::Model model = wm::load_urdf_file(humanoid());
   wm::Data data(model);
   std::mt19937 rng(1);
@@ -91,9 +89,7 @@ TEST(Cli, EvalMatchesLibraryInModelOrder) {
 }
 
 TEST(Cli, EvalFollowsTheCallersJointOrder) {
-  if (!std::filesystem::exists(humanoid())) {
-    GTEST_SKIP() << "models/humanoid.urdf not there yet";
-  }
+  ASSERT_TRUE(std::filesystem::exists(humanoid())) << humanoid() << ": a model of this project";
   const wm::Model model = wm::load_urdf_file(humanoid());
   std::vector<std::string> reversed(model.joint_name.rbegin(), model.joint_name.rend());
   std::vector<double> q(static_cast<std::size_t>(model.n_joints));

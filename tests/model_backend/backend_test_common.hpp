@@ -15,8 +15,7 @@ inline bool dart_built() {
   return std::find(names.begin(), names.end(), "dart") != names.end();
 }
 
-inline constexpr const char* kDartMissing =
-    "skipped: wbi was built without DART (WBI_WITH_DART OFF)";
+inline constexpr const char* kDartMissing = "wbi was built without DART (WBI_WITH_DART OFF)";
 
 struct RandomState {
   Eigen::VectorXd q, nu, dnu, tau;

@@ -13,7 +13,7 @@ namespace wbi::test {
 // Empty when the test can run, else the line to skip with.
 inline std::string real_robot_skip_reason() {
 #ifndef WBI_WITH_MUJOCO
-  return "skipped: this build has no MuJoCo (install libmujoco-dev: scripts/install-deps)";
+  return "this build has no MuJoCo (install libmujoco-dev: scripts/install-deps)";
 #else
   return shared_models_dir() ? "" : kSharedMissing;
 #endif

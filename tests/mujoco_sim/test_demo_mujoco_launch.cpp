@@ -18,7 +18,7 @@ using namespace std::chrono_literals;
 
 TEST(DemoMujocoLaunch, TheArmOnMujocoReachesItsTarget) {
 #ifndef WBI_WITH_MUJOCO
-  GTEST_SKIP() << "skipped: this build has no MuJoCo (install libmujoco-dev: scripts/install-deps)";
+  GTEST_SKIP() << "this build has no MuJoCo (install libmujoco-dev: scripts/install-deps)";
 #else
   wbi::test::ChildProcess launch(
       wbi::test::binary_dir() / "bin" / "wbi",

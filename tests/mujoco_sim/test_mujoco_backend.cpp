@@ -42,7 +42,7 @@ namespace rc = wbi::robot_config;
 
 #ifndef WBI_WITH_MUJOCO
 TEST(MujocoBackend, SkippedWithoutMujoco) {
-  GTEST_SKIP() << "skipped: this build has no MuJoCo (install libmujoco-dev: scripts/install-deps)";
+  GTEST_SKIP() << "this build has no MuJoCo (install libmujoco-dev: scripts/install-deps)";
 }
 #else
 

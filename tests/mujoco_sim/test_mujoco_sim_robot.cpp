@@ -20,7 +20,7 @@ using namespace std::chrono_literals;
 
 #ifndef WBI_WITH_MUJOCO
 TEST(MujocoSimRobot, SkippedWithoutMujoco) {
-  GTEST_SKIP() << "skipped: this build has no MuJoCo (install libmujoco-dev: scripts/install-deps)";
+  GTEST_SKIP() << "this build has no MuJoCo (install libmujoco-dev: scripts/install-deps)";
 }
 #else
 

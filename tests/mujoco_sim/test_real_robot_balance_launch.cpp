@@ -3,11 +3,14 @@
 // on two real robots' models in MuJoCo (three processes in lockstep, the base
 // estimated from the IMU and the legs). The CoM follows a lateral sinusoid
 // (3 cm on iCub 3, 4 cm on TALOS, 0.2 Hz) for 20 s, with a push on the torso at
-// t = 10 s (40 N / 80 N for 0.1 s). Asserted, the issue's bounds: com tracking
-// rms < 1 cm (the controller's line), and from the simulator's ground truth
-// (sim_robot's summary): the feet slip ≤ 2 mm, no joint at a limit for more
-// than 1 % of the ticks, every torque within its effort limit. The runs give
-// 1.6-1.9 mm rms and 0.3-1.0 mm slip (deploy/README.md). On icub3_balance.yaml
+// t = 10 s (40 N / 80 N for 0.1 s). Asserted: com tracking rms < 6 mm (the
+// controller's line; about 4 times what the runs give, the issue asked 1 cm),
+// and, the issue's bounds, from the simulator's ground truth (sim_robot's
+// summary): the feet slip ≤ 2 mm, no joint at a limit for more than 1 % of the
+// ticks, every torque within its effort limit. The lockstep runs give, the
+// same in 3 runs each (2026-12-02): rms 1.608, 1.845 and 1.393 mm, slip 0.507,
+// 0.598 and 0.988 mm, at a limit 0, 0 and 0.64 % (icub3_balance,
+// icub3_balance_legs, talos_balance). On icub3_balance.yaml
 // the estimator estimates the joint torques from iCub 3's 8 F/T sensors (it has
 // no joint-torque sensor): within 20 % RMS of the applied torques of the ground
 // truth (10 % measured; estimation/wrenches/README.md).
@@ -69,7 +72,7 @@ TEST_P(RealRobotBalanceLaunch, TracksTheSinusoidThroughThePushWithoutSlipOrLimit
   const auto at_limit = wbi::test::last_value_after(out, "': joint at a limit: ");
   const auto effort = wbi::test::last_value_after(out, "': torque: ");
   ASSERT_TRUE(rms && slip && at_limit && effort) << "a summary line is missing\n" << out;
-  EXPECT_LT(*rms, 0.01) << out;
+  EXPECT_LT(*rms, 0.006) << out;
   EXPECT_LE(*slip, 2.0) << "mm\n" << out;
   EXPECT_LE(*at_limit, 1.0) << "% of ticks\n" << out;
   EXPECT_LE(*effort, 1.0) << "of the effort limit\n" << out;

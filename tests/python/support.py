@@ -8,7 +8,7 @@ import tempfile
 SOURCE_DIR = pathlib.Path(os.environ.get("WBI_SOURCE_DIR",
                                          pathlib.Path(__file__).resolve().parents[2]))
 BINARY_DIR = pathlib.Path(os.environ.get("WBI_BINARY_DIR", SOURCE_DIR / "build"))
-SHARED_MISSING = "skipped: ../shared not found"
+SHARED_MISSING = "../shared not found"
 
 
 def project_model(name):

@@ -1,8 +1,8 @@
 // wbi_test_emit_event KIND SOURCE: publishes one event of KIND (a
 // wbi::EventKind name, any case) about SOURCE on wbi/events, the way a
 // component does (EventLog + EventPump), once a reader of wbi/events has
-// matched (10 s at most; exit 1 without one), and lingers 1 s so that a
-// reliable reader gets it.
+// matched (10 s at most; exit 1 without one), and waits until the matched
+// readers acknowledged it (5 s at most; exit 1 otherwise).
 // A trigger for windowed recorders in scripts (tests, benchmarks).
 #include <chrono>
 #include <iostream>
@@ -39,7 +39,9 @@ int main(int argc, char** argv) {
   }
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   log.emit(wbi::EventSeverity::warning, *kind, "emitted by wbi_test_emit_event");
-  pump.flush();
-  std::this_thread::sleep_for(std::chrono::seconds(1));
+  if (!pump.flush_acknowledged(std::chrono::seconds(5))) {
+    std::cerr << "wbi_test_emit_event: the event was not acknowledged within 5 s\n";
+    return 1;
+  }
   return 0;
 }

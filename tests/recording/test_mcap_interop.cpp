@@ -6,8 +6,8 @@
 // and payload bytes. fzstd and lz4js (pure JavaScript) decompress the chunks,
 // so the decompressors are independent of ours too.
 //
-// Needs node, npm and the registry: when one is missing the test prints
-// "skipped: <reason>" and is skipped, never failed.
+// Needs node, npm and the registry: when one is missing the test is skipped
+// with the reason, never failed.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -117,8 +117,7 @@ TEST(McapInterop, McapCoreReadsOurFiles) {
   const auto npm =
       wbi::test::install_npm_packages(dir.path(), {"@mcap/core@^2", "fzstd@^0.1", "lz4js@^0.2"});
   if (npm.node.empty()) {
-    std::cout << "skipped: " << npm.skip_reason << "\n";
-    GTEST_SKIP() << "skipped: " << npm.skip_reason;
+    GTEST_SKIP() << npm.skip_reason;
   }
   const auto script = dir / "check.cjs";
   std::ofstream(script) << kCheckScript;

@@ -10,7 +10,7 @@
 // samples and state estimates each: strings, an enum, a boolean, nested
 // structs, sequences of doubles and of structs, fixed arrays, 32- and 64-bit
 // integers. Needs node, npm and the registry: when one is missing the test
-// prints "skipped: <reason>" and is skipped, never failed.
+// is skipped with the reason, never failed.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -111,8 +111,7 @@ TEST(RecordInterop, FoxgloveDecodesEveryRecordedMessageToThePublishedValues) {
       dir.path(), {"@mcap/core@^2", "fzstd@^0.1", "lz4js@^0.2", "@foxglove/omgidl-parser@^1",
                    "@foxglove/omgidl-serialization@^1"});
   if (npm.node.empty()) {
-    std::cout << "skipped: " << npm.skip_reason << "\n";
-    GTEST_SKIP() << "skipped: " << npm.skip_reason;
+    GTEST_SKIP() << npm.skip_reason;
   }
   const auto recording = dir / "live.mcap";
   const std::vector<std::string> robots{"interop_a", "interop_b"};

@@ -167,7 +167,7 @@ class SimRobotGroundTruth : public ::testing::TestWithParam<std::string> {};
 TEST_P(SimRobotGroundTruth, AppliedTorqueIsTheCommandAndAPushIsItsOwnEntry) {
   const std::string engine = GetParam();
   if (!wbi::sim_robot::builtin_engines().contains(engine)) {
-    GTEST_SKIP() << "skipped: engine '" << engine << "' is not built (libmujoco-dev)";
+    GTEST_SKIP() << "engine '" << engine << "' is not built (libmujoco-dev)";
   }
   const std::string robot = "truth_" + engine;
   // A push on link_4 over [10 ms, 20 ms) at a point 0.1 m along its x axis.

@@ -50,6 +50,7 @@ struct Probe {
   std::mutex event_mutex;
   std::condition_variable event_posted;
   int events = 0;
+  std::atomic<int> event_waits_timed_out{0};  // the loop waited a whole timeout for none
   void post() {
     {
       std::lock_guard lock(event_mutex);
@@ -77,6 +78,7 @@ class ProbeComponent final : public wbi::runtime::Component {
     std::unique_lock lock(probe_.event_mutex);
     if (!probe_.event_posted.wait_for(lock, std::chrono::nanoseconds(timeout_ns),
                                       [&] { return probe_.events > 0; })) {
+      ++probe_.event_waits_timed_out;
       return false;
     }
     --probe_.events;
@@ -296,10 +298,17 @@ TEST_F(Loop, RunsOncePerTickOfASteppedClock) {
   EXPECT_EQ(stats.overruns, 0u);
   EXPECT_NEAR(stats.period_mean_s, 0.010, 1e-12);
   EXPECT_NEAR(stats.period_jitter_s, 0.0, 1e-12);
-  // No cycle while inactive.
+  // No cycle while inactive: deactivate() has joined the loop, so time moving
+  // on runs nothing. Checked without a sleep: activated again, the new loop's
+  // first cycle (at once, the clock not moving) is the 22nd; a loop that
+  // deactivate() had left running would have woken on the 50 ms step and
+  // added cycles of its own.
   stepped.advance_ns(50'000'000);
-  std::this_thread::sleep_for(20ms);
   EXPECT_EQ(probe.cycles, 21);
+  r->activate();
+  ASSERT_TRUE(done(1));
+  r->deactivate();
+  EXPECT_EQ(probe.cycles, 22);
 }
 
 TEST_F(Loop, SlowCyclesCountAsOverrunsAndSkipTicks) {
@@ -332,9 +341,11 @@ TEST_F(Loop, EventDrivenCyclesRunOncePerEventWithTheirDeadlineFromTheEvent) {
   const auto done = [&](std::uint64_t n) {
     return eventually([&] { return r->stats().iterations == n; });
   };
-  // No event, no cycle, although the clock moves on.
+  // No event, no cycle, although the clock moves on: once the loop has waited
+  // a whole event timeout (10 periods, 100 ms of real time) and gone
+  // round, it has seen the moved clock and still run nothing.
   stepped.advance_ns(50'000'000);
-  std::this_thread::sleep_for(20ms);
+  ASSERT_TRUE(eventually([&] { return probe.event_waits_timed_out >= 1; }));
   EXPECT_EQ(r->stats().iterations, 0u);
   probe.cycle_cost_ns = 4'000'000;  // within the deadline
   for (std::uint64_t k = 1; k <= 3; ++k) {

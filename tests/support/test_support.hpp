@@ -38,7 +38,7 @@ inline std::optional<std::filesystem::path> shared_models_dir() {
   return std::nullopt;
 }
 
-inline constexpr const char* kSharedMissing = "skipped: ../shared not found";
+inline constexpr const char* kSharedMissing = "../shared not found";
 
 // Polls `condition` every millisecond until it holds (true) or `timeout`
 // passes (false): a bounded wait on a condition, not a sleep.
