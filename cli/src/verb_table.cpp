@@ -12,7 +12,7 @@ std::span<const Verb> verbs() {
       {"launch", "start, watch and stop the processes of a deploy file", run_launch},
       {"record", "record DDS topics to an MCAP file", run_record},
       {"play", "replay an MCAP recording onto DDS", run_play},
-      {"bag", "inspect MCAP recordings (info)", run_bag},
+      {"bag", "inspect and compare MCAP recordings (info, compare)", run_bag},
       {"render", "draw a recorded run into an MP4 video or a PNG frame (offscreen, MuJoCo)",
        run_render},
       {"topic", "list, echo and measure the topics on the DDS domain", run_topic},

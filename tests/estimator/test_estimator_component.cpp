@@ -17,6 +17,7 @@
 #include <wbi/estimation/estimator_factory.hpp>
 #include <wbi/estimator/estimator_component.hpp>
 #include <wbi/model/algorithms.hpp>
+#include <wbi/msg/wire_vocabulary.hpp>
 #include <wbi/runtime/runner.hpp>
 
 #include "test_support.hpp"
@@ -514,9 +515,95 @@ TEST(EstimatorComponent, TopicBaseWaitsForTheFirstBaseSample) {
   EXPECT_DOUBLE_EQ(state->base_pose().position().x(), 1.0);
   EXPECT_DOUBLE_EQ(state->base_pose().position().z(), 3.0);
   EXPECT_DOUBLE_EQ(state->base_velocity()[1], 0.5);
-  // From now on every sample is estimated at once.
+  // From now on every sample is estimated once the ground truth of its tick is there.
+  base.header().seq(1);
+  truth.publish(base);
   const auto next = fixture.step(1, Eigen::VectorXd::Constant(1, 0.2));
   EXPECT_DOUBLE_EQ(next.base_pose().position().y(), 2.0);
+}
+
+// A tick's inputs (components/estimator/README.md): the sample of tick k takes
+// the ground truth of tick k, whichever comes first, never the tick before's:
+// a sample that comes first waits for it.
+TEST(EstimatorComponent, TopicBaseTakesTheGroundTruthOfItsTick) {
+  EstimatorFixture fixture("truth_tick", {"a"}, "robot: truth_tick\nbase: topic\n");
+  wbi::dds::Publisher<wbi::msg::GroundTruth> truth(
+      fixture.participant(), topics::ground_truth("truth_tick"), qos::kStream);
+  ASSERT_TRUE(truth.wait_for_subscribers(1, 10s));
+  wbi::msg::GroundTruth base;
+  base.header().robot("truth_tick");
+  base.base_pose().orientation().w(1.0);
+  for (std::uint64_t k = 0; k < 4; ++k) {
+    base.header().seq(k);
+    base.base_pose().position().x(static_cast<double>(k));
+    if (k % 2 == 0) {  // the ground truth first
+      truth.publish(base);
+      fixture.send(k, Eigen::VectorXd::Constant(1, 0.1));
+    } else {  // the sample first: it waits
+      fixture.send(k, Eigen::VectorXd::Constant(1, 0.1));
+      EXPECT_FALSE(fixture.next_estimate(300ms).has_value()) << "tick " << k << " did not wait";
+      truth.publish(base);
+    }
+    const auto state = fixture.next_estimate(5s);
+    ASSERT_TRUE(state.has_value()) << "no estimate of tick " << k;
+    EXPECT_EQ(state->header().seq(), k);
+    EXPECT_EQ(state->base_pose().position().x(), static_cast<double>(k));
+  }
+  EXPECT_EQ(fixture.status_counter("samples_with_late_inputs", 0).value_or(99), 0u);
+}
+
+// accelerations: model in lockstep (lockstep_controllers): the sample of tick k
+// waits for the named controller's command answering tick k − 1, the one the
+// robot applied before stepping to k; a mode switch (kNoTick) answers no tick.
+// A command that does not come within lockstep_timeout_s: the sample is
+// estimated without it, counted, and the controller is not waited for again
+// until it answers.
+TEST(EstimatorComponent, LockstepSampleWaitsForTheCommandsOfTheTickBefore) {
+  const auto urdf = wbi::test::project_model("arm7.urdf");
+  wbi::model::LoadOptions load;
+  load.fixed_base = true;
+  const wbi::model::Model m = wbi::model::load_urdf_file(urdf.string(), load);
+  EstimatorFixture fixture("lockstep_mk", m.joint_name,
+                           "robot: lockstep_mk\nurdf: " + urdf.string() +
+                               "\naccelerations: model\nlockstep_controllers: [pd]\n"
+                               "lockstep_timeout_s: 1.0\n");
+  wbi::dds::Publisher<wbi::msg::ActuatorCommand> commands(
+      fixture.participant(), topics::commands("lockstep_mk"), qos::kCommand);
+  ASSERT_TRUE(commands.wait_for_subscribers(1, 10s));  // the estimator's commands reader
+  wbi::msg::ActuatorCommand command;
+  command.header().robot("lockstep_mk");
+  command.controller("pd");
+  for (int j = 0; j < m.n_joints; ++j) {
+    command.joints().push_back(static_cast<unsigned short>(j));
+    command.modes().push_back(wbi::msg::ControlMode::TORQUE);
+  }
+  command.references().assign(static_cast<std::size_t>(m.n_joints), 0.0);
+  const Eigen::VectorXd q = Eigen::VectorXd::Constant(m.n_joints, 0.2);
+  fixture.send(0, q);  // tick 0 answers nothing before it
+  ASSERT_TRUE(fixture.next_estimate(5s).has_value());
+  command.tick(wbi::msg::kNoTick);  // the controller's mode switch
+  commands.publish(command);
+  fixture.send(1, q);
+  EXPECT_FALSE(fixture.next_estimate(300ms).has_value()) << "tick 1 did not wait for tick 0's";
+  command.tick(0);
+  commands.publish(command);
+  auto state = fixture.next_estimate(5s);
+  ASSERT_TRUE(state.has_value());
+  EXPECT_EQ(state->header().seq(), 1u);
+  EXPECT_EQ(fixture.status_counter("samples_with_late_inputs", 0).value_or(99), 0u);
+  // The controller stops answering: tick 2 is estimated after lockstep_timeout_s, counted.
+  const auto sent = std::chrono::steady_clock::now();
+  fixture.send(2, q);
+  state = fixture.next_estimate(5s);
+  ASSERT_TRUE(state.has_value());
+  EXPECT_EQ(state->header().seq(), 2u);
+  EXPECT_GE(std::chrono::steady_clock::now() - sent, 900ms);
+  EXPECT_EQ(fixture.status_counter("samples_with_late_inputs", 1).value_or(0), 1u);
+  // Not waited for again until it answers.
+  fixture.send(3, q);
+  state = fixture.next_estimate(300ms);
+  ASSERT_TRUE(state.has_value()) << "tick 3 waited for a controller that stopped";
+  EXPECT_EQ(state->header().seq(), 3u);
 }
 
 // base: legged on a robot whose description has no IMU: named on the status topic,

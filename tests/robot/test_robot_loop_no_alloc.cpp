@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <string>
 
 #include <wbi/dds/participant.hpp>
@@ -18,6 +19,7 @@
 #include <wbi/runtime/runner.hpp>
 
 #include "allocation_counter.hpp"
+#include "test_support.hpp"
 #include "toy_engine.hpp"
 
 namespace {
@@ -62,7 +64,8 @@ long allocations_of_the_ticks_writes(wbi::dds::Participant& participant,
   return fewest;
 }
 
-TEST(RobotLoop, ALockstepTickAllocatesNothingButInsideItsDdsWrites) {
+// extra: more sim_robot parameters, e.g. ", ground_truth_file: FILE".
+void check_lockstep_ticks(const std::string& extra) {
   constexpr std::uint64_t kTicks = 200;
   wbi::dds::Participant participant("loop_no_alloc");
   wbi::runtime::SystemClock clock;
@@ -72,7 +75,8 @@ TEST(RobotLoop, ALockstepTickAllocatesNothingButInsideItsDdsWrites) {
                                        {"sim", "sim_robot", &participant, &clock});
   runner.configure(wbi::runtime::Parameters::from_string(
       "{robot: toy_no_alloc, engine: toy, config: toy.cfg, lockstep: true,"
-      " lockstep_controllers: [test]}"));
+      " lockstep_controllers: [test]" +
+      extra + "}"));
   wbi::dds::Subscriber<wbi::msg::SensorSample> sensors(participant, topics::sensors("toy_no_alloc"),
                                                        qos::kStream);
   wbi::dds::Subscriber<wbi::msg::GroundTruth> truth(
@@ -118,6 +122,17 @@ TEST(RobotLoop, ALockstepTickAllocatesNothingButInsideItsDdsWrites) {
   EXPECT_LE(fewest, writes) << "heap allocations in one tick of the robot loop's thread, beyond "
                             << writes << " inside its DDS writes";
   runner.shutdown();
+}
+
+TEST(RobotLoop, ALockstepTickAllocatesNothingButInsideItsDdsWrites) { check_lockstep_ticks(""); }
+
+// The same with every tick's ground truth written to a file (ground_truth_file):
+// the chunk buffer keeps its capacity, a tick's write allocates nothing.
+TEST(RobotLoop, WritingTheGroundTruthToAFileAllocatesNothingPerTick) {
+  const auto file = wbi::test::binary_dir() / "tests" / "loop_no_alloc_ground_truth.mcap";
+  check_lockstep_ticks(", ground_truth_file: " + file.string());
+  EXPECT_GT(std::filesystem::file_size(file), 0u);
+  std::filesystem::remove(file);
 }
 
 }  // namespace

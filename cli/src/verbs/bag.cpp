@@ -290,11 +290,16 @@ int run_info(Args args) {
 
 }  // namespace
 
+int run_bag_compare(Args args);  // bag_compare.cpp
+
 int run_bag(Args args) {
-  return run_subcommand("bag", args,
-                        {
-                            {"info", "print what an MCAP recording holds", run_info},
-                        });
+  return run_subcommand(
+      "bag", args,
+      {
+          {"info", "print what an MCAP recording holds", run_info},
+          {"compare", "whether two recordings hold the same messages (first difference)",
+           run_bag_compare},
+      });
 }
 
 }  // namespace wbi::cli

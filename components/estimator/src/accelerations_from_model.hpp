@@ -1,12 +1,12 @@
 // The estimator component's `accelerations: model` input: the joint
 // accelerations the model predicts (wbi::estimation::ModelAccelerations) from
-// every joint's latest TORQUE command (wbi/<robot>/commands), at the state's
-// base, with the contact links joint_torques: force_torque finds loaded held.
-// A joint whose last command is not TORQUE has an unknown torque: no model
-// acceleration then. The wrenches estimated on extra links (a push on the
-// chest) do not enter: they are noisy when nothing pushes (iCub 3: 9 N RMS on
-// the chest), and with them the legs' and torso's q̈ error was 0.53 rad/s²
-// instead of 0.18 (balancing in MuJoCo, frictionless joints).
+// every joint's latest TORQUE command (wbi/<robot>/commands; in lockstep the
+// component holds a sample until the commands of the tick before it came:
+// README.md, "A tick's inputs"), at the state's base, with the contact links joint_torques:
+// force_torque finds loaded held. A joint whose last command is not TORQUE has an unknown torque:
+// no model acceleration then. The wrenches estimated on extra links (a push on the chest) do not
+// enter: they are noisy when nothing pushes (iCub 3: 9 N RMS on the chest), and with them the legs'
+// and torso's q̈ error was 0.53 rad/s² instead of 0.18 (balancing in MuJoCo, frictionless joints).
 #pragma once
 
 #include <memory>

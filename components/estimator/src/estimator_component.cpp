@@ -91,6 +91,23 @@ void EstimatorComponent::on_configure(const runtime::Parameters& parameters,
       urdf_.empty() && parameters.has("urdf") ? file_parameter(parameters, "urdf") : urdf_;
   torque_config_ = TorqueEstimationConfig::from(parameters, urdf);
   configure_model_accelerations(parameters, urdf);
+  // Lockstep: which inputs a sample waits for (estimator_component_sample.cpp, "Inputs of a tick").
+  match_ground_truth_ =
+      base_source_ == BaseSource::topic && base_topic == dds::topics::ground_truth(robot_);
+  lockstep_controllers_ = parameters.get<std::vector<std::string>>("lockstep_controllers", {});
+  if (!lockstep_controllers_.empty() && model_urdf_.empty()) {
+    throw runtime::ParameterError(parameters.where("lockstep_controllers") +
+                                  ": only with accelerations: model (the controllers' commands "
+                                  "are an input of the estimate only there)");
+  }
+  answered_.assign(lockstep_controllers_.size(), -1);
+  waived_.assign(lockstep_controllers_.size(), 0);
+  inputs_timeout_ = std::chrono::duration_cast<std::chrono::nanoseconds>(
+      std::chrono::duration<double>(parameters.get<double>("lockstep_timeout_s", 2.0)));
+  if (inputs_timeout_.count() <= 0) {
+    throw runtime::ParameterError(parameters.where("lockstep_timeout_s") +
+                                  ": lockstep_timeout_s must be > 0 s");
+  }
 
   // The stamp monitor's counts, on the status topic (also summed in StateEstimate.warnings).
   dropped_ = &report().counter("dropped_samples");
@@ -103,6 +120,7 @@ void EstimatorComponent::on_configure(const runtime::Parameters& parameters,
   invalid_torque_estimates_ = &report().counter("invalid_torque_estimates");
   missing_force_torque_ = &report().counter("missing_force_torque_samples");
   without_model_acceleration_ = &report().counter("samples_without_model_acceleration");
+  late_inputs_ = &report().counter("samples_with_late_inputs");
   // The robot's streams come from one writer each: a second robot of the same
   // name, or a rogue, is dropped and counted, not mixed into the estimate.
   // Its sensors come from the participant whose description was taken.
@@ -122,7 +140,9 @@ void EstimatorComponent::on_configure(const runtime::Parameters& parameters,
     // No estimate before the first base sample: a sample waiting for it is estimated then.
     ground_truth_ = std::make_unique<dds::Subscriber<wbi::msg::GroundTruth>>(
         participant, base_topic, dds::qos::kStream,
-        [this](const wbi::msg::GroundTruth&, const dds::detail::SampleInfo&) { on_base_sample(); },
+        [this](const wbi::msg::GroundTruth& g, const dds::detail::SampleInfo&) {
+          on_base_sample(g.header().seq());
+        },
         one_producer);
   }
   parameter_subscriber_ = std::make_unique<dds::Subscriber<wbi::msg::EstimatorParameter>>(
@@ -135,10 +155,7 @@ void EstimatorComponent::on_configure(const runtime::Parameters& parameters,
     commands_ = std::make_unique<dds::Subscriber<wbi::msg::ActuatorCommand>>(
         participant, dds::topics::commands(robot_), dds::qos::kCommand,
         [this](const wbi::msg::ActuatorCommand& command, const dds::detail::SampleInfo&) {
-          std::lock_guard lock(mutex_);
-          if (model_acceleration_) {
-            model_acceleration_->on_command(command);
-          }
+          on_command(command);
         });
   }
   sensors_ = std::make_unique<dds::Subscriber<wbi::msg::SensorSample>>(
@@ -148,6 +165,10 @@ void EstimatorComponent::on_configure(const runtime::Parameters& parameters,
       },
       dds::ProducerPolicy::owned_by(dds::description_owner(participant, *description_),
                                     producer_events));
+  if (match_ground_truth_ || !lockstep_controllers_.empty()) {
+    stopping_ = false;
+    deferred_thread_ = std::thread([this] { run_deferred(); });
+  }
 }
 
 void EstimatorComponent::on_activate() {
@@ -171,6 +192,7 @@ void EstimatorComponent::on_deactivate() {
 
 void EstimatorComponent::on_cleanup() {
   active_ = false;
+  stop_deferred();   // first: it may estimate and publish
   sensors_.reset();  // first: no callback runs after this
   commands_.reset();
   parameter_subscriber_.reset();
@@ -184,6 +206,9 @@ void EstimatorComponent::on_cleanup() {
   torque_estimation_.reset();
   model_acceleration_.reset();
   have_base_sample_ = false;
+  has_deferred_ = false;
+  ground_truth_seq_ = -1;
+  std::fill(answered_.begin(), answered_.end(), -1);
   failed_ = false;
 }
 

@@ -4,11 +4,14 @@
 
 #include <array>
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <Eigen/Core>
@@ -47,7 +50,14 @@ class EstimatorComponent final : public runtime::Component {
   bool prepare(std::size_t joints);
   bool prepare_sized(std::size_t joints);
   void on_description();
-  void on_base_sample();
+  void on_base_sample(std::uint64_t seq);
+  void on_command(const wbi::msg::ActuatorCommand& command);
+  // A tick's inputs (estimator_component_sample.cpp, "Inputs of a tick"); caller holds mutex_.
+  bool inputs_in(std::uint64_t seq) const;
+  void defer(const wbi::msg::SensorSample& sample);
+  void estimate_deferred(bool timed_out);
+  void run_deferred();  // the deferred sample's deadline, on a thread of its own
+  void stop_deferred();
   bool ready(std::size_t joints);
   void process_pending();  // caller holds mutex_
   void on_sample(const wbi::msg::SensorSample& sample, const dds::detail::Guid& writer);
@@ -134,6 +144,24 @@ class EstimatorComponent final : public runtime::Component {
   estimation::StampCounters earlier_counts_;  // of the filters before a new producer
   wbi::msg::StateEstimate state_;
   dds::Received<wbi::msg::GroundTruth> ground_truth_rx_;
+  // Inputs of a tick: the robot's ground truth of the same tick (base: topic on
+  // the robot's own ground truth), the lockstep controllers' commands of the
+  // tick before (accelerations: model with lockstep_controllers). A sample
+  // whose inputs have not all come waits in deferred_ (at most inputs_timeout_).
+  bool match_ground_truth_ = false;
+  std::int64_t ground_truth_seq_ = -1;  // of the newest base sample
+  bool ground_truth_waived_ = false;    // not waited for until its next sample
+  std::vector<std::string> lockstep_controllers_;
+  std::vector<std::int64_t> answered_;  // per lockstep controller, its newest command's tick
+  std::vector<char> waived_;            // per lockstep controller: not waited for until it answers
+  std::chrono::nanoseconds inputs_timeout_{0};
+  wbi::msg::SensorSample deferred_;
+  bool has_deferred_ = false;
+  std::chrono::steady_clock::time_point deferred_until_;
+  std::condition_variable deferred_changed_;
+  bool stopping_ = false;
+  std::thread deferred_thread_;
+  runtime::StatusCounter* late_inputs_ = nullptr;  // samples estimated after inputs_timeout_
 
   std::unique_ptr<dds::Subscriber<wbi::msg::RobotDescription>> description_;
   std::unique_ptr<dds::Publisher<wbi::msg::StateEstimate>> state_publisher_;

@@ -5,9 +5,11 @@
 #include <cstdio>
 #include <mutex>
 #include <string>
+#include <string_view>
 
 #include <Eigen/Geometry>
 #include <wbi/dds/topics.hpp>
+#include <wbi/msg/wire_vocabulary.hpp>
 #include <wbi/runtime/console_line.hpp>
 
 #include "estimator_component_impl.hpp"
@@ -39,10 +41,113 @@ void EstimatorComponent::on_description() {
   process_pending();
 }
 
-void EstimatorComponent::on_base_sample() {
+void EstimatorComponent::on_base_sample(std::uint64_t seq) {
   std::lock_guard lock(mutex_);
   have_base_sample_ = true;
+  ground_truth_seq_ = static_cast<std::int64_t>(seq);
+  ground_truth_waived_ = false;
   process_pending();
+  if (has_deferred_ && inputs_in(deferred_.header().seq())) {
+    estimate_deferred(false);
+  }
+}
+
+// Inputs of a tick. The sensor sample of tick k and the inputs estimated with
+// it come on readers of their own, in an order DDS timing decides. Taking
+// whatever had come made a lockstep run's result depend on it (the command a
+// sample met could be a tick late: two runs of one deploy file differed). So
+// sample k waits for its own: the robot's ground truth of tick k (base:
+// topic), and the command of every lockstep controller answering tick k − 1,
+// the one the robot applied before stepping to k (accelerations: model). A
+// sample whose inputs have not all come is deferred, estimated on the thread
+// of the input that completes it, or after lockstep_timeout_s (counted in
+// samples_with_late_inputs; the missing input is not waited for again until
+// it comes). In lockstep nothing newer than the inputs of tick k can come
+// before state k is published, so the estimate depends on the tick only.
+bool EstimatorComponent::inputs_in(std::uint64_t seq) const {
+  const auto k = static_cast<std::int64_t>(seq);
+  if (match_ground_truth_ && !ground_truth_waived_ && ground_truth_seq_ < k) {
+    return false;
+  }
+  for (std::size_t i = 0; i < answered_.size(); ++i) {
+    if (waived_[i] == 0 && answered_[i] < k - 1) {
+      return false;
+    }
+  }
+  return true;
+}
+
+void EstimatorComponent::on_command(const wbi::msg::ActuatorCommand& command) {
+  std::lock_guard lock(mutex_);
+  if (model_acceleration_) {
+    model_acceleration_->on_command(command);
+  }
+  if (command.tick() == wbi::msg::kNoTick) {
+    return;  // a mode switch answers no tick (docs/conventions.md)
+  }
+  const std::string_view sender(command.controller().c_str(), command.controller().size());
+  for (std::size_t i = 0; i < lockstep_controllers_.size(); ++i) {
+    if (lockstep_controllers_[i] == sender) {
+      answered_[i] = std::max(answered_[i], static_cast<std::int64_t>(command.tick()));
+      waived_[i] = 0;
+    }
+  }
+  if (has_deferred_ && inputs_in(deferred_.header().seq())) {
+    estimate_deferred(false);
+  }
+}
+
+void EstimatorComponent::defer(const wbi::msg::SensorSample& sample) {
+  deferred_ = sample;  // reuses its buffers once sized: no allocation
+  has_deferred_ = true;
+  deferred_until_ = std::chrono::steady_clock::now() + inputs_timeout_;
+  deferred_changed_.notify_all();
+}
+
+void EstimatorComponent::estimate_deferred(bool timed_out) {
+  has_deferred_ = false;
+  if (timed_out) {
+    const auto k = static_cast<std::int64_t>(deferred_.header().seq());
+    if (match_ground_truth_ && ground_truth_seq_ < k) {
+      ground_truth_waived_ = true;
+    }
+    for (std::size_t i = 0; i < answered_.size(); ++i) {
+      waived_[i] = answered_[i] < k - 1 ? 1 : waived_[i];
+    }
+    if (late_inputs_->value() == 0) {  // the first one: allocates, once
+      const std::string text = "estimator of robot '" + robot_ + "': sample " + std::to_string(k) +
+                               " estimated without all its inputs (ground truth of its tick, "
+                               "lockstep controllers' commands of the tick before) after "
+                               "lockstep_timeout_s";
+      report().set_error(text);
+      runtime::print_line(stderr, text);
+    }
+    late_inputs_->add();
+  }
+  estimate(deferred_);
+}
+
+void EstimatorComponent::run_deferred() {
+  std::unique_lock lock(mutex_);
+  while (!stopping_) {
+    if (!has_deferred_) {
+      deferred_changed_.wait(lock);
+    } else if (deferred_changed_.wait_until(lock, deferred_until_) == std::cv_status::timeout &&
+               has_deferred_ && std::chrono::steady_clock::now() >= deferred_until_) {
+      estimate_deferred(true);
+    }
+  }
+}
+
+void EstimatorComponent::stop_deferred() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  deferred_changed_.notify_all();
+  if (deferred_thread_.joinable()) {
+    deferred_thread_.join();
+  }
 }
 
 // Every input of an estimate is there: active, the description, the base sample (topic).
@@ -68,6 +173,13 @@ void EstimatorComponent::on_sample(const wbi::msg::SensorSample& sample,
     pending_ = sample;  // start-up only: not active, no description or no base sample yet
     return;
   }
+  if (has_deferred_) {
+    estimate_deferred(true);  // a newer sample: the robot stepped on without those inputs
+  }
+  if (!inputs_in(sample.header().seq())) {
+    defer(sample);
+    return;
+  }
   estimate(sample);
 }
 
@@ -84,6 +196,8 @@ void EstimatorComponent::on_new_producer(const dds::detail::Guid& writer) {  // 
     return;
   }
   new_producers_->add();
+  has_deferred_ = false;                              // the old robot's tick
+  std::fill(answered_.begin(), answered_.end(), -1);  // the new robot's ticks start again
   const std::string text = "estimator of robot '" + robot_ + "': sensor samples from a new " +
                            "writer " + dds::detail::guid_hex(writer) +
                            " (the robot restarted?): filters restarted";

@@ -54,6 +54,7 @@ struct SimulationOptions {
   bool real_time = true;              // paced at real time (default: unless lockstep)
   double real_time_max_lag_s = 0.02;  // a longer delay is not caught up (tick_pacer.hpp)
   double duration_s = 0.0;            // 0: no end
+  std::string ground_truth_file;      // empty: none (simulation_side.hpp)
 };
 
 SimulationOptions read_simulation_options(const runtime::Parameters& parameters) {
@@ -74,6 +75,7 @@ SimulationOptions read_simulation_options(const runtime::Parameters& parameters)
                                   ": must be >= 0 (seconds of delay caught up)");
   }
   options.duration_s = parameters.get<double>("duration_s", 0.0);
+  options.ground_truth_file = parameters.get<std::string>("ground_truth_file", "");
   return options;
 }
 
@@ -218,8 +220,13 @@ class RobotDriver final : public runtime::Component {
 
   // A simulation's own topics, and its tick pacers, waited in this order.
   void make_simulation_parts(dds::Participant& participant, const SimulationOptions& options) {
-    simulation_side_ = std::make_unique<SimulationSide>(
-        participant, robot_, simulation_->step_period(), options.lockstep);
+    try {
+      simulation_side_ =
+          std::make_unique<SimulationSide>(participant, robot_, simulation_->step_period(),
+                                           options.lockstep, options.ground_truth_file);
+    } catch (const std::runtime_error& e) {
+      throw runtime::ParameterError(std::string("ground_truth_file: ") + e.what());
+    }
     auto& timeouts = report().counter("lockstep_timeouts");  // 0 unless lockstep
     if (options.lockstep) {
       pacers_.push_back(std::make_unique<LockstepPacer>(
@@ -278,6 +285,7 @@ class RobotDriver final : public runtime::Component {
     try {
       GroundTruthSummary summary(backend_->description(), simulation_->ground_truth());
       step_until_stopped(summary);
+      simulation_side_->close_file();  // complete once stepping ended, whatever stops the process
       std::ostringstream report;
       summary.print(report, who_);
       for (const auto& pacer : pacers_) {
@@ -294,6 +302,10 @@ class RobotDriver final : public runtime::Component {
           "simulation stopped at t = " + std::to_string(simulation_->time()) + " s: " + e.what();
       report().set_error(what);
       runtime::print_line(stderr, who_ + ": " + what);
+      try {
+        simulation_side_->close_file();  // the ticks up to the failure stay readable
+      } catch (const std::exception&) {
+      }
       events().emit(EventSeverity::error, EventKind::divergence, what);
       runtime::request_process_exit(1);
     }

@@ -65,6 +65,10 @@
 //                         controllers start (default 60 s)
 //   duration_s            stop stepping after this simulated time (default 0: never),
 //                         printing "TYPE 'ROBOT': duration_s D reached: stopped stepping"
+//   ground_truth_file     also write every tick's ground truth to this MCAP file (relative:
+//                         to the process's working directory; default: none), stamped with
+//                         simulated time only, complete once stepping ends: two lockstep
+//                         runs that are the same give the same bytes (`wbi bag compare`)
 // Status counters: those of the actuator side (rejected_commands,
 // rejected_parameters, watchdog_trips, limit_clamps, …), lockstep_timeouts (in
 // lockstep) and real_time_stalls (in real time); the last rejection or trip in
