@@ -18,9 +18,10 @@ import sys
 
 # The layers each layer may reach (its own aside), bottom to top.
 BOTTOM = {"vocabulary", "idl", "dds"}
-LIBRARIES = {"vocabulary", "model_service", "estimation"}  # no DDS
+LIBRARIES = {"vocabulary", "model_service", "estimation", "mcap"}  # no DDS
 LAYERS = {
     "vocabulary": set(),
+    "mcap": set(),  # the recording file format: bytes and channels, no DDS
     "idl": {"vocabulary"},
     "dds": {"vocabulary", "idl"},
     "model_service": {"vocabulary"},

@@ -156,7 +156,7 @@ class Inputs(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "no_such_joint"):
             wbi.Model.from_urdf(str(support.project_model("humanoid.urdf")),
                                 joints=["no_such_joint"])
-        with self.assertRaisesRegex(RuntimeError, "missing.urdf"):
+        with self.assertRaisesRegex(ValueError, "missing.urdf"):
             wbi.Model.from_urdf("missing.urdf")
 
     def test_configuration_from_a_base_pose(self):
