@@ -85,8 +85,11 @@ class Subscriber : private detail::ReaderSink {
   int matched() const { return reader_.matched(); }
   // With ProducerPolicy::one: the writer taken and what was dropped.
   ProducerCounts producers() const { return reader_.producers(); }
-  // Writers of the topic this subscriber cannot match (e.g. best effort, while
-  // its profile is reliable); the first is also said on stderr.
+  // How many times a writer of the topic was found that this subscriber cannot
+  // match (e.g. best effort, while its profile is reliable); the first is also
+  // said on stderr. Fast DDS reports a writer again when its discovery data is
+  // processed again (a CI run counted 2 for one writer): 0 means none, not a count
+  // of writers.
   int incompatible_writers() const { return reader_.incompatible_writers(); }
   bool wait_for_publishers(int count, std::chrono::nanoseconds timeout) const {
     return reader_.wait_matched(count, timeout);
