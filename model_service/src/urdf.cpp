@@ -315,7 +315,8 @@ Model load_urdf_string(const std::string& xml, const LoadOptions& options,
 Model load_urdf_file(const std::string& path, const LoadOptions& options) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
-    throw std::invalid_argument("URDF '" + path + "': cannot open the file (missing or unreadable)");
+    throw std::invalid_argument("URDF '" + path +
+                                "': cannot open the file (missing or unreadable)");
   }
   std::ostringstream text;
   text << in.rdbuf();

@@ -23,7 +23,8 @@ struct LaunchOptions {
 
 // Returns the exit code: 0 when every process's last run did its part; 1 when
 // one could not start, failed (even an optional one), never said its
-// components run, or had to be killed; 130 when interrupted. Installs SIGINT/SIGTERM handlers while running.
+// components run, or had to be killed; 130 when interrupted. Installs SIGINT/SIGTERM handlers while
+// running.
 int run_launch(const DeployFile& deploy, const LaunchOptions& options, std::ostream& out);
 
 // The launcher's pid, in the environment of every process it starts.
