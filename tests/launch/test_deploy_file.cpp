@@ -220,4 +220,41 @@ processes:
             "(wbi_host, my_host)");
 }
 
+// `wbi launch FILE --process A,B`: one host's part of a deployment, in file
+// order whatever the order named, with only its summaries.
+TEST_F(DeployFileTest, OnlyProcessesKeepsTheNamedOnesInFileOrder) {
+  const auto path = write(R"(
+summary:
+  - {process: robot, match: "ground truth"}
+  - {process: controller, match: "final max joint error"}
+processes:
+  - {name: robot, components: [{type: sim_robot, name: sim}]}
+  - name: estimator
+    wait_for: {topics: [wbi/arm/sensors], timeout: 30}
+    components: [{type: estimator, name: estimator}]
+  - {name: controller, components: [{type: pd_gravity, name: pd}]}
+)");
+  const auto part =
+      wbi::launch::only_processes(wbi::launch::load_deploy_file(path), {"controller", "estimator"});
+  ASSERT_EQ(part.processes.size(), 2u);
+  EXPECT_EQ(part.processes[0].name, "estimator");
+  EXPECT_EQ(part.processes[0].wait_for_topics, (std::vector<std::string>{"wbi/arm/sensors"}));
+  EXPECT_EQ(part.processes[1].name, "controller");
+  ASSERT_EQ(part.summaries.size(), 1u);
+  EXPECT_EQ(part.summaries[0].process, "controller");
+
+  const auto error_of_only = [&](const std::vector<std::string>& names) -> std::string {
+    try {
+      wbi::launch::only_processes(wbi::launch::load_deploy_file(path), names);
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what()).substr(path.string().size());
+    }
+    return "(no error)";
+  };
+  EXPECT_EQ(error_of_only({"robot", "planner"}),
+            ": --process: no process named 'planner' (the file has: robot, estimator, controller)");
+  EXPECT_EQ(error_of_only({"robot", "robot"}), ": --process: process 'robot' named twice");
+  EXPECT_EQ(error_of_only({}), ": --process: no process named");
+}
+
 }  // namespace

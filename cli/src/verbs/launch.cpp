@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include <wbi/launch/launcher.hpp>
+#include <wbi/vocabulary/joined_names.hpp>
 
 #include "../join_options.hpp"
 #include "../options.hpp"
@@ -26,6 +27,9 @@ int run_launch(Args args) {
   options.flag("one-process",
                "host every process's components in one wbi_host (file order), for speed: no "
                "waits for topics, no respawns; not for secured deployments");
+  options.option("process", "NAME[,NAME...]",
+                 "start only these processes (this host's part; the others run on other "
+                 "hosts and are waited for by their topics as usual)");
   // Above the file's blocks and the environment, for every process started.
   add_join_options(options, false);
   if (!options.parse(args)) {
@@ -39,6 +43,9 @@ int run_launch(Args args) {
     throw UsageError("--duration and --grace must be >= 0");
   }
   auto deploy = launch::load_deploy_file(options.get("FILE"));
+  if (const auto processes = options.get_optional("process"); processes) {
+    deploy = launch::only_processes(std::move(deploy), split_names(*processes, ','));
+  }
   if (options.has("one-process")) {
     if (launch_options.join.security_directory) {
       throw UsageError("--one-process: a secured deployment gives each process its own identity");

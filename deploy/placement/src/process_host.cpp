@@ -6,6 +6,8 @@
 
 #include "wbi/deploy/placement.hpp"
 
+#include <wbi/vocabulary/joined_names.hpp>
+
 namespace wbi::deploy {
 
 namespace {
@@ -77,14 +79,7 @@ YAML::Node process_host_document(const YAML::Node& deploy, const std::string& fi
 }
 
 YAML::Node load_process_host(const std::string& deploy_file, const std::string& processes) {
-  std::vector<std::string> names;
-  std::size_t begin = 0;
-  for (auto comma = processes.find(','); comma != std::string::npos;
-       comma = processes.find(',', begin)) {
-    names.push_back(processes.substr(begin, comma - begin));
-    begin = comma + 1;
-  }
-  names.push_back(processes.substr(begin));
+  const std::vector<std::string> names = split_names(processes, ',');
   return process_host_document(load_deploy_file(deploy_file), deploy_file, names);
 }
 

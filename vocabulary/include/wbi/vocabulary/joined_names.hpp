@@ -8,20 +8,26 @@
 
 namespace wbi {
 
-// "a+b+c" → {a, b, c}; "a" → {a}; "" → {}. Empty parts ("a++b") are kept, so
-// that the caller names them as unknown names.
-inline std::vector<std::string> split_joined_names(const std::string& joined) {
+// "a,b,c" split at `separator` → {a, b, c}; "a" → {a}; "" → {}. Empty parts
+// ("a,,b") are kept, so that the caller names them as unknown names.
+inline std::vector<std::string> split_names(const std::string& joined, char separator) {
   std::vector<std::string> names;
   if (joined.empty()) {
     return names;
   }
   std::size_t begin = 0;
-  for (auto plus = joined.find('+'); plus != std::string::npos; plus = joined.find('+', begin)) {
-    names.push_back(joined.substr(begin, plus - begin));
-    begin = plus + 1;
+  for (auto at = joined.find(separator); at != std::string::npos;
+       at = joined.find(separator, begin)) {
+    names.push_back(joined.substr(begin, at - begin));
+    begin = at + 1;
   }
   names.push_back(joined.substr(begin));
   return names;
+}
+
+// "a+b+c" → {a, b, c}.
+inline std::vector<std::string> split_joined_names(const std::string& joined) {
+  return split_names(joined, '+');
 }
 
 }  // namespace wbi

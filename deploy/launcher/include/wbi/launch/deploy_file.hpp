@@ -92,6 +92,13 @@ DeployFile load_deploy_file(const std::filesystem::path& path);
 inline constexpr const char* kOneProcessName = "all";
 DeployFile in_one_process(DeployFile deploy);
 
+// Only the processes named (`wbi launch FILE --process A,B`), in file order,
+// with their summaries: the part of a deployment that runs on one host, the
+// others started on theirs (each waits for the topics it names as usual).
+// Throws std::runtime_error "FILE: --process: …" naming an unknown process
+// (and listing the file's) or one named twice.
+DeployFile only_processes(DeployFile deploy, const std::vector<std::string>& names);
+
 // Loads every process's plugins as its wbi_host will (the built-in one first),
 // so that a launch refuses a bad plugin before it starts anything. Throws
 // std::runtime_error "FILE: process 'NAME': plugin …: why" (one line).
