@@ -46,10 +46,17 @@
 
 namespace {
 
-constexpr double kRecovered = 0.01;          // [m] CoM error of a recovered robot
-constexpr double kRecoveryS = 2.0;           // [s] after the component's return
-constexpr double kLossSlackS = 1.0;          // [s] of samples a fault may cost beyond the outage
-constexpr double kFrameJump = 0.01;          // [m] in a tick: a change of frame, not a motion
+constexpr double kRecovered = 0.01;  // [m] CoM error of a recovered robot
+constexpr double kRecoveryS = 2.0;   // [s] after the component's return
+constexpr double kLossSlackS = 1.0;  // [s] of samples a fault may cost beyond the outage
+// A change of frame is a jump of the CoM estimate that no motion explains:
+// over 1 mm beyond what kFastestCom covers between the two ticks (the
+// sinusoid peaks at 0.063 m/s; 1 mm a tick is 1 m/s). A new estimator's
+// offset is wherever its base happened to be (0-5 cm): the former threshold,
+// 1 cm a tick, took an offset under 1 cm for a jump of the reference (counted
+// as deviation) and for a CoM error, about 1 cm in all in some runs.
+constexpr double kFrameJumpM = 0.001;        // [m]
+constexpr double kFastestCom = 0.25;         // [m/s]
 constexpr std::int64_t kMatchNs = 10000000;  // [ns] a reference this much older still matches
 
 // A sample cut short (a killed recorder's last chunk is dropped whole) does not decode.
@@ -202,7 +209,7 @@ int main(int argc, char** argv) {
     std::sort(references.begin(), references.end());
     // The estimator's frame is the world's until a new estimator starts its own
     // (a legged base starts at x = y = 0): the controller's CoM estimate then
-    // jumps, by more than a CoM moves in a tick (1 cm: 10 m/s at 1 kHz). Those
+    // jumps, by more than a CoM moves in a tick (kFrameJumpM above). Those
     // jumps are summed per simulation, and the reference taken back to the
     // world; a reference that jumps there moved the robot's target: counted
     // as deviation.
@@ -216,7 +223,9 @@ int main(int argc, char** argv) {
         before = nullptr;
       }
       const bool close = before != nullptr && ref.stamp - before->stamp <= kMatchNs;
-      if (close && (ref.estimate - before->estimate).norm() > kFrameJump) {
+      const double motion =
+          close ? kFastestCom * 1e-9 * static_cast<double>(ref.stamp - before->stamp) : 0.0;
+      if (close && (ref.estimate - before->estimate).norm() > kFrameJumpM + motion) {
         frame += ref.estimate - before->estimate;
       }
       ref.world = ref.com - frame;
