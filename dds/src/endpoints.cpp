@@ -1,10 +1,12 @@
 #include "wbi/dds/detail/endpoints.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <condition_variable>
 #include <cstdio>
 #include <mutex>
 #include <stdexcept>
+#include <vector>
 
 #include <fastdds/rtps/common/InstanceHandle.h>
 #include <fastdds/dds/publisher/DataWriter.hpp>
@@ -97,11 +99,32 @@ class MatchCounter {
     std::unique_lock lock(mutex_);
     return changed_.wait_for(lock, timeout, [&] { return matched_ >= count; });
   }
+  // Writers: which remote endpoints are matched, not only how many.
+  void set_matched(const Guid& remote, bool matched) {
+    {
+      std::lock_guard lock(mutex_);
+      std::erase(remotes_, remote);
+      if (matched) {
+        remotes_.push_back(remote);
+      }
+    }
+    changed_.notify_all();
+  }
+  bool wait_for_participant(const Guid& peer, std::chrono::nanoseconds timeout) const {
+    const auto same_participant = [&](const Guid& remote) {
+      return std::equal(remote.begin(), remote.begin() + kGuidPrefixSize, peer.begin());
+    };
+    std::unique_lock lock(mutex_);
+    return changed_.wait_for(lock, timeout, [&] {
+      return std::any_of(remotes_.begin(), remotes_.end(), same_participant);
+    });
+  }
 
  private:
   mutable std::mutex mutex_;
   mutable std::condition_variable changed_;
   int matched_ = 0;
+  std::vector<Guid> remotes_;  // writers only (set_matched)
 };
 
 }  // namespace
@@ -119,10 +142,13 @@ struct WriterImpl : fdds::DataWriterListener {
   void on_publication_matched(fdds::DataWriter* /*writer*/,
                               const fdds::PublicationMatchedStatus& status) override {
     // Observer first: whoever waits on the count finds the observer up to date.
-    if (observer != nullptr && status.current_count_change != 0) {
-      observer->on_match_changed(
-          to_guid(eprosima::fastrtps::rtps::iHandle2GUID(status.last_subscription_handle)),
-          status.current_count_change > 0);
+    if (status.current_count_change != 0) {
+      const Guid reader =
+          to_guid(eprosima::fastrtps::rtps::iHandle2GUID(status.last_subscription_handle));
+      if (observer != nullptr) {
+        observer->on_match_changed(reader, status.current_count_change > 0);
+      }
+      matches.set_matched(reader, status.current_count_change > 0);
     }
     matches.set(status.current_count);
   }
@@ -162,6 +188,10 @@ int Writer::matched() const { return impl_->matches.get(); }
 
 bool Writer::wait_matched(int count, std::chrono::nanoseconds timeout) const {
   return impl_->matches.wait_for(count, timeout);
+}
+
+bool Writer::wait_matched_participant(const Guid& peer, std::chrono::nanoseconds timeout) const {
+  return impl_->matches.wait_for_participant(peer, timeout);
 }
 
 const std::string& Writer::topic() const { return impl_->topic_name; }

@@ -107,6 +107,26 @@ TEST(DdsPubSub, WaitTimesOutWithoutPublisher) {
   EXPECT_GE(std::chrono::steady_clock::now() - start, 200ms);
 }
 
+// A command must reach the robot, not only someone: the estimator reads the
+// commands too, so "a reader matched" can be true while the robot's reader
+// is not yet, and a command written then never reaches the robot.
+TEST(DdsPubSub, WaitsForTheReaderOfOneParticipant) {
+  Participant controller("controller");
+  Participant robot("robot");
+  Participant estimator("estimator");
+  Publisher<wbi::msg::ActuatorCommand> commands(controller, topics::commands("arm"), qos::kCommand);
+  Publisher<wbi::msg::RobotDescription> description(robot, topics::description("arm"),
+                                                    qos::kLatched);
+  Subscriber<wbi::msg::ActuatorCommand> estimator_reads(estimator, topics::commands("arm"),
+                                                        qos::kCommand);
+  ASSERT_TRUE(commands.wait_for_subscribers(1, 10s));
+  // The estimator's reader is matched; the robot has none yet.
+  EXPECT_FALSE(commands.wait_for_subscriber_of(description.guid(), 200ms));
+  EXPECT_TRUE(commands.wait_for_subscriber_of(estimator_reads.guid(), 0s));
+  Subscriber<wbi::msg::ActuatorCommand> robot_reads(robot, topics::commands("arm"), qos::kCommand);
+  EXPECT_TRUE(commands.wait_for_subscriber_of(description.guid(), 10s));
+}
+
 TEST(DdsPubSub, SampleBeyondItsBoundIsNotPublished) {
   Participant a("a");
   Publisher<wbi::msg::SensorSample> publisher(a, topics::sensors("bounded"), qos::kStream);

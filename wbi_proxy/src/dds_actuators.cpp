@@ -25,8 +25,16 @@ void DdsActuators::wait(std::chrono::steady_clock::time_point deadline,
                         std::vector<std::string>& missing) {
   const auto remaining = std::max(std::chrono::steady_clock::duration::zero(),
                                   deadline - std::chrono::steady_clock::now());
-  if (!commands_.wait_for_subscribers(1, remaining)) {
-    missing.push_back("a reader of " + dds::topics::commands(robot_.options.robot) +
+  // The robot's own reader, not any (the estimator reads the commands too): a
+  // first command written before it matched would not reach the robot, which
+  // in lockstep waits for it at tick 0 (with DDS Security the pairs match
+  // seconds apart). The robot is the participant that sent the description.
+  const dds::detail::Guid robot = robot_.description.producers().bound;
+  const bool matched = robot != dds::detail::Guid{}
+                           ? commands_.wait_for_subscriber_of(robot, remaining)
+                           : commands_.wait_for_subscribers(1, remaining);
+  if (!matched) {
+    missing.push_back("the robot's reader of " + dds::topics::commands(robot_.options.robot) +
                       " (actuator component)");
   }
 }

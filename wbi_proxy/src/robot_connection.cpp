@@ -50,8 +50,8 @@ void RobotConnection::wait(std::chrono::steady_clock::time_point deadline,
   // holds tick 0 until a command computed from tick 0's sample answers it (a
   // mode switch does not: docs/conventions.md), so that read must not wait
   // for tick 1.
-  sensors.seen.fill(sensors.received.count > 0 ? sensors.received.count - 1 : 0);
-  state.seen.fill(state.received.count > 0 ? state.received.count - 1 : 0);
+  sensors.mark_init_sample();
+  state.mark_init_sample();
 }
 
 void RobotConnection::resolve(const IdList& joints) {

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdint>
 #include <string>
+#include <utility>
 
 #include <wbi/dds/participant.hpp>
 #include <wbi/dds/producers.hpp>
@@ -24,6 +25,14 @@ struct Stream {
   dds::Received<T> received;
   std::array<std::uint64_t, Kinds> seen{};
   std::string what;  // e.g. "sensor samples of robot 'arm' on wbi/arm/sensors"
+  // The sample init() waited for (its count) and the kinds that have not read
+  // since: the first read of each kind takes that sample whatever its age.
+  // In lockstep the robot waits for the answer to it however long the start
+  // took after it arrived (a secured start's handshakes, a remote model's
+  // first calls: over max_age_s in some runs, and the run never began); a
+  // running robot has sent newer samples by then, whose age counts as usual.
+  std::uint64_t init_count = 0;
+  std::array<bool, Kinds> init_sample_unread{};
 
   Stream(dds::Participant& participant, const std::string& topic, const char* profile,
          std::string description, dds::ProducerPolicy producers)
@@ -43,12 +52,21 @@ struct Stream {
       throw StaleDataError("no " + what + " received");
     }
     seen[kind] = received.count;
+    const bool init_sample =
+        std::exchange(init_sample_unread[kind], false) && received.count == init_count;
     const double age = received.age_s();
-    if (age > max_age_s) {
+    if (age > max_age_s && !init_sample) {
       throw StaleDataError(what + ": newest is " + seconds_text(age) + " old (limit " +
                            seconds_text(max_age_s) + ")");
     }
     return received.sample;
+  }
+
+  // Called at the end of init(): the newest sample is the one it waited for.
+  void mark_init_sample() {
+    init_count = received.count;
+    init_sample_unread.fill(received.count > 0);
+    seen.fill(received.count > 0 ? received.count - 1 : 0);
   }
 
   Stamp stamp() const {

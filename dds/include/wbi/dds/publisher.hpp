@@ -42,6 +42,12 @@ class Publisher {
   bool wait_for_subscribers(int count, std::chrono::nanoseconds timeout) const {
     return writer_.wait_matched(count, timeout);
   }
+  // Until a reader in the participant of `peer` (the GUID of any of its
+  // endpoints, e.g. the writer of a sample it sent) is matched: a command
+  // written before that match would not reach that participant.
+  bool wait_for_subscriber_of(const detail::Guid& peer, std::chrono::nanoseconds timeout) const {
+    return writer_.wait_matched_participant(peer, timeout);
+  }
   const std::string& topic() const { return writer_.topic(); }
   detail::Guid guid() const { return writer_.guid(); }
 

@@ -83,6 +83,7 @@ class Subscriber : private detail::ReaderSink {
   }
 
   int matched() const { return reader_.matched(); }
+  detail::Guid guid() const { return reader_.guid(); }
   // With ProducerPolicy::one: the writer taken and what was dropped.
   ProducerCounts producers() const { return reader_.producers(); }
   // How many times a writer of the topic was found that this subscriber cannot

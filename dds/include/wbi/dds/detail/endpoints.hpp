@@ -76,6 +76,9 @@ class Writer {
   bool wait_acknowledged(std::chrono::nanoseconds timeout);
   int matched() const;
   bool wait_matched(int count, std::chrono::nanoseconds timeout) const;
+  // Until a reader of the participant `peer` belongs to (any of its
+  // endpoints' GUIDs: the prefix is the participant's) is matched.
+  bool wait_matched_participant(const Guid& peer, std::chrono::nanoseconds timeout) const;
   const std::string& topic() const;
   Guid guid() const;
 

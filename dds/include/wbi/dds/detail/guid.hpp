@@ -7,5 +7,6 @@
 namespace wbi::dds::detail {
 
 using Guid = std::array<std::uint8_t, 16>;
+inline constexpr std::size_t kGuidPrefixSize = 12;  // the participant's part
 
 }  // namespace wbi::dds::detail
