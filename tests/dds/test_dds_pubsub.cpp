@@ -82,6 +82,42 @@ TEST(DdsPubSub, LatestCarriesStampsAndAge) {
   EXPECT_LT(got.age_s(), 60.0);
 }
 
+// read_newer / read_latest hand the newest sample over in place: no copy of
+// it is made, and `read` sees it whole, with its count.
+TEST(DdsPubSub, ReadHandsTheNewestSampleOverInPlace) {
+  Participant a("a");
+  Participant b("b");
+  Publisher<wbi::msg::SensorSample> publisher(a, topics::sensors("in_place"), qos::kCommand);
+  Subscriber<wbi::msg::SensorSample> subscriber(b, topics::sensors("in_place"), qos::kCommand);
+  int calls = 0;
+  const auto count = [&](const wbi::dds::Received<wbi::msg::SensorSample>&) { ++calls; };
+  EXPECT_FALSE(subscriber.read_latest(count));
+  EXPECT_FALSE(subscriber.read_newer(0, 50ms, count));
+  EXPECT_EQ(calls, 0);
+  ASSERT_TRUE(publisher.wait_for_subscribers(1, 10s));
+  wbi::msg::SensorSample sample;
+  for (std::uint64_t seq = 3; seq <= 4; ++seq) {
+    wbi::test::fill_pattern(sample, "in_place", seq);
+    ASSERT_TRUE(publisher.publish(sample));
+  }
+  std::uint64_t seq = 0;
+  std::string mismatch = "not read";
+  const wbi::msg::SensorSample* first_address = nullptr;
+  ASSERT_TRUE(subscriber.read_newer(1, 5s, [&](const auto& received) {
+    EXPECT_EQ(received.count, 2u);
+    seq = received.sample.header().seq();
+    mismatch = wbi::test::pattern_mismatch(received.sample, "in_place");
+    first_address = &received.sample;
+  }));
+  EXPECT_EQ(seq, 4u);
+  EXPECT_EQ(mismatch, "");
+  ASSERT_TRUE(subscriber.read_latest([&](const auto& received) {
+    EXPECT_EQ(&received.sample, first_address);  // the subscriber's own, not a copy
+  }));
+  EXPECT_FALSE(subscriber.read_newer(2, 100ms, count));  // nothing newer than the second
+  EXPECT_EQ(calls, 0);
+}
+
 TEST(DdsPubSub, LatchedDescriptionReachesLateJoiner) {
   Participant a("a");
   Publisher<wbi::msg::RobotDescription> publisher(a, topics::description("late"), qos::kLatched);

@@ -123,10 +123,12 @@ void DdsActuators::set_control_parameter(ControlParameter parameter, double valu
 void DdsActuators::switch_mode(int joint, ControlMode mode) {
   modes_[static_cast<std::size_t>(joint)] = mode;
   if (mode == ControlMode::position || mode == ControlMode::position_direct) {
-    const auto& sample = robot_.sensors.take(0, ReadMode::latest, robot_.options.max_age_s,
-                                             robot_.options.blocking_read_timeout);
-    references_[joint] =
-        sample.encoder_position().at(robot_.robot_index[static_cast<std::size_t>(joint)]);
+    robot_.sensors.read(
+        0, ReadMode::latest, robot_.options.max_age_s, robot_.options.blocking_read_timeout,
+        [&](const wbi::msg::SensorSample& sample) {
+          references_[joint] =
+              sample.encoder_position().at(robot_.robot_index[static_cast<std::size_t>(joint)]);
+        });
   } else {
     references_[joint] = 0.0;
   }
@@ -143,14 +145,13 @@ void DdsActuators::publish_command(bool answers) {
   // first). Else the start-up mode switch, sent with tick 0 before any sample,
   // could answer tick 0, and the robot would step it with zero torque or with
   // the first computed command depending on timing.
-  const auto& sensors = robot_.sensors.received;
-  const auto& state = robot_.state.received;
+  const auto& sensors = robot_.sensors.last;
+  const auto& state = robot_.state.last;
   if (answers && (sensors.count > 0 || state.count > 0)) {
-    answered_tick_ = std::max(sensors.sample.header().seq(), state.sample.header().seq());
+    answered_tick_ = std::max(sensors.seq, state.seq);
     // Latency: the sensor sample this command was computed from (a state
     // estimate carries its sensor sample's stamp).
-    answered_stamp_ns_ =
-        std::max(sensors.sample.header().stamp_ns(), state.sample.header().stamp_ns());
+    answered_stamp_ns_ = std::max(sensors.stamp_ns, state.stamp_ns);
   }
   auto& header = command_.header();
   header.stamp_ns(system_now_ns());

@@ -1,5 +1,7 @@
 #include "dds_sensors.hpp"
 
+#include <wbi/msg/eigen.hpp>
+
 #include "size_check.hpp"
 
 namespace wbi::proxy {
@@ -36,15 +38,22 @@ Stamp DdsSensors::read_range(SensorKind kind, int first, int count, VectorRef ou
   const auto& options = robot_.options;
   if (kind == SensorKind::encoder_velocity || kind == SensorKind::encoder_acceleration) {
     // No speed sensors on the wire: the estimator's values stand in for them.
-    const auto& state =
-        robot_.state.take(index, mode, options.max_age_s, options.blocking_read_timeout);
     const bool velocity = kind == SensorKind::encoder_velocity;
-    robot_.gather(velocity ? state.dq() : state.ddq(), first, count, out,
-                  velocity ? "joint velocities" : "joint accelerations");
+    robot_.state.read(index, mode, options.max_age_s, options.blocking_read_timeout,
+                      [&](const wbi::msg::StateEstimate& state) {
+                        robot_.gather(velocity ? state.dq() : state.ddq(), first, count, out,
+                                      velocity ? "joint velocities" : "joint accelerations");
+                      });
     return robot_.state.stamp();
   }
-  const auto& sample =
-      robot_.sensors.take(index, mode, options.max_age_s, options.blocking_read_timeout);
+  robot_.sensors.read(
+      index, mode, options.max_age_s, options.blocking_read_timeout,
+      [&](const wbi::msg::SensorSample& sample) { read_sample(sample, kind, first, count, out); });
+  return robot_.sensors.stamp();
+}
+
+void DdsSensors::read_sample(const wbi::msg::SensorSample& sample, SensorKind kind, int first,
+                             int count, VectorRef out) const {
   switch (kind) {
     case SensorKind::encoder_position:
       robot_.gather(sample.encoder_position(), first, count, out, "encoder positions");
@@ -58,28 +67,24 @@ Stamp DdsSensors::read_range(SensorKind kind, int first, int count, VectorRef ou
       break;
     case SensorKind::force_torque:
       for (int i = 0; i < count; ++i) {
-        const auto& w = sample.force_torque().at(static_cast<std::size_t>(first + i)).wrench();
-        out.segment<6>(6 * i) << w.force().x(), w.force().y(), w.force().z(), w.torque().x(),
-            w.torque().y(), w.torque().z();
+        msg::to_eigen(sample.force_torque().at(static_cast<std::size_t>(first + i)).wrench(),
+                      out.segment<6>(6 * i));
       }
       break;
     default:  // imu, accelerometer, gyroscope
       for (int i = 0; i < count; ++i) {
         const auto& imu = sample.imus().at(static_cast<std::size_t>(first + i));
-        const auto& o = imu.orientation();
-        const auto& w = imu.angular_velocity();
-        const auto& a = imu.linear_acceleration();
+        const Eigen::Vector3d w = msg::to_eigen(imu.angular_velocity());
+        const Eigen::Vector3d a = msg::to_eigen(imu.linear_acceleration());
         if (kind == SensorKind::imu) {
-          out.segment<10>(10 * i) << o.w(), o.x(), o.y(), o.z(), w.x(), w.y(), w.z(), a.x(), a.y(),
-              a.z();
+          out.segment<10>(10 * i) << msg::to_wxyz(imu.orientation()), w, a;
         } else if (kind == SensorKind::gyroscope) {
-          out.segment<3>(3 * i) << w.x(), w.y(), w.z();
+          out.segment<3>(3 * i) = w;
         } else {
-          out.segment<3>(3 * i) << a.x(), a.y(), a.z();
+          out.segment<3>(3 * i) = a;
         }
       }
   }
-  return robot_.sensors.stamp();
 }
 
 }  // namespace wbi::proxy

@@ -17,6 +17,9 @@ class DdsSensors final : public wbi::Sensors {
 
  private:
   Stamp read_range(SensorKind kind, int first, int count, VectorRef out, ReadMode mode);
+  // Sensors [first, first + count) of `kind` from one sample into out.
+  void read_sample(const wbi::msg::SensorSample& sample, SensorKind kind, int first, int count,
+                   VectorRef out) const;
 
   RobotConnection& robot_;
 };

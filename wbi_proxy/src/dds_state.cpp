@@ -1,35 +1,17 @@
 #include "dds_state.hpp"
 
-#include <Eigen/Geometry>
+#include <wbi/msg/eigen.hpp>
 
 #include "size_check.hpp"
 
 namespace wbi::proxy {
-
-namespace {
-
-void to_transform(const wbi::msg::Pose& pose, Transform& world_H_base) {
-  const Eigen::Quaterniond orientation(pose.orientation().w(), pose.orientation().x(),
-                                       pose.orientation().y(), pose.orientation().z());
-  world_H_base.setIdentity();
-  world_H_base.topLeftCorner<3, 3>() = orientation.normalized().toRotationMatrix();
-  world_H_base.topRightCorner<3, 1>() << pose.position().x(), pose.position().y(),
-      pose.position().z();
-}
-
-}  // namespace
 
 DdsState::DdsState(RobotConnection& robot)
     : robot_(robot),
       parameters_(robot.participant, dds::topics::estimator_parameters(robot.options.robot),
                   dds::qos::kCommand) {}
 
-const wbi::msg::StateEstimate& DdsState::take(std::size_t read, ReadMode mode) {
-  return robot_.state.take(read, mode, robot_.options.max_age_s,
-                           robot_.options.blocking_read_timeout);
-}
-
-// One take of the newest estimate, every field gathered from it: the fields
+// One read of the newest estimate, every field gathered from it: the fields
 // cannot belong to different samples, so there is nothing to retry.
 Stamp DdsState::read_robot_state(RobotState& out, ReadMode mode) {
   robot_.require_init();
@@ -39,13 +21,13 @@ Stamp DdsState::read_robot_state(RobotState& out, ReadMode mode) {
       v->resize(n);  // the first call only
     }
   }
-  const auto& estimate = take(kRobotStateRead, mode);
-  robot_.gather(estimate.q(), 0, static_cast<int>(n), out.q, "joint position estimates");
-  robot_.gather(estimate.dq(), 0, static_cast<int>(n), out.dq, "joint velocity estimates");
-  robot_.gather(estimate.ddq(), 0, static_cast<int>(n), out.ddq, "joint acceleration estimates");
-  to_transform(estimate.base_pose(), out.world_H_base);
-  out.base_velocity =
-      Eigen::Map<const Eigen::Matrix<double, 6, 1>>(estimate.base_velocity().data());
+  read_state(kRobotStateRead, mode, [&](const wbi::msg::StateEstimate& estimate) {
+    robot_.gather(estimate.q(), 0, static_cast<int>(n), out.q, "joint position estimates");
+    robot_.gather(estimate.dq(), 0, static_cast<int>(n), out.dq, "joint velocity estimates");
+    robot_.gather(estimate.ddq(), 0, static_cast<int>(n), out.ddq, "joint acceleration estimates");
+    msg::to_transform(estimate.base_pose(), out.world_H_base);
+    out.base_velocity = msg::to_eigen(estimate.base_velocity());
+  });
   out.stamp = robot_.state.stamp();
   return out.stamp;
 }
@@ -66,8 +48,10 @@ Stamp DdsState::read_estimate(EstimateKind kind, int index, VectorRef values, Re
 
 Stamp DdsState::read_base_pose(Transform& world_H_base, ReadMode mode) {
   robot_.require_init();
-  to_transform(take(static_cast<std::size_t>(EstimateKind::base_pose), mode).base_pose(),
-               world_H_base);
+  read_state(static_cast<std::size_t>(EstimateKind::base_pose), mode,
+             [&](const wbi::msg::StateEstimate& estimate) {
+               msg::to_transform(estimate.base_pose(), world_H_base);
+             });
   return robot_.state.stamp();
 }
 
@@ -103,7 +87,14 @@ int DdsState::estimate_count(EstimateKind kind) const {
 }
 
 Stamp DdsState::read_range(EstimateKind kind, int first, int count, VectorRef out, ReadMode mode) {
-  const auto& state = take(static_cast<std::size_t>(kind), mode);
+  read_state(static_cast<std::size_t>(kind), mode, [&](const wbi::msg::StateEstimate& state) {
+    read_sample(state, kind, first, count, out);
+  });
+  return robot_.state.stamp();
+}
+
+void DdsState::read_sample(const wbi::msg::StateEstimate& state, EstimateKind kind, int first,
+                           int count, VectorRef out) const {
   switch (kind) {
     case EstimateKind::joint_position:
       robot_.gather(state.q(), first, count, out, "joint position estimates");
@@ -117,17 +108,14 @@ Stamp DdsState::read_range(EstimateKind kind, int first, int count, VectorRef ou
     case EstimateKind::joint_torque:
       robot_.gather(state.tau(), first, count, out, "joint torque estimates");
       break;
-    case EstimateKind::base_pose: {
-      const auto& p = state.base_pose();
-      out << p.position().x(), p.position().y(), p.position().z(), p.orientation().w(),
-          p.orientation().x(), p.orientation().y(), p.orientation().z();
+    case EstimateKind::base_pose:
+      msg::to_coordinates(state.base_pose(), out.head<7>());
       break;
-    }
     case EstimateKind::base_velocity:
-      out = Eigen::Map<const Eigen::Matrix<double, 6, 1>>(state.base_velocity().data());
+      out = msg::to_eigen(state.base_velocity());
       break;
     case EstimateKind::base_acceleration:
-      out = Eigen::Map<const Eigen::Matrix<double, 6, 1>>(state.base_acceleration().data());
+      out = msg::to_eigen(state.base_acceleration());
       break;
     case EstimateKind::force_torque:
       if (state.force_torque().size() < static_cast<std::size_t>(first + count)) {
@@ -138,9 +126,8 @@ Stamp DdsState::read_range(EstimateKind kind, int first, int count, VectorRef ou
                     "samples; read_sensors(force_torque) has the raw readings)");
       }
       for (int i = 0; i < count; ++i) {
-        const auto& w = state.force_torque().at(static_cast<std::size_t>(first + i));
-        out.segment<6>(6 * i) << w.force().x(), w.force().y(), w.force().z(), w.torque().x(),
-            w.torque().y(), w.torque().z();
+        msg::to_eigen(state.force_torque().at(static_cast<std::size_t>(first + i)),
+                      out.segment<6>(6 * i));
       }
       break;
     case EstimateKind::external_wrench:
@@ -152,13 +139,11 @@ Stamp DdsState::read_range(EstimateKind kind, int first, int count, VectorRef ou
                     " (the estimator was reconfigured?)");
       }
       for (int i = 0; i < count; ++i) {
-        const auto& w = state.external_wrenches().at(static_cast<std::size_t>(first + i)).wrench();
-        out.segment<6>(6 * i) << w.force().x(), w.force().y(), w.force().z(), w.torque().x(),
-            w.torque().y(), w.torque().z();
+        msg::to_eigen(state.external_wrenches().at(static_cast<std::size_t>(first + i)).wrench(),
+                      out.segment<6>(6 * i));
       }
       break;
   }
-  return robot_.state.stamp();
 }
 
 }  // namespace wbi::proxy

@@ -26,8 +26,17 @@ class DdsState final : public wbi::State {
 
  private:
   int estimate_count(EstimateKind kind) const;
-  const wbi::msg::StateEstimate& take(std::size_t read, ReadMode mode);
+  // Calls reader(const StateEstimate&) with the newest estimate, in place
+  // (Stream::read), for a read of `kind`.
+  template <class Read>
+  void read_state(std::size_t kind, ReadMode mode, Read&& reader) {
+    robot_.state.read(kind, mode, robot_.options.max_age_s, robot_.options.blocking_read_timeout,
+                      std::forward<Read>(reader));
+  }
   Stamp read_range(EstimateKind kind, int first, int count, VectorRef out, ReadMode mode);
+  // Estimates [first, first + count) of `kind` from one estimate into out.
+  void read_sample(const wbi::msg::StateEstimate& state, EstimateKind kind, int first, int count,
+                   VectorRef out) const;
 
   RobotConnection& robot_;
   dds::Publisher<wbi::msg::EstimatorParameter> parameters_;

@@ -131,15 +131,8 @@ void RemoteModel::set_position(const ConstVectorRef& q, const Transform& world_H
   check_size("joint positions q", q.size(), dofs());
   auto& state = request_.state();
   if (floating_base_) {
-    const Eigen::Quaterniond orientation = base_orientation(world_H_base);
-    auto& pose = state.base_pose();
-    pose.position().x(world_H_base(0, 3));
-    pose.position().y(world_H_base(1, 3));
-    pose.position().z(world_H_base(2, 3));
-    pose.orientation().w(orientation.w());
-    pose.orientation().x(orientation.x());
-    pose.orientation().y(orientation.y());
-    pose.orientation().z(orientation.z());
+    check_rotation(world_H_base);
+    msg::to_wire(world_H_base, state.base_pose());
   }
   for (int k = 0; k < dofs(); ++k) {
     state.q()[static_cast<std::size_t>(service_joint_[static_cast<std::size_t>(k)])] = q[k];
@@ -150,18 +143,14 @@ void RemoteModel::set_velocity(const ConstVectorRef& dq, const ConstVectorRef& b
   check_size("joint velocities dq", dq.size(), dofs());
   check_size("base velocity", base_velocity.size(), 6);
   auto& state = request_.state();
-  for (int i = 0; i < 6; ++i) {
-    state.base_velocity()[static_cast<std::size_t>(i)] = base_velocity[i];
-  }
+  msg::to_wire(base_velocity.head<6>(), state.base_velocity());
   for (int k = 0; k < dofs(); ++k) {
     state.dq()[static_cast<std::size_t>(service_joint_[static_cast<std::size_t>(k)])] = dq[k];
   }
 }
 
 void RemoteModel::set_gravity(const Eigen::Vector3d& gravity) {
-  request_.state().gravity().x(gravity.x());
-  request_.state().gravity().y(gravity.y());
-  request_.state().gravity().z(gravity.z());
+  msg::to_wire(gravity, request_.state().gravity());
 }
 
 const msg::OperationResult& RemoteModel::call(msg::ModelOperation operation, int frame,

@@ -38,11 +38,18 @@ void RobotConnection::wait(std::chrono::steady_clock::time_point deadline,
     missing.push_back("the robot description on " + dds::topics::description(options.robot) +
                       " (sensor component)");
   }
-  if (!sensors.subscriber.wait_newer(sensors.received, 0, remaining())) {
+  if (!sensors.read_first(remaining(), [&](const wbi::msg::SensorSample& sample) {
+        first_positions = sample.encoder_position();
+      })) {
     missing.push_back("sensor samples on " + dds::topics::sensors(options.robot) +
                       " (sensor component)");
   }
-  if (!state.subscriber.wait_newer(state.received, 0, remaining())) {
+  if (!state.read_first(remaining(), [&](const wbi::msg::StateEstimate& estimate) {
+        external_wrench_links.clear();
+        for (const auto& wrench : estimate.external_wrenches()) {
+          external_wrench_links.push_back(wrench.link().to_string());
+        }
+      })) {
     missing.push_back("state estimates on " + dds::topics::state(options.robot) + " (estimator)");
   }
   // The first blocking read of each kind returns the newest sample, the one
@@ -84,17 +91,13 @@ void RobotConnection::resolve(const IdList& joints) {
       force_torque_names.push_back(sensor.name().to_string());
     }
   }
-  external_wrench_links.clear();
-  for (const auto& wrench : state.received.sample.external_wrenches()) {
-    external_wrench_links.push_back(wrench.link().to_string());
-  }
   torque_sensor = wbi::msg::joint_torque_sensors(description_rx.sample);
 }
 
 std::map<std::string, double> RobotConnection::locked_positions() const {
   std::map<std::string, double> locked = options.locked_positions;
   const auto& names = description_rx.sample.joint_names();
-  const auto& measured = sensors.received.sample.encoder_position();
+  const auto& measured = first_positions;
   for (std::size_t r = 0; r < names.size() && r < measured.size(); ++r) {
     const std::string name = names[r].to_string();
     const bool is_controlled =

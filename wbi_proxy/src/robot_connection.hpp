@@ -68,8 +68,9 @@ class RobotConnection {
   std::vector<std::uint16_t> robot_index;  // [dofs] position of controlled joint k in R
   IdList imu_names;
   IdList force_torque_names;
-  IdList external_wrench_links;     // of the state estimate init() saw
-  std::vector<bool> torque_sensor;  // [robot joints] R order: has a joint-torque sensor
+  IdList external_wrench_links;         // of the state estimate init() saw
+  std::vector<double> first_positions;  // [robot joints] R order: the sensor sample init() saw
+  std::vector<bool> torque_sensor;      // [robot joints] R order: has a joint-torque sensor
   bool initialized = false;
 };
 

@@ -6,18 +6,17 @@
 
 #include <wbi/dds/cdr.hpp>
 #include <wbi/dds/topics.hpp>
+#include <wbi/msg/eigen.hpp>
 
 namespace wbi::bridge {
 
 namespace {
 
+// A pose whose orientation is not a number is drawn unrotated.
 Eigen::Isometry3d isometry(const msg::Pose& pose) {
-  Eigen::Isometry3d out = Eigen::Isometry3d::Identity();
-  out.translation() << pose.position().x(), pose.position().y(), pose.position().z();
-  Eigen::Quaterniond rotation(pose.orientation().w(), pose.orientation().x(),
-                              pose.orientation().y(), pose.orientation().z());
-  if (rotation.norm() > 0.0) {
-    out.linear() = rotation.normalized().toRotationMatrix();
+  Eigen::Isometry3d out = msg::to_isometry(pose);
+  if (!out.linear().allFinite()) {
+    out.linear().setIdentity();
   }
   return out;
 }

@@ -5,6 +5,7 @@
 
 #include <wbi/msg/state.h>
 #include <Eigen/Core>
+#include <wbi/msg/eigen.hpp>
 
 namespace wbi::estimator::detail {
 
@@ -12,11 +13,8 @@ namespace wbi::estimator::detail {
 // (mixed velocity: linear, then angular) from the state.
 inline void base_from_state(const wbi::msg::StateEstimate& state, Eigen::VectorXd& q_model,
                             Eigen::VectorXd& nu) {
-  const auto& pose = state.base_pose();
-  q_model.head<7>() << pose.position().x(), pose.position().y(), pose.position().z(),
-      pose.orientation().w(), pose.orientation().x(), pose.orientation().y(),
-      pose.orientation().z();
-  nu.head<6>() = Eigen::Map<const Eigen::Matrix<double, 6, 1>>(state.base_velocity().data());
+  wbi::msg::to_coordinates(state.base_pose(), q_model.head<7>());
+  nu.head<6>() = wbi::msg::to_eigen(state.base_velocity());
 }
 
 }  // namespace wbi::estimator::detail

@@ -7,8 +7,8 @@
 #include <string>
 #include <string_view>
 
-#include <Eigen/Geometry>
 #include <wbi/dds/topics.hpp>
+#include <wbi/msg/eigen.hpp>
 #include <wbi/msg/wire_vocabulary.hpp>
 #include <wbi/runtime/console_line.hpp>
 
@@ -16,20 +16,8 @@
 
 namespace wbi::estimator {
 
-namespace {
-
-void write_pose(wbi::msg::Pose& pose, const Eigen::Matrix4d& H) {
-  const Eigen::Quaterniond q(Eigen::Matrix3d(H.topLeftCorner<3, 3>()));
-  pose.position().x(H(0, 3));
-  pose.position().y(H(1, 3));
-  pose.position().z(H(2, 3));
-  pose.orientation().w(q.w());
-  pose.orientation().x(q.x());
-  pose.orientation().y(q.y());
-  pose.orientation().z(q.z());
-}
-
-}  // namespace
+using wbi::msg::to_eigen;
+using wbi::msg::to_wire;
 
 namespace detail {
 
@@ -227,7 +215,7 @@ void EstimatorComponent::estimate(const wbi::msg::SensorSample& sample) {
     wrong_size_->set(ignored_);
     return;
   }
-  q_ = Eigen::Map<const Eigen::VectorXd>(positions.data(), q_.size());
+  to_eigen(positions, q_, "encoder positions");
   estimator_->update(sample.header().stamp_ns(), q_);
   if (model_ddq_) {
     sample_used_ = estimation::used(model_ddq_->update(sample.header().stamp_ns(), q_));
@@ -258,21 +246,12 @@ void EstimatorComponent::filter_force_torque(const wbi::msg::SensorSample& sampl
     return;
   }
   for (std::size_t i = 0; i < readings.size(); ++i) {
-    const auto& w = readings[i].wrench();
-    wrenches_.segment<6>(static_cast<Eigen::Index>(6 * i)) << w.force().x(), w.force().y(),
-        w.force().z(), w.torque().x(), w.torque().y(), w.torque().z();
+    to_eigen(readings[i].wrench(), wrenches_.segment<6>(static_cast<Eigen::Index>(6 * i)));
   }
   force_torque_filter_->update(sample.header().stamp_ns(), wrenches_);
   const auto& filtered = force_torque_filter_->value();
   for (std::size_t i = 0; i < readings.size(); ++i) {
-    const auto k = static_cast<Eigen::Index>(6 * i);
-    auto& out = state_.force_torque()[i];
-    out.force().x(filtered[k]);
-    out.force().y(filtered[k + 1]);
-    out.force().z(filtered[k + 2]);
-    out.torque().x(filtered[k + 3]);
-    out.torque().y(filtered[k + 4]);
-    out.torque().z(filtered[k + 5]);
+    to_wire(filtered.segment<6>(static_cast<Eigen::Index>(6 * i)), state_.force_torque()[i]);
   }
 }
 
@@ -282,18 +261,15 @@ void EstimatorComponent::fill_state(const wbi::msg::SensorSample& sample) {
   state.header().seq(sample.header().seq());
   const auto& dq = estimator_->velocity();
   const auto& ddq = estimator_->acceleration();
-  for (Eigen::Index j = 0; j < q_.size(); ++j) {
-    const auto k = static_cast<std::size_t>(j);
-    state.q()[k] = q_[j];
-    state.dq()[k] = dq[j];
-    state.ddq()[k] = ddq[j];
-  }
+  to_wire(q_, state.q());
+  to_wire(dq, state.dq());
+  to_wire(ddq, state.ddq());
   current_sample_ = &sample;
   fill_base(dq, ddq);
   estimate_torques(dq, ddq);
   feed_model_acceleration();
   current_sample_ = nullptr;
-  std::copy(tau_.data(), tau_.data() + tau_.size(), state.tau().begin());
+  to_wire(tau_, state.tau());
   auto counters = earlier_counts_;
   counters += estimator_->stamp_counters();
   state.warnings(static_cast<std::uint32_t>(counters.anomalies()) + ignored_);
@@ -354,14 +330,13 @@ void EstimatorComponent::feed_model_acceleration() {
   }
   model_ddq_->set_model_acceleration(ddq_model_);
   const auto& ddq = model_ddq_->acceleration();
-  std::copy(ddq.data(), ddq.data() + ddq.size(), state_.ddq().begin());
+  to_wire(ddq, state_.ddq());
 }
 
 void EstimatorComponent::write_base(const BaseState& base) {
-  write_pose(state_.base_pose(), base.world_H_base);
-  std::copy(base.velocity.data(), base.velocity.data() + 6, state_.base_velocity().begin());
-  std::copy(base.acceleration.data(), base.acceleration.data() + 6,
-            state_.base_acceleration().begin());
+  to_wire(base.world_H_base, state_.base_pose());
+  to_wire(base.velocity, state_.base_velocity());
+  to_wire(base.acceleration, state_.base_acceleration());
 }
 
 bool EstimatorComponent::has_legged_inputs(const wbi::msg::SensorSample& sample) const {
@@ -371,13 +346,10 @@ bool EstimatorComponent::has_legged_inputs(const wbi::msg::SensorSample& sample)
 
 ImuInput EstimatorComponent::sample_imu() const {
   const auto& imu = current_sample_->imus()[static_cast<std::size_t>(imu_index_)];
-  const auto& o = imu.orientation();
-  const auto& w = imu.angular_velocity();
-  const auto& a = imu.linear_acceleration();
   ImuInput input;
-  input.orientation = Eigen::Quaterniond(o.w(), o.x(), o.y(), o.z());
-  input.gyro << w.x(), w.y(), w.z();
-  input.accelerometer << a.x(), a.y(), a.z();
+  input.orientation = to_eigen(imu.orientation());
+  input.gyro = to_eigen(imu.angular_velocity());
+  input.accelerometer = to_eigen(imu.linear_acceleration());
   return input;
 }
 
@@ -385,8 +357,8 @@ ImuInput EstimatorComponent::sample_imu() const {
 const Eigen::Matrix3Xd& EstimatorComponent::foot_forces() {
   for (std::size_t i = 0; i < foot_sensor_index_.size(); ++i) {
     const auto index = static_cast<std::size_t>(foot_sensor_index_[i]);
-    const auto& f = current_sample_->force_torque()[index].wrench().force();
-    foot_forces_.col(static_cast<Eigen::Index>(i)) << f.x(), f.y(), f.z();
+    foot_forces_.col(static_cast<Eigen::Index>(i)) =
+        to_eigen(current_sample_->force_torque()[index].wrench().force());
   }
   return foot_forces_;
 }
@@ -395,7 +367,7 @@ void EstimatorComponent::fill_base(const Eigen::VectorXd& dq, const Eigen::Vecto
   auto& state = state_;
   switch (base_source_) {
     case BaseSource::fixed:
-      write_pose(state.base_pose(), base_pose_);
+      to_wire(base_pose_, state.base_pose());
       break;
     case BaseSource::fixed_link:
       write_base(base_estimator_->update(q_, dq, ddq));

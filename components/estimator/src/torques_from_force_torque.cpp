@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 #include <wbi/model/urdf.hpp>
+#include <wbi/msg/eigen.hpp>
 
 #include "base_from_state.hpp"
 
@@ -119,23 +120,19 @@ bool TorquesFromForceTorque::update(const wbi::msg::SensorSample& sample, const 
     return false;
   }
   for (std::size_t i = 0; i < readings_.size(); ++i) {
-    const auto& w = sample.force_torque()[i].wrench();
-    readings_[i] << w.force().x(), w.force().y(), w.force().z(), w.torque().x(), w.torque().y(),
-        w.torque().z();
+    wbi::msg::to_eigen(sample.force_torque()[i].wrench(), readings_[i]);
   }
   const model::Model& m = estimator_->model();
   using Accelerations = TorqueEstimationConfig::Accelerations;
   if (m.floating_base) {
     base_from_state(state, q_model_, nu_);
     if (accelerations_ == Accelerations::estimated) {
-      dnu_.head<6>() = Eigen::Map<const model::Vector6d>(state.base_acceleration().data());
+      dnu_.head<6>() = wbi::msg::to_eigen(state.base_acceleration());
     } else if (accelerations_ == Accelerations::imu) {
       // The accelerometer reads the proper acceleration f = Rᵀ (a − g): a = R f + g.
       const auto& imu = sample.imus()[static_cast<std::size_t>(imu_index_)];
-      const auto& o = imu.orientation();
-      const auto& f = imu.linear_acceleration();
       dnu_.head<3>() =
-          Eigen::Quaterniond(o.w(), o.x(), o.y(), o.z()) * Eigen::Vector3d(f.x(), f.y(), f.z()) +
+          wbi::msg::to_eigen(imu.orientation()) * wbi::msg::to_eigen(imu.linear_acceleration()) +
           estimator_->options().gravity;
     }
   }
@@ -192,13 +189,7 @@ void TorquesFromForceTorque::write_wrenches(wbi::msg::StateEstimate& state) cons
   for (std::size_t h = 0; h < links.size(); ++h) {
     const int i = static_cast<int>(h);
     const model::Vector6d& w = estimator_->link_wrench(i);
-    auto& wrench = out[h].wrench();
-    wrench.force().x(w[0]);
-    wrench.force().y(w[1]);
-    wrench.force().z(w[2]);
-    wrench.torque().x(w[3]);
-    wrench.torque().y(w[4]);
-    wrench.torque().z(w[5]);
+    wbi::msg::to_wire(w, out[h].wrench());
     out[h].loaded(estimator_->loaded(i));
     out[h].valid(estimator_->link_wrench_valid(i));
   }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <exception>
 
+#include <wbi/msg/eigen.hpp>
+
 namespace wbi::model_service {
 
 namespace {
@@ -122,18 +124,16 @@ bool Evaluator::load(const msg::ModelRequest& request, std::string& error) {
               std::to_string(norm);
       return false;
     }
-    q_.head<7>() << pose.position().x(), pose.position().y(), pose.position().z(), o.w() / norm,
-        o.x() / norm, o.y() / norm, o.z() / norm;
-    for (int k = 0; k < 6; ++k) {
-      nu_[k] = state.base_velocity()[static_cast<std::size_t>(k)];
-    }
+    msg::to_coordinates(pose, q_.head<7>());
+    q_.segment<4>(3) /= norm;
+    nu_.head<6>() = msg::to_eigen(state.base_velocity());
   }
   for (int k = 0; k < n; ++k) {
     const auto i = static_cast<std::size_t>(k);
     q_[bq + k] = state.q()[i];
     nu_[bv + k] = state.dq().empty() ? 0.0 : state.dq()[i];
   }
-  gravity_ << state.gravity().x(), state.gravity().y(), state.gravity().z();
+  gravity_ = msg::to_eigen(state.gravity());
 
   bool wants_id = false;
   bool wants_fd = false;
@@ -170,11 +170,9 @@ bool Evaluator::load(const msg::ModelRequest& request, std::string& error) {
                 "' in robot '" + robot_ + "'";
         return false;
       }
-      const auto& w = applied.wrench();
       model::ExternalWrench external;
       external.frame = it->second;
-      external.wrench << w.force().x(), w.force().y(), w.force().z(), w.torque().x(),
-          w.torque().y(), w.torque().z();
+      msg::to_eigen(applied.wrench(), external.wrench);
       wrenches_.push_back(external);
     }
   }

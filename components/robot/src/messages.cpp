@@ -2,22 +2,11 @@
 
 #include <algorithm>
 
+#include <wbi/msg/eigen.hpp>
+
 namespace wbi::robot {
 
-namespace {
-
-void set(wbi::msg::Vector3& out, const Eigen::Vector3d& v) {
-  out.x(v.x());
-  out.y(v.y());
-  out.z(v.z());
-}
-
-void copy(const Eigen::Ref<const Eigen::VectorXd>& from, std::vector<double>& to) {
-  to.resize(static_cast<std::size_t>(from.size()));  // no allocation once sized
-  std::copy(from.data(), from.data() + from.size(), to.begin());
-}
-
-}  // namespace
+using wbi::msg::to_wire;
 
 void describe(const actuation::BackendDescription& description, const std::string& robot,
               const std::string& source, bool floating_base, wbi::msg::RobotDescription& out) {
@@ -81,26 +70,21 @@ void fill_sensor_sample(const actuation::SensorReadings& readings, std::uint64_t
                         std::int64_t stamp_ns, wbi::msg::SensorSample& sample) {
   sample.header().seq(tick);
   sample.header().stamp_ns(stamp_ns);
-  copy(readings.position, sample.encoder_position());
+  to_wire(readings.position, sample.encoder_position());
   if (!sample.joint_torque().empty()) {  // NaN where a joint has no sensor (RobotBackend::read)
-    copy(readings.torque, sample.joint_torque());
+    to_wire(readings.torque, sample.joint_torque());
   }
-  copy(readings.pwm, sample.motor_pwm());
+  to_wire(readings.pwm, sample.motor_pwm());
   for (std::size_t i = 0; i < readings.imus.size() && i < sample.imus().size(); ++i) {
     const auto& imu = readings.imus[i];
     auto& out = sample.imus()[i];
-    out.orientation().w(imu.orientation[0]);
-    out.orientation().x(imu.orientation[1]);
-    out.orientation().y(imu.orientation[2]);
-    out.orientation().z(imu.orientation[3]);
-    set(out.angular_velocity(), imu.gyro);
-    set(out.linear_acceleration(), imu.accel);
+    wbi::msg::to_wire_wxyz(imu.orientation, out.orientation());
+    to_wire(imu.gyro, out.angular_velocity());
+    to_wire(imu.accel, out.linear_acceleration());
   }
   for (std::size_t i = 0; i < readings.force_torque.size() && i < sample.force_torque().size();
        ++i) {
-    const auto& w = readings.force_torque[i].wrench;
-    set(sample.force_torque()[i].wrench().force(), w.head<3>());
-    set(sample.force_torque()[i].wrench().torque(), w.tail<3>());
+    to_wire(readings.force_torque[i].wrench, sample.force_torque()[i].wrench());
   }
 }
 
@@ -110,31 +94,23 @@ void fill_ground_truth(const actuation::GroundTruth& truth, const std::string& r
   out.header().seq(tick);
   out.header().stamp_ns(stamp_ns);
   const auto n = static_cast<Eigen::Index>(truth.tau.size());
-  copy(truth.q.tail(n), out.q());  // joints come after the base coordinates, if any
-  copy(truth.nu.tail(n), out.dq());
-  copy(truth.dnu.tail(n), out.ddq());
-  set(out.base_pose().position(), truth.base_position);
-  out.base_pose().orientation().w(truth.base_orientation[0]);
-  out.base_pose().orientation().x(truth.base_orientation[1]);
-  out.base_pose().orientation().y(truth.base_orientation[2]);
-  out.base_pose().orientation().z(truth.base_orientation[3]);
-  std::copy(truth.base_velocity.data(), truth.base_velocity.data() + 6,
-            out.base_velocity().begin());
-  std::copy(truth.base_acceleration.data(), truth.base_acceleration.data() + 6,
-            out.base_acceleration().begin());
+  to_wire(truth.q.tail(n), out.q());  // joints come after the base coordinates, if any
+  to_wire(truth.nu.tail(n), out.dq());
+  to_wire(truth.dnu.tail(n), out.ddq());
+  to_wire(truth.base_position, truth.base_orientation, out.base_pose());
+  to_wire(truth.base_velocity, out.base_velocity());
+  to_wire(truth.base_acceleration, out.base_acceleration());
   out.contact_wrenches().resize(std::min<std::size_t>(truth.contact_wrenches.size(), 16));
   for (std::size_t i = 0; i < out.contact_wrenches().size(); ++i) {
-    set(out.contact_wrenches()[i].force(), truth.contact_wrenches[i].head<3>());
-    set(out.contact_wrenches()[i].torque(), truth.contact_wrenches[i].tail<3>());
+    to_wire(truth.contact_wrenches[i], out.contact_wrenches()[i]);
   }
-  copy(truth.tau_actuator, out.applied_torque());
+  to_wire(truth.tau_actuator, out.applied_torque());
   out.push_wrenches().resize(
       std::min<std::size_t>({truth.push_wrenches.size(), truth.push_links.size(), 16}));
   for (std::size_t i = 0; i < out.push_wrenches().size(); ++i) {
     auto& push = out.push_wrenches()[i];
     push.link(truth.push_links[i]);  // a bounded string: no allocation
-    set(push.wrench().force(), truth.push_wrenches[i].head<3>());
-    set(push.wrench().torque(), truth.push_wrenches[i].tail<3>());
+    to_wire(truth.push_wrenches[i], push.wrench());
   }
 }
 

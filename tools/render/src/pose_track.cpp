@@ -10,6 +10,7 @@
 
 #include <wbi/dds/cdr.hpp>
 #include <wbi/mcap/reader.hpp>
+#include <wbi/msg/eigen.hpp>
 
 namespace wbi::render {
 
@@ -35,9 +36,8 @@ std::string robot_of(const std::string& topic, const std::string& leaf) {
 
 PoseFrame to_frame(const msg::Pose& pose, const std::vector<double>& q) {
   PoseFrame f;
-  f.base_position = {pose.position().x(), pose.position().y(), pose.position().z()};
-  const auto& o = pose.orientation();
-  f.base_orientation = Eigen::Quaterniond(o.w(), o.x(), o.y(), o.z());
+  f.base_position = msg::to_eigen(pose.position());
+  f.base_orientation = msg::to_eigen(pose.orientation());
   if (f.base_orientation.norm() < 1e-9) {
     f.base_orientation = Eigen::Quaterniond::Identity();  // a fixed-base robot may send zeros
   }
@@ -131,10 +131,7 @@ PoseTrack read_pose_track(const std::filesystem::path& file, PoseSource source,
       }
       frame = to_frame(truth.base_pose(), truth.q());
       for (const auto& w : truth.contact_wrenches()) {
-        Vector6d v;
-        v << w.force().x(), w.force().y(), w.force().z(), w.torque().x(), w.torque().y(),
-            w.torque().z();
-        frame.contact_wrenches.push_back(v);
+        msg::to_eigen(w, frame.contact_wrenches.emplace_back());
       }
       stamp = truth.header().stamp_ns();
     } else {

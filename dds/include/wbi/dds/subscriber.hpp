@@ -9,6 +9,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "detail/endpoints.hpp"
 #include "message_traits.hpp"
@@ -74,6 +75,32 @@ class Subscriber : private detail::ReaderSink {
       return false;
     }
     out = latest_;
+    return true;
+  }
+
+  // Calls read(received) with the newest sample in place, under the
+  // subscriber's lock: nothing is copied but what `read` copies into its own
+  // buffers, and the next sample waits until it returns (keep it short). An
+  // exception from `read` propagates. Returns false when none arrived yet.
+  template <class Read>
+  bool read_latest(Read&& read) const {
+    std::lock_guard lock(mutex_);
+    if (latest_.count == 0) {
+      return false;
+    }
+    std::forward<Read>(read)(std::as_const(latest_));
+    return true;
+  }
+
+  // Waits until a sample newer than the `after`-th arrives, then reads it as
+  // read_latest does. Returns false on timeout.
+  template <class Read>
+  bool read_newer(std::uint64_t after, std::chrono::nanoseconds timeout, Read&& read) const {
+    std::unique_lock lock(mutex_);
+    if (!arrived_.wait_for(lock, timeout, [&] { return latest_.count > after; })) {
+      return false;
+    }
+    std::forward<Read>(read)(std::as_const(latest_));
     return true;
   }
 
