@@ -81,6 +81,8 @@ class ArmPeer {
   // The number of the last sample published (valid once stop() returned): a
   // reader that has it has everything the peer sent.
   std::uint64_t last_published_seq() const { return last_published_seq_; }
+  // Readers of its sensor samples (a proxy subscribes when something reads them).
+  const wbi::dds::Publisher<wbi::msg::SensorSample>& sensor_writer() const { return sensors_; }
 
   wbi::dds::Subscriber<wbi::msg::ActuatorCommand>& commands() { return commands_; }
   wbi::dds::Subscriber<wbi::msg::ControlParameters>& parameters() { return parameters_; }

@@ -111,14 +111,15 @@ void DdsActuators::set_control_parameter(ControlParameter parameter, double valu
   publish_parameters(parameter);
 }
 
-// A position mode starts at the measured position, the others at zero.
+// A position mode starts at the measured position (the newest state's q, the
+// encoders' reading), the others at zero.
 void DdsActuators::switch_mode(int joint, ControlMode mode) {
   modes_[static_cast<std::size_t>(joint)] = mode;
   if (mode == ControlMode::position || mode == ControlMode::position_direct) {
-    const auto& sample = robot_.sensors.take(0, ReadMode::latest, robot_.options.max_age_s,
-                                             robot_.options.blocking_read_timeout);
-    references_[joint] =
-        sample.encoder_position().at(robot_.robot_index[static_cast<std::size_t>(joint)]);
+    const auto& state =
+        robot_.state.take(kModeSwitchRead, ReadMode::latest, robot_.options.max_age_s,
+                          robot_.options.blocking_read_timeout);
+    references_[joint] = state.q().at(robot_.robot_index[static_cast<std::size_t>(joint)]);
   } else {
     references_[joint] = 0.0;
   }
@@ -135,14 +136,18 @@ void DdsActuators::publish_command(bool answers) {
   // first). Else the start-up mode switch, sent with tick 0 before any sample,
   // could answer tick 0, and the robot would step it with zero torque or with
   // the first computed command depending on timing.
-  const auto& sensors = robot_.sensors.received;
   const auto& state = robot_.state.received;
-  if (answers && (sensors.count > 0 || state.count > 0)) {
-    answered_tick_ = std::max(sensors.sample.header().seq(), state.sample.header().seq());
+  const std::uint64_t sensors_read = robot_.sensors ? robot_.sensors->received.count : 0;
+  if (answers && (sensors_read > 0 || state.count > 0)) {
+    answered_tick_ = state.sample.header().seq();
     // Latency: the sensor sample this command was computed from (a state
     // estimate carries its sensor sample's stamp).
-    answered_stamp_ns_ =
-        std::max(sensors.sample.header().stamp_ns(), state.sample.header().stamp_ns());
+    answered_stamp_ns_ = state.sample.header().stamp_ns();
+    if (sensors_read > 0) {
+      const auto& sensors = robot_.sensors->received.sample.header();
+      answered_tick_ = std::max(answered_tick_, sensors.seq());
+      answered_stamp_ns_ = std::max(answered_stamp_ns_, sensors.stamp_ns());
+    }
   }
   auto& header = command_.header();
   header.stamp_ns(system_now_ns());

@@ -43,8 +43,8 @@ Stamp DdsSensors::read_range(SensorKind kind, int first, int count, VectorRef ou
                   velocity ? "joint velocities" : "joint accelerations");
     return robot_.state.stamp();
   }
-  const auto& sample =
-      robot_.sensors.take(index, mode, options.max_age_s, options.blocking_read_timeout);
+  auto& sensors = robot_.sensor_stream();
+  const auto& sample = sensors.take(index, mode, options.max_age_s, options.blocking_read_timeout);
   switch (kind) {
     case SensorKind::encoder_position:
       robot_.gather(sample.encoder_position(), first, count, out, "encoder positions");
@@ -79,7 +79,7 @@ Stamp DdsSensors::read_range(SensorKind kind, int first, int count, VectorRef ou
         }
       }
   }
-  return robot_.sensors.stamp();
+  return sensors.stamp();
 }
 
 }  // namespace wbi::proxy

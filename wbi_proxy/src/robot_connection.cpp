@@ -20,15 +20,33 @@ RobotConnection::RobotConnection(const DdsInterfaceOptions& options_)
                       : own_participant.emplace(options.participant)),
       description(participant, dds::topics::description(options.robot), dds::qos::kLatched, nullptr,
                   dds::ProducerPolicy::one(options.on_producer_event)),
-      sensors(participant, dds::topics::sensors(options.robot), dds::qos::kStream,
-              "sensor samples of robot '" + options.robot + "' on " +
-                  dds::topics::sensors(options.robot),
-              dds::ProducerPolicy::owned_by(dds::description_owner(participant, description),
-                                            options.on_producer_event)),
       state(participant, dds::topics::state(options.robot), dds::qos::kStream,
             "state estimates of robot '" + options.robot + "' on " +
                 dds::topics::state(options.robot),
-            dds::ProducerPolicy::one(options.on_producer_event)) {}
+            dds::ProducerPolicy::one(options.on_producer_event)) {
+  if (options.read_sensors) {
+    subscribe_sensors();
+  }
+}
+
+void RobotConnection::subscribe_sensors() {
+  sensors = std::make_unique<Stream<wbi::msg::SensorSample, kSensorReads>>(
+      participant, dds::topics::sensors(options.robot), dds::qos::kStream,
+      "sensor samples of robot '" + options.robot + "' on " + dds::topics::sensors(options.robot),
+      dds::ProducerPolicy::owned_by(dds::description_owner(participant, description),
+                                    options.on_producer_event));
+}
+
+Stream<wbi::msg::SensorSample, kSensorReads>& RobotConnection::sensor_stream() {
+  if (!sensors) {
+    subscribe_sensors();
+    // The first sample is there as soon as the reader matched the robot's
+    // writer; a read that finds none fails as any read of a silent stream does.
+    sensors->subscriber.wait_newer(sensors->received, 0, options.blocking_read_timeout);
+    sensors->rewind_reads();
+  }
+  return *sensors;
+}
 
 void RobotConnection::wait(std::chrono::steady_clock::time_point deadline,
                            std::vector<std::string>& missing) {
@@ -38,7 +56,7 @@ void RobotConnection::wait(std::chrono::steady_clock::time_point deadline,
     missing.push_back("the robot description on " + dds::topics::description(options.robot) +
                       " (sensor component)");
   }
-  if (!sensors.subscriber.wait_newer(sensors.received, 0, remaining())) {
+  if (sensors && !sensors->subscriber.wait_newer(sensors->received, 0, remaining())) {
     missing.push_back("sensor samples on " + dds::topics::sensors(options.robot) +
                       " (sensor component)");
   }
@@ -50,8 +68,10 @@ void RobotConnection::wait(std::chrono::steady_clock::time_point deadline,
   // holds tick 0 until a command computed from tick 0's sample answers it (a
   // mode switch does not: docs/conventions.md), so that read must not wait
   // for tick 1.
-  sensors.seen.fill(sensors.received.count > 0 ? sensors.received.count - 1 : 0);
-  state.seen.fill(state.received.count > 0 ? state.received.count - 1 : 0);
+  if (sensors) {
+    sensors->rewind_reads();
+  }
+  state.rewind_reads();
 }
 
 void RobotConnection::resolve(const IdList& joints) {
@@ -94,7 +114,7 @@ void RobotConnection::resolve(const IdList& joints) {
 std::map<std::string, double> RobotConnection::locked_positions() const {
   std::map<std::string, double> locked = options.locked_positions;
   const auto& names = description_rx.sample.joint_names();
-  const auto& measured = sensors.received.sample.encoder_position();
+  const auto& measured = state.received.sample.q();
   for (std::size_t r = 0; r < names.size() && r < measured.size(); ++r) {
     const std::string name = names[r].to_string();
     const bool is_controlled =

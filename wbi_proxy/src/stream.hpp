@@ -51,6 +51,10 @@ struct Stream {
     return received.sample;
   }
 
+  // The next blocking read of every kind returns the newest sample, the one
+  // received already included (RobotConnection::wait says why).
+  void rewind_reads() { seen.fill(received.count > 0 ? received.count - 1 : 0); }
+
   Stamp stamp() const {
     return {received.sample.header().stamp_ns(), received.sample.header().seq(), received.age_s()};
   }
