@@ -86,6 +86,17 @@ TEST(BalanceLaunch, ThreeProcessesTrackTheSinusoidFor20Seconds) {
   EXPECT_NE(out.find("[estimator] estimator of robot 'humanoid': "), std::string::npos) << out;
   EXPECT_NE(out.find("[controller] balance: "), std::string::npos) << out;
   EXPECT_NE(out.find(" cycles, read + update + write mean "), std::string::npos) << out;
+  // Event-driven (wait_for_state): one balancer cycle per state, so one per
+  // tick; the robot steps a tick or two more while the controller's process ends.
+  const auto number_after = [&](const std::string& key) {
+    const auto found = out.find(key);
+    return found == std::string::npos ? -1L : std::stol(out.substr(found + key.size()));
+  };
+  const long cycles = number_after("[controller] balance: ");
+  const long ticks = number_after("ground truth over ");
+  EXPECT_GT(ticks, 20000) << out;
+  EXPECT_LE(cycles, ticks) << "more balancer cycles than ticks\n" << out;
+  EXPECT_GE(cycles, ticks - 3) << out;
   const std::string marker = "\ncom tracking rms: ";
   const auto at = out.rfind(marker);
   ASSERT_NE(at, std::string::npos) << out;

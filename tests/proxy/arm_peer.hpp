@@ -42,9 +42,10 @@ class ArmPeer {
  public:
   // force_torque_sensors: F/T sensors "ft_0", … in the description, their readings
   // in the sensor samples (arm_wrench), and, unless state_without_force_torque, the
-  // same in the state estimates.
+  // same in the state estimates. lockstep: the description says so, and the
+  // peer publishes tick 0 only, as a lockstep robot waiting for its answer.
   explicit ArmPeer(const std::string& robot, int force_torque_sensors = 0,
-                   bool state_without_force_torque = false)
+                   bool state_without_force_torque = false, bool lockstep = false)
       : participant_("robot"),
         description_(participant_, topics::description(robot), qos::kLatched),
         sensors_(participant_, topics::sensors(robot), qos::kStream),
@@ -53,9 +54,11 @@ class ArmPeer {
         parameters_(participant_, topics::control_parameters(robot), qos::kCommand),
         robot_(robot),
         force_torque_sensors_(static_cast<std::size_t>(force_torque_sensors)),
-        state_without_force_torque_(state_without_force_torque) {
+        state_without_force_torque_(state_without_force_torque),
+        lockstep_(lockstep) {
     wbi::msg::RobotDescription description;
     description.header().robot(robot);
+    description.lockstep(lockstep);
     for (const auto& joint : kArmJoints) {
       description.joint_names().push_back(joint);
     }
@@ -81,6 +84,8 @@ class ArmPeer {
   // The number of the last sample published (valid once stop() returned): a
   // reader that has it has everything the peer sent.
   std::uint64_t last_published_seq() const { return last_published_seq_; }
+  // Readers of its sensor samples (a proxy subscribes when something reads them).
+  const wbi::dds::Publisher<wbi::msg::SensorSample>& sensor_writer() const { return sensors_; }
 
   wbi::dds::Subscriber<wbi::msg::ActuatorCommand>& commands() { return commands_; }
   wbi::dds::Subscriber<wbi::msg::ControlParameters>& parameters() { return parameters_; }
@@ -131,6 +136,9 @@ class ArmPeer {
       sensors_.publish(sample);
       state_.publish(state);
       last_published_seq_ = seq;
+      if (lockstep_) {
+        return;  // tick 0 stays unanswered: nothing newer comes
+      }
       std::this_thread::sleep_for(5ms);  // the robot's rate, not a synchronisation
     }
   }
@@ -145,6 +153,7 @@ class ArmPeer {
   std::size_t force_torque_sensors_;
   bool state_without_force_torque_;
   std::atomic<bool> running_{true};
+  bool lockstep_ = false;
   std::atomic<std::uint64_t> last_published_seq_{0};
   std::thread thread_;
 };

@@ -22,18 +22,26 @@ namespace {
 
 using namespace wbi::test;
 
+// init() waits for the sensor samples only when the controller declared it
+// reads them (read_sensors); else they are subscribed to at the first read.
 TEST(DdsInterface, InitNamesEveryMissingComponent) {
-  auto robot = wbi::make_dds_interface(arm_options("absent"));
-  robot->add_joints({"joint_1"});
-  try {
-    robot->init(300ms);
-    FAIL() << "init succeeded without a robot";
-  } catch (const wbi::TimeoutError& e) {
-    const std::string text = e.what();
-    EXPECT_NE(text.find("robot description"), std::string::npos) << text;
-    EXPECT_NE(text.find("sensor samples on wbi/absent/sensors"), std::string::npos) << text;
-    EXPECT_NE(text.find("state estimates"), std::string::npos) << text;
-    EXPECT_NE(text.find("actuator component"), std::string::npos) << text;
+  for (const bool read_sensors : {false, true}) {
+    wbi::DdsInterfaceOptions options = arm_options("absent");
+    options.read_sensors = read_sensors;
+    auto robot = wbi::make_dds_interface(options);
+    robot->add_joints({"joint_1"});
+    try {
+      robot->init(300ms);
+      FAIL() << "init succeeded without a robot";
+    } catch (const wbi::TimeoutError& e) {
+      const std::string text = e.what();
+      EXPECT_NE(text.find("robot description"), std::string::npos) << text;
+      EXPECT_EQ(text.find("sensor samples on wbi/absent/sensors") != std::string::npos,
+                read_sensors)
+          << text;
+      EXPECT_NE(text.find("state estimates"), std::string::npos) << text;
+      EXPECT_NE(text.find("actuator component"), std::string::npos) << text;
+    }
   }
 }
 
@@ -103,6 +111,26 @@ TEST(DdsInterface, ReadsFollowTheControllersJointOrder) {
     EXPECT_NE(std::string(e.what()).find("has size 2, expected 3"), std::string::npos) << e.what();
   }
   EXPECT_THROW(robot->read_sensors(wbi::SensorKind::joint_torque, q), wbi::Error);  // none sent
+}
+
+// A proxy that reads only the state never takes a sensor sample: it
+// subscribes to them at the first read of a sensor kind, which then waits
+// for the first sample.
+TEST(DdsInterface, SensorSamplesAreSubscribedAtTheirFirstRead) {
+  ArmPeer peer("arm_lazy");
+  auto robot = wbi::make_dds_interface(arm_options("arm_lazy"));
+  robot->add_joints({"joint_2", "joint_5"});
+  robot->init(10s);
+  wbi::RobotState state;
+  robot->state().read_robot_state(state, wbi::ReadMode::blocking);
+  EXPECT_EQ(peer.sensor_writer().matched(), 0);
+
+  Eigen::VectorXd q(2);
+  robot->read_sensors(wbi::SensorKind::encoder_position,
+                      q);  // latest: the first sample, waited for
+  EXPECT_DOUBLE_EQ(q[0], arm_position(1));
+  EXPECT_DOUBLE_EQ(q[1], arm_position(4));
+  EXPECT_TRUE(peer.sensor_writer().wait_for_subscribers(1, 10s));
 }
 
 // Every kind of the enum, read whole: each is answered with the estimator's
@@ -186,6 +214,33 @@ TEST(DdsInterface, StaleDataIsRefused) {
   };
   EXPECT_TRUE(refused([&] { robot->read_sensors(wbi::SensorKind::encoder_position, q); }));
   EXPECT_TRUE(refused([&] { robot->read_estimates(wbi::EstimateKind::joint_position, q); }));
+}
+
+// A lockstep robot waits at tick 0 for its answer: the sample init() waited
+// for is read however old it is (a secured start can take longer than
+// max_age_s after it arrived) until a command answers it; then it is stale.
+TEST(DdsInterface, ALockstepRobotsFirstSampleIsReadUntilAnswered) {
+  ArmPeer peer("arm_lockstep", 0, false, /*lockstep=*/true);
+  auto options = arm_options("arm_lockstep");
+  options.max_age_s = 0.05;
+  auto robot = wbi::make_dds_interface(options);
+  robot->add_joints({"joint_2"});
+  robot->init(10s);
+  Eigen::VectorXd q(1);
+  wbi::Stamp stamp;
+  const auto deadline = std::chrono::steady_clock::now() + 5s;
+  do {
+    stamp = robot->state().read_estimates(wbi::EstimateKind::joint_position, q);
+    std::this_thread::sleep_for(10ms);  // polling an ageing sample: there is no event to await
+  } while (stamp.age_s <= 2 * options.max_age_s && std::chrono::steady_clock::now() < deadline);
+  EXPECT_GT(stamp.age_s, 2 * options.max_age_s);
+  EXPECT_EQ(stamp.seq, 0u);
+  EXPECT_DOUBLE_EQ(q[0], arm_position(1));
+  robot->actuators().set_control_mode(wbi::ControlMode::torque);  // answers no tick
+  EXPECT_NO_THROW(robot->state().read_estimates(wbi::EstimateKind::joint_position, q));
+  robot->actuators().set_control_reference(Eigen::VectorXd::Zero(1));  // answers tick 0
+  EXPECT_THROW(robot->state().read_estimates(wbi::EstimateKind::joint_position, q),
+               wbi::StaleDataError);
 }
 
 // One call, one estimate: every field of the RobotState comes from the sample

@@ -119,15 +119,15 @@ void DdsActuators::set_control_parameter(ControlParameter parameter, double valu
   publish_parameters(parameter);
 }
 
-// A position mode starts at the measured position, the others at zero.
+// A position mode starts at the measured position (the newest state's q, the
+// encoders' reading), the others at zero.
 void DdsActuators::switch_mode(int joint, ControlMode mode) {
   modes_[static_cast<std::size_t>(joint)] = mode;
   if (mode == ControlMode::position || mode == ControlMode::position_direct) {
-    robot_.sensors.read(
-        0, ReadMode::latest, robot_.options.max_age_s, robot_.options.blocking_read_timeout,
-        [&](const wbi::msg::SensorSample& sample) {
-          references_[joint] =
-              sample.encoder_position().at(robot_.robot_index[static_cast<std::size_t>(joint)]);
+    robot_.state.read(
+        kModeSwitchRead, ReadMode::latest, robot_.options.max_age_s,
+        robot_.options.blocking_read_timeout, [&](const wbi::msg::StateEstimate& state) {
+          references_[joint] = state.q().at(robot_.robot_index[static_cast<std::size_t>(joint)]);
         });
   } else {
     references_[joint] = 0.0;
@@ -145,13 +145,22 @@ void DdsActuators::publish_command(bool answers) {
   // first). Else the start-up mode switch, sent with tick 0 before any sample,
   // could answer tick 0, and the robot would step it with zero torque or with
   // the first computed command depending on timing.
-  const auto& sensors = robot_.sensors.last;
   const auto& state = robot_.state.last;
-  if (answers && (sensors.count > 0 || state.count > 0)) {
-    answered_tick_ = std::max(sensors.seq, state.seq);
+  const std::uint64_t sensors_read = robot_.sensors ? robot_.sensors->last.count : 0;
+  if (answers && (sensors_read > 0 || state.count > 0)) {
+    robot_.state.answered();
+    if (robot_.sensors) {
+      robot_.sensors->answered();
+    }
+    answered_tick_ = state.seq;
     // Latency: the sensor sample this command was computed from (a state
     // estimate carries its sensor sample's stamp).
-    answered_stamp_ns_ = std::max(sensors.stamp_ns, state.stamp_ns);
+    answered_stamp_ns_ = state.stamp_ns;
+    if (sensors_read > 0) {
+      const auto& sensors = robot_.sensors->last;
+      answered_tick_ = std::max(answered_tick_, sensors.seq);
+      answered_stamp_ns_ = std::max(answered_stamp_ns_, sensors.stamp_ns);
+    }
   }
   auto& header = command_.header();
   header.stamp_ns(system_now_ns());

@@ -46,10 +46,11 @@ Stamp DdsSensors::read_range(SensorKind kind, int first, int count, VectorRef ou
                       });
     return robot_.state.stamp();
   }
-  robot_.sensors.read(
+  auto& sensors = robot_.sensor_stream();
+  sensors.read(
       index, mode, options.max_age_s, options.blocking_read_timeout,
       [&](const wbi::msg::SensorSample& sample) { read_sample(sample, kind, first, count, out); });
-  return robot_.sensors.stamp();
+  return sensors.stamp();
 }
 
 void DdsSensors::read_sample(const wbi::msg::SensorSample& sample, SensorKind kind, int first,

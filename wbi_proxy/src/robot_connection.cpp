@@ -20,15 +20,33 @@ RobotConnection::RobotConnection(const DdsInterfaceOptions& options_)
                       : own_participant.emplace(options.participant)),
       description(participant, dds::topics::description(options.robot), dds::qos::kLatched, nullptr,
                   dds::ProducerPolicy::one(options.on_producer_event)),
-      sensors(participant, dds::topics::sensors(options.robot), dds::qos::kStream,
-              "sensor samples of robot '" + options.robot + "' on " +
-                  dds::topics::sensors(options.robot),
-              dds::ProducerPolicy::owned_by(dds::description_owner(participant, description),
-                                            options.on_producer_event)),
       state(participant, dds::topics::state(options.robot), dds::qos::kStream,
             "state estimates of robot '" + options.robot + "' on " +
                 dds::topics::state(options.robot),
-            dds::ProducerPolicy::one(options.on_producer_event)) {}
+            dds::ProducerPolicy::one(options.on_producer_event)) {
+  if (options.read_sensors) {
+    subscribe_sensors();
+  }
+}
+
+void RobotConnection::subscribe_sensors() {
+  sensors = std::make_unique<Stream<wbi::msg::SensorSample, kSensorReads>>(
+      participant, dds::topics::sensors(options.robot), dds::qos::kStream,
+      "sensor samples of robot '" + options.robot + "' on " + dds::topics::sensors(options.robot),
+      dds::ProducerPolicy::owned_by(dds::description_owner(participant, description),
+                                    options.on_producer_event));
+}
+
+Stream<wbi::msg::SensorSample, kSensorReads>& RobotConnection::sensor_stream() {
+  if (!sensors) {
+    subscribe_sensors();
+    // The first sample is there as soon as the reader matched the robot's
+    // writer; a read that finds none fails as any read of a silent stream does.
+    sensors->read_first(options.blocking_read_timeout, [](const wbi::msg::SensorSample&) {});
+    sensors->rewind_reads();
+  }
+  return *sensors;
+}
 
 void RobotConnection::wait(std::chrono::steady_clock::time_point deadline,
                            std::vector<std::string>& missing) {
@@ -38,13 +56,12 @@ void RobotConnection::wait(std::chrono::steady_clock::time_point deadline,
     missing.push_back("the robot description on " + dds::topics::description(options.robot) +
                       " (sensor component)");
   }
-  if (!sensors.read_first(remaining(), [&](const wbi::msg::SensorSample& sample) {
-        first_positions = sample.encoder_position();
-      })) {
+  if (sensors && !sensors->read_first(remaining(), [](const wbi::msg::SensorSample&) {})) {
     missing.push_back("sensor samples on " + dds::topics::sensors(options.robot) +
                       " (sensor component)");
   }
   if (!state.read_first(remaining(), [&](const wbi::msg::StateEstimate& estimate) {
+        first_positions = estimate.q();
         external_wrench_links.clear();
         for (const auto& wrench : estimate.external_wrenches()) {
           external_wrench_links.push_back(wrench.link().to_string());
@@ -57,8 +74,11 @@ void RobotConnection::wait(std::chrono::steady_clock::time_point deadline,
   // holds tick 0 until a command computed from tick 0's sample answers it (a
   // mode switch does not: docs/conventions.md), so that read must not wait
   // for tick 1.
-  sensors.mark_init_sample();
-  state.mark_init_sample();
+  const bool lockstep = description_rx.count > 0 && description_rx.sample.lockstep();
+  if (sensors) {
+    sensors->mark_init_sample(lockstep);
+  }
+  state.mark_init_sample(lockstep);
 }
 
 void RobotConnection::resolve(const IdList& joints) {

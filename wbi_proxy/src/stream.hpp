@@ -35,14 +35,14 @@ struct Stream {
   LastRead last;
   std::array<std::uint64_t, Kinds> seen{};
   std::string what;  // e.g. "sensor samples of robot 'arm' on wbi/arm/sensors"
-  // The sample init() waited for (its count) and the kinds that have not read
-  // since: the first read of each kind takes that sample whatever its age.
-  // In lockstep the robot waits for the answer to it however long the start
-  // took after it arrived (a secured start's handshakes, a remote model's
-  // first calls: over max_age_s in some runs, and the run never began); a
-  // running robot has sent newer samples by then, whose age counts as usual.
+  // A lockstep robot's sample init() waited for (its count), until a command
+  // answered it: until then a read takes it whatever its age. The robot waits
+  // for that answer however long the start took after the sample arrived (a
+  // secured start's handshakes, the claim, a remote model's first calls in
+  // the controller's configure: over max_age_s in some runs, and the run
+  // never began). A robot that is not in lockstep gets no such leave.
   std::uint64_t init_count = 0;
-  std::array<bool, Kinds> init_sample_unread{};
+  bool init_sample_unanswered = false;
 
   Stream(dds::Participant& participant, const std::string& topic, const char* profile,
          std::string description, dds::ProducerPolicy producers)
@@ -63,8 +63,7 @@ struct Stream {
       seen[kind] = received.count;
       remember(received);
       age = received.age_s();
-      init_sample =
-          std::exchange(init_sample_unread[kind], false) && received.count == init_count;
+      init_sample = init_sample_unanswered && received.count == init_count;
       if (age <= max_age_s || init_sample) {
         reader(received.sample);
       }
@@ -93,11 +92,17 @@ struct Stream {
   }
 
   // Called at the end of init(): the newest sample is the one it waited for.
-  void mark_init_sample() {
+  void mark_init_sample(bool lockstep) {
     init_count = last.count;
-    init_sample_unread.fill(last.count > 0);
-    seen.fill(last.count > 0 ? last.count - 1 : 0);
+    init_sample_unanswered = lockstep && last.count > 0;
+    rewind_reads();
   }
+  // A command computed from what was read has gone out (DdsActuators).
+  void answered() { init_sample_unanswered = false; }
+
+  // The next blocking read of every kind returns the newest sample, the one
+  // received already included (RobotConnection::wait says why).
+  void rewind_reads() { seen.fill(last.count > 0 ? last.count - 1 : 0); }
 
   Stamp stamp() const {
     return {last.stamp_ns, last.seq,

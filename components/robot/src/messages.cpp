@@ -9,9 +9,11 @@ namespace wbi::robot {
 using wbi::msg::to_wire;
 
 void describe(const actuation::BackendDescription& description, const std::string& robot,
-              const std::string& source, bool floating_base, wbi::msg::RobotDescription& out) {
+              const std::string& source, bool floating_base, bool lockstep,
+              wbi::msg::RobotDescription& out) {
   out.header().robot(robot);
   out.floating_base(floating_base);
+  out.lockstep(lockstep);
   out.urdf_path(source);
   out.joint_names().clear();
   out.joint_limits().clear();

@@ -13,7 +13,8 @@
 namespace wbi::robot {
 
 void describe(const actuation::BackendDescription& description, const std::string& robot,
-              const std::string& source, bool floating_base, wbi::msg::RobotDescription& out);
+              const std::string& source, bool floating_base, bool lockstep,
+              wbi::msg::RobotDescription& out);
 
 // Sizes the sample's sequences for the backend's joints and sensors.
 void prepare_sensor_sample(const actuation::BackendDescription& description,

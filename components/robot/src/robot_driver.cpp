@@ -125,9 +125,9 @@ class RobotDriver final : public runtime::Component {
     backend_->configure();
     const auto& description = backend_->description();
     if (sides.sensors) {
-      sensors_ = std::make_unique<SensorSide>(participant, robot_, description,
-                                              urdf.empty() ? description.urdf : urdf,
-                                              floating_base.value_or(description.floating_base));
+      sensors_ = std::make_unique<SensorSide>(
+          participant, robot_, description, urdf.empty() ? description.urdf : urdf,
+          floating_base.value_or(description.floating_base), simulated && simulation.lockstep);
     }  // its description writer holds the name from here on
     ActuatorSide::CommandObserver observer;
     if (simulation_) {

@@ -8,10 +8,10 @@ namespace wbi::robot {
 
 SensorSide::SensorSide(dds::Participant& participant, const std::string& robot,
                        const actuation::BackendDescription& description, const std::string& source,
-                       bool floating_base)
+                       bool floating_base, bool lockstep)
     : description_(participant, dds::topics::description(robot), dds::qos::kLatched),
       sensors_(participant, dds::topics::sensors(robot), dds::qos::kStream) {
-  describe(description, robot, source, floating_base, description_message_);
+  describe(description, robot, source, floating_base, lockstep, description_message_);
   description_.publish(description_message_);
   prepare_sensor_sample(description, robot, sample_);
 }

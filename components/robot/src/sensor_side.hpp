@@ -22,7 +22,7 @@ class SensorSide {
   // description's urdf_path field.
   SensorSide(dds::Participant& participant, const std::string& robot,
              const actuation::BackendDescription& description, const std::string& source,
-             bool floating_base);
+             bool floating_base, bool lockstep);
 
   // Publishes one sample: header.seq = seq, header.stamp_ns = stamp_ns.
   void publish(const actuation::SensorReadings& readings, std::uint64_t seq, std::int64_t stamp_ns);

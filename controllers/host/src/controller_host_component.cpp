@@ -199,9 +199,24 @@ class ControllerHostComponent final : public runtime::Component {
     next_progress_s_ = 0.0;
   }
 
+  // Event-driven (wait_for_state): one cycle per state estimate, the newest
+  // one this host has not answered yet. It may be there already (the one
+  // init() saw, one that came during the last cycle): then at once, whatever
+  // the controllers read meanwhile (a read of the same kind from configure or
+  // activate would make a blocking read wait for the next estimate, which a
+  // lockstep robot sends only once this one is answered).
   bool event_driven() const override { return wait_for_state_; }
   bool wait_for_event(std::int64_t /*timeout_ns*/) override {
     try {
+      try {
+        const Stamp newest =
+            robot_->read_estimates(EstimateKind::joint_position, newest_q_, ReadMode::latest);
+        if (!has_answered_ || newest.seq != answered_seq_) {
+          return true;
+        }
+      } catch (const StaleDataError&) {
+        // none fresh: wait for the next
+      }
       robot_->read_estimates(EstimateKind::joint_position, newest_q_, ReadMode::blocking);
       return true;
     } catch (const TimeoutError&) {
@@ -309,6 +324,8 @@ class ControllerHostComponent final : public runtime::Component {
         start_ns_ = stamp.source_ns;
       }
       state_stamp_ns_ = stamp.source_ns;
+      answered_seq_ = stamp.seq;
+      has_answered_ = true;
       last_time_s_ = 1e-9 * static_cast<double>(stamp.source_ns - start_ns_);
     } catch (const StaleDataError&) {
       last_time_s_ += period_s;
@@ -470,7 +487,9 @@ class ControllerHostComponent final : public runtime::Component {
   std::vector<std::unique_ptr<dds::Subscriber<msg::TrajectoryPoint>>> reference_readers_;
   std::int64_t reference_wait_ns_ = 0;  // lockstep: wait this long for a reference's point
   std::int64_t state_stamp_ns_ = 0;     // source stamp of the newest state
-  bool references_started_ = false;     // the first tick waited for the generators
+  std::uint64_t answered_seq_ = 0;      // sequence number of the state the last cycle answered
+  bool has_answered_ = false;
+  bool references_started_ = false;  // the first tick waited for the generators
   msg::Signals signals_;
   const Controller* signals_of_ = nullptr;  // whose names signals_ carries
   std::uint64_t signals_seq_ = 0;

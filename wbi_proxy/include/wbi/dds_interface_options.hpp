@@ -45,6 +45,13 @@ struct DdsInterfaceOptions {
   // A joint not listed here is locked where init() measures it.
   std::map<std::string, double> locked_positions{};
 
+  // The raw sensor samples (wbi/<robot>/sensors) are subscribed to only when
+  // read: by the first read_sensors/read_sensor of a kind that travels in them
+  // (it waits up to blocking_read_timeout for the first sample), or, when
+  // true, from construction on, and init() waits for them too. A controller
+  // that reads only the state never receives them.
+  bool read_sensors = false;
+
   double max_age_s = 0.1;  // reads fail on samples older than this
   std::chrono::milliseconds blocking_read_timeout{1000};
   // Deadline of a remote model call (the model service at wbi/<robot>/model).
