@@ -53,6 +53,7 @@ inline void fill_description(msg::RobotDescription& description, const std::stri
     description.sensors().push_back(force_torque);
   }
   description.urdf_path("/models/" + robot + ".urdf");
+  description.lockstep(true);
 }
 
 inline void fill_sensors(msg::SensorSample& sample, const std::string& robot, std::uint64_t seq) {
@@ -161,7 +162,8 @@ inline nlohmann::json to_json(const msg::RobotDescription& d) {
           {"joint_names", names},
           {"joint_limits", limits},
           {"sensors", sensors},
-          {"urdf_path", d.urdf_path().to_string()}};
+          {"urdf_path", d.urdf_path().to_string()},
+          {"lockstep", d.lockstep()}};
 }
 
 inline nlohmann::json to_json(const msg::SensorSample& s) {
