@@ -30,7 +30,7 @@ import tempfile
 import time
 
 FENCE = re.compile(r"^(`{3,})(.*)$")
-MARKER = "@@wbi-tutorial-block {}@@"
+MARKER = "@@wbi-tutorial-block {}@@ $EPOCHREALTIME"
 
 
 class Block:
@@ -78,7 +78,7 @@ def script_of(blocks):
     lines = ["set -euo pipefail"]
     for index, block in enumerate(blocks):
         if block.kind == "run":
-            lines.append(f"echo '{MARKER.format(index)}'")
+            lines.append(f'echo "{MARKER.format(index)}"')
             lines.append(block.text.rstrip("\n"))
         elif block.kind == "file":
             directory = os.path.dirname(block.path)
@@ -87,24 +87,33 @@ def script_of(blocks):
             lines.append(f"cat > '{block.path}' <<'WBI_TUTORIAL_EOF'")
             lines.append(block.text.rstrip("\n"))
             lines.append("WBI_TUTORIAL_EOF")
-    lines.append(f"echo '{MARKER.format('end')}'")
+    lines.append('echo "' + MARKER.format("end") + '"')
     return "\n".join(lines) + "\n"
 
 
 def outputs_by_block(output):
-    """The output of each run block, by the block's index."""
-    parts, current, lines = {}, None, []
+    """The output of each run block by the block's index, and when each began (s)."""
+    parts, started, current, lines = {}, {}, None, []
     for line in output.splitlines():
-        match = re.fullmatch(r"@@wbi-tutorial-block (\w+)@@", line)
+        match = re.fullmatch(r"@@wbi-tutorial-block (\w+)@@ ([0-9.]+)", line)
         if match:
             if current is not None:
                 parts[current] = lines
             current, lines = match.group(1), []
+            started[current] = float(match.group(2))
         elif current is not None:
             lines.append(line)
     if current is not None:
         parts[current] = lines
-    return parts
+    return parts, started
+
+
+def block_seconds(blocks, started):
+    """'line L: S s' for each run block that ran to its end."""
+    keys = sorted((key for key in started if key != "end"), key=int)
+    ends = keys[1:] + (["end"] if "end" in started else [])
+    return [f"line {blocks[int(key)].line}: {started[end] - started[key]:.1f} s"
+            for key, end in zip(keys, ends)]
 
 
 def pattern_of(expected_line):
@@ -220,7 +229,7 @@ def main():
     started = time.monotonic()
     code, output = run_script(script, workspace, arguments.timeout)
     seconds = time.monotonic() - started
-    parts = outputs_by_block(output)
+    parts, started = outputs_by_block(output)
     failures, met = check_expectations(blocks, parts, arguments.tutorial)
     if code is None:
         failures.insert(0, f"{arguments.tutorial}: not done within {arguments.timeout:.0f} s")
@@ -235,6 +244,7 @@ def main():
         print("\n".join(failures))
     print(f"{os.path.basename(arguments.tutorial)}: {runs} run blocks, {met} expected lines seen, "
           f"{seconds:.1f} s{'' if not failures else ', FAILED'}")
+    print("run blocks: " + ", ".join(block_seconds(blocks, started)))
     if arguments.keep or failures:
         print(f"its folder: {workspace}")
     else:
