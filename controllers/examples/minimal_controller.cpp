@@ -54,5 +54,5 @@ class MinimalPd final : public Controller {
 
 WBI_PLUGIN(catalog) {
   catalog.registry<wbi::controllers::ControllerRegistry>().add<example::MinimalPd>(
-      "minimal_pd", "PD + gravity towards a target (the README's example)");
+      "minimal_pd", "PD + gravity towards a target (controllers/README.md's example)");
 }

@@ -1,4 +1,5 @@
-// The README's PD + gravity controller in one main() (controllers/examples) against
+// The PD + gravity controller in one main() (controllers/examples; controllers/README.md,
+// "A controller as a plain program") against
 // the demo's robot and estimator, each in its own process: it brings the arm
 // to its target.
 #include <gtest/gtest.h>

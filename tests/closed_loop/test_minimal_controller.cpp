@@ -1,4 +1,5 @@
-// The README's minimal controller as a lab uses it: a plugin of its own
+// The minimal controller of controllers/README.md ("Writing a controller") as a lab
+// uses it: a plugin of its own
 // (controllers/examples/minimal_controller.cpp), named by a deploy file and
 // found through WBI_PLUGIN_PATH, hosted on the arm in lockstep: switched to
 // from hold and back by the host's schedule, a gain changed with `wbi param`

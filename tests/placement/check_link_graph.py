@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Fails when a project target (library or program) reaches, directly or through
-others, a target of a layer it may not use (LAYERS below, the table of the
-top-level README), when a simulation engine reaches another engine, or when a
+others, a target of a layer it may not use (LAYERS below, the table of
+docs/layers.md), when a simulation engine reaches another engine, or when a
 target outside cli/ reaches one of cli/.
 
 The layer of a target is the top folder it is declared in. Among what this
@@ -77,7 +77,7 @@ def layer_failures(edges, folder_of):
             continue
         if layer not in LAYERS:
             failures.append(f"{target} ({folder}): the folder '{layer}' is in no layer of "
-                            "check_link_graph.py: add it to LAYERS (and to the README's table)")
+                            "check_link_graph.py: add it to LAYERS (and to the table of docs/layers.md)")
             continue
         checked += 1
         for dependency, path_to in sorted(reachable(edges, target).items()):
