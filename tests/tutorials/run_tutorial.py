@@ -15,7 +15,7 @@ that looks like the repository's root: its entries are links to the sources,
 in its own process group on the DDS domain of WBI_DOMAIN_ID, bounded by
 --timeout; whatever it leaves running is stopped at the end.
 
-  run_tutorial.py TUTORIAL.md --source DIR --build DIR [--timeout S] [--keep]
+  run_tutorial.py TUTORIAL.md --source DIR --build DIR [--timeout S] [--keep] [--show]
   run_tutorial.py TUTORIAL.md --script      prints the script and exits
 Exit 0 when every block ran and every expected line was seen, else 1.
 """
@@ -211,6 +211,7 @@ def main():
     parser.add_argument("--timeout", type=float, default=300, help="seconds for the whole tutorial")
     parser.add_argument("--keep", action="store_true", help="keep the temporary folder")
     parser.add_argument("--script", action="store_true", help="print the script and exit")
+    parser.add_argument("--show", action="store_true", help="print the output, also on success")
     arguments = parser.parse_args()
 
     blocks = read_blocks(arguments.tutorial)
@@ -238,7 +239,7 @@ def main():
         where = f" in the block at line {blocks[last].line}" if last is not None else ""
         failures.insert(0, f"{arguments.tutorial}: a command failed{where} (exit {code})")
 
-    if failures:
+    if failures or arguments.show:
         print("== the tutorial's output")
         print(output)
         print("\n".join(failures))
