@@ -1,9 +1,12 @@
 // The `wbi` command line as a user meets it: help, version, exit codes, clear
-// errors, and `wbi topic list|echo` against a real publisher process.
+// errors, `wbi topic list|echo` against a real publisher process, and
+// `wbi controller`/`wbi param` finding the only robot with a controller host
+// on the domain.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -142,6 +145,52 @@ TEST(Cli, TopicListAndEchoSeeAnotherProcess) {
   EXPECT_GT(rate, 0.0) << hz.output;
   EXPECT_LT(rate, 200.0) << hz.output;
   EXPECT_EQ(talker.stop(), 0);
+}
+
+// `wbi controller` and `wbi param` without --robot: the only robot with a
+// controller host on the test's domain, named on stderr; with several, one
+// line listing them; with none, one line saying so. The hosts are stubs
+// (wbi_test_controller_host): real processes on the domain, no robot.
+TEST(Cli, ControllerAndParamUseTheOnlyRobotOnTheDomain) {
+  const char* domain_env = std::getenv("WBI_DOMAIN_ID");
+  const std::string domain = "domain " + std::string(domain_env != nullptr ? domain_env : "0");
+  const auto stub = wbi::test::binary_dir() / "tests" / "wbi_test_controller_host";
+
+  const auto none = wbi_cli({"controller", "list", "--timeout", "1"});
+  EXPECT_EQ(none.code, 1) << none.output;
+  EXPECT_TRUE(contains(none.output,
+                       "wbi controller: no controller host found on " + domain + " within 1 s"))
+      << none.output;
+  EXPECT_EQ(std::count(none.output.begin(), none.output.end(), '\n'), 1) << none.output;
+
+  ChildProcess arm(stub, {"arm"});
+  ASSERT_TRUE(arm.wait_for_output("stub: ready", 20s)) << arm.output();
+  const std::string using_arm =
+      "using robot 'arm', the only one with a controller host on " + domain + "\n";
+  const auto list = wbi_cli({"controller", "list"});
+  EXPECT_EQ(list.code, 0) << list.output;
+  EXPECT_TRUE(contains(list.output, "wbi controller: " + using_arm)) << list.output;
+  EXPECT_TRUE(contains(list.output, "* stub  [stub]  active")) << list.output;
+  const auto get = wbi_cli({"param", "get", "stub", "gain"});
+  EXPECT_EQ(get.code, 0) << get.output;
+  EXPECT_TRUE(contains(get.output, "wbi param: " + using_arm)) << get.output;
+  EXPECT_TRUE(contains(get.output, "gain = 1\n")) << get.output;
+
+  ChildProcess others(stub, {"leg", "hand"});
+  ASSERT_TRUE(others.wait_for_output("stub: ready", 20s)) << others.output();
+  const auto several = wbi_cli({"param", "list", "stub"});
+  EXPECT_EQ(several.code, 1) << several.output;
+  EXPECT_TRUE(contains(several.output, "wbi param: 3 robots have a controller host on " + domain +
+                                           " (arm, hand, leg): give --robot NAME"))
+      << several.output;
+  EXPECT_EQ(std::count(several.output.begin(), several.output.end(), '\n'), 1) << several.output;
+  const auto named = wbi_cli({"controller", "list", "--robot", "leg"});
+  EXPECT_EQ(named.code, 0) << named.output;
+  EXPECT_FALSE(contains(named.output, "using robot")) << named.output;
+  EXPECT_TRUE(contains(named.output, "* stub  [stub]  active")) << named.output;
+
+  EXPECT_EQ(others.stop(), 0) << others.output();
+  EXPECT_EQ(arm.stop(), 0) << arm.output();
 }
 
 }  // namespace

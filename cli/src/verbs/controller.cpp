@@ -15,7 +15,7 @@ namespace wbi::cli {
 namespace {
 
 int run_list(Args args) {
-  Options options("wbi controller list --robot NAME [options]",
+  Options options("wbi controller list [--robot NAME] [options]",
                   "Lists the controllers of the robot's controller host; * marks the active one.");
   add_controller_host_options(options);
   if (!options.parse(args)) {
@@ -35,7 +35,7 @@ int run_list(Args args) {
 
 int run_switch(Args args) {
   Options options(
-      "wbi controller switch --robot NAME --activate A --deactivate B [options]",
+      "wbi controller switch --activate A --deactivate B [--robot NAME] [options]",
       "Deactivates B and activates A at one tick boundary, or refuses the switch whole\n"
       "(an unknown name, B not active, A not configured) and changes nothing. Prints\n"
       "when it took effect and the joint-torque step it made.");

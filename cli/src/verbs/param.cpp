@@ -45,7 +45,7 @@ int refused(const char* what, const Error& refusal) {
 }
 
 int run_list(Args args) {
-  Options options("wbi param list CONTROLLER --robot NAME [options]",
+  Options options("wbi param list CONTROLLER [--robot NAME] [options]",
                   "Lists a controller's parameters: value, unit, range, whether it may change\n"
                   "while the controller is active (live), and what it does.");
   options.positional("CONTROLLER", "a controller of the robot's host (wbi controller list)");
@@ -65,7 +65,7 @@ int run_list(Args args) {
 }
 
 int run_get(Args args) {
-  Options options("wbi param get CONTROLLER NAME --robot NAME [options]",
+  Options options("wbi param get CONTROLLER NAME [--robot NAME] [options]",
                   "Prints one parameter's current value.");
   options.positional("CONTROLLER", "a controller of the robot's host");
   options.positional("NAME", "the parameter");
@@ -92,7 +92,7 @@ int run_get(Args args) {
 }
 
 int run_set(Args args) {
-  Options options("wbi param set CONTROLLER NAME VALUE... --robot NAME [options]",
+  Options options("wbi param set CONTROLLER NAME VALUE... [--robot NAME] [options]",
                   "Sets a parameter; the host applies it between two ticks and answers once it\n"
                   "has. A value out of range, of the wrong size, or a parameter that cannot\n"
                   "change while its controller is active is refused with one line.");
