@@ -1,13 +1,14 @@
-// The `wbi` command line as a user meets it: help, version, exit codes, clear
-// errors, `wbi topic list|echo` against a real publisher process, and
-// `wbi controller`/`wbi param` finding the only robot with a controller host
-// on the domain.
+// The `wbi` command line as a user meets it: help that teaches (verbs by task,
+// examples), version, exit codes, clear errors, `wbi topic list|echo` against
+// a real publisher process, and `wbi controller`/`wbi param` finding the only
+// robot with a controller host on the domain.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -34,13 +35,107 @@ bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+// The verbs `wbi --help` lists (the verb table): the first word of each line
+// indented by two spaces.
+std::vector<std::string> listed_verbs(const std::string& help) {
+  std::vector<std::string> verbs;
+  for (const auto& line : lines_of(help)) {
+    if (line.size() > 2 && line.rfind("  ", 0) == 0 && line[2] != ' ') {
+      verbs.push_back(line.substr(2, line.find(' ', 2) - 2));
+    }
+  }
+  return verbs;
+}
+
 TEST(Cli, HelpListsEveryVerb) {
   const auto run = wbi_cli({"--help"});
   EXPECT_EQ(run.code, 0);
-  for (const char* verb : {"launch", "record", "play", "bag", "render", "topic", "events", "model",
-                           "robot", "estimate"}) {
+  for (const char* verb : {"launch", "topic", "events", "bridge", "controller", "param", "record",
+                           "play", "bag", "render", "model", "estimate", "robot", "plugins"}) {
     EXPECT_TRUE(contains(run.output, std::string("\n  ") + verb + " ")) << verb << "\n"
                                                                         << run.output;
+  }
+}
+
+// `wbi --help` groups the verbs by task, each with its help and under it an
+// example naming it; it fits a screen (40 lines of at most 100 columns).
+TEST(Cli, HelpGroupsTheVerbsByTaskWithAnExampleEach) {
+  const auto run = wbi_cli({"--help"});
+  ASSERT_EQ(run.code, 0) << run.output;
+  const auto lines = lines_of(run.output);
+  EXPECT_LE(lines.size(), 40u) << run.output;
+  std::vector<std::string> headings;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    EXPECT_LE(lines[i].size(), 100u) << lines[i];
+    if (i > 2 && !lines[i].empty() && lines[i][0] != ' ') {
+      headings.push_back(lines[i].substr(0, lines[i].find(':')));
+    }
+    if (lines[i].size() > 2 && lines[i].rfind("  ", 0) == 0 && lines[i][2] != ' ') {
+      const std::string verb = lines[i].substr(2, lines[i].find(' ', 2) - 2);
+      ASSERT_LT(i + 1, lines.size());
+      EXPECT_TRUE(contains(lines[i + 1], "  wbi " + verb + " "))
+          << "the example of " << verb << ": " << lines[i + 1];
+    }
+  }
+  EXPECT_EQ(headings,
+            (std::vector<std::string>{"run", "watch", "control", "record", "model", "robot"}))
+      << run.output;
+  EXPECT_EQ(listed_verbs(run.output).size(), 14u) << run.output;
+}
+
+// `wbi WORDS --help` exits 0 and ends with an "Example:"/"Examples:" section
+// whose last command names `wbi WORDS`. Returns the help.
+std::string expect_help_ends_with_example(const std::vector<std::string>& words) {
+  std::string command = "wbi";
+  for (const auto& word : words) {
+    command += " " + word;
+  }
+  auto args = words;
+  args.push_back("--help");
+  const auto run = wbi_cli(args);
+  EXPECT_EQ(run.code, 0) << command << " --help:\n" << run.output;
+  const auto section = run.output.rfind("\nExample");
+  EXPECT_NE(section, std::string::npos) << command << " --help has no examples:\n" << run.output;
+  if (section == std::string::npos) {
+    return run.output;
+  }
+  const auto examples = lines_of(run.output.substr(section + 1));
+  for (std::size_t i = 1; i < examples.size(); ++i) {
+    EXPECT_EQ(examples[i].rfind("  ", 0), 0u)
+        << command << " --help: the examples are not its last section:\n"
+        << run.output;
+  }
+  EXPECT_TRUE(contains(examples.back(), command + " ") || examples.back().ends_with(command))
+      << command << " --help does not end with an example of it:\n"
+      << run.output;
+  return run.output;
+}
+
+// Every verb of the table, and every sub-command of those that have some
+// (`usage: wbi VERB {a,b,c}`), ends its --help with an example of itself.
+TEST(Cli, EveryVerbsHelpEndsWithAnExample) {
+  const auto verbs = listed_verbs(wbi_cli({"--help"}).output);
+  ASSERT_FALSE(verbs.empty());
+  for (const auto& verb : verbs) {
+    const std::string help = expect_help_ends_with_example({verb});
+    const std::string usage = "usage: wbi " + verb + " {";
+    if (help.rfind(usage, 0) != 0) {
+      continue;
+    }
+    const auto end = help.find('}');
+    std::istringstream names(help.substr(usage.size(), end - usage.size()));
+    for (std::string sub; std::getline(names, sub, ',');) {
+      expect_help_ends_with_example({verb, sub});
+    }
   }
 }
 
@@ -60,15 +155,6 @@ TEST(Cli, UnknownVerbFailsWithMessage) {
   const auto run = wbi_cli({"frobnicate"});
   EXPECT_EQ(run.code, 1);
   EXPECT_TRUE(contains(run.output, "unknown verb 'frobnicate'")) << run.output;
-}
-
-TEST(Cli, EveryVerbHasHelp) {
-  for (const char* verb :
-       {"topic", "events", "model", "robot", "estimate", "bag", "launch", "render"}) {
-    const auto run = wbi_cli({verb, "--help"});
-    EXPECT_EQ(run.code, 0) << verb << ": " << run.output;
-    EXPECT_TRUE(contains(run.output, "usage: wbi")) << run.output;
-  }
 }
 
 // `wbi robot check`: a valid file is summarised; an error is the parser's one line, exit 1.

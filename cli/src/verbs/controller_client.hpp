@@ -13,6 +13,11 @@
 
 namespace wbi::cli {
 
+// The notes of `wbi controller --help` and `wbi param --help`.
+inline constexpr const char* kWhichRobotNote =
+    "Without --robot they ask the only robot with a controller host on the domain\n"
+    "(named on stderr); with several, the error lists them.\n";
+
 // Declares --robot and --timeout, and the join options.
 void add_controller_host_options(Options& options);
 
