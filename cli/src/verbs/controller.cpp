@@ -25,7 +25,8 @@ int run_list(Args args) {
   options.example(kListExample,
                   "the only robot's controllers (wbi launch "
                   "deploy/arm_controller_host.yaml)");
-  options.example("wbi controller list --robot arm --domain 5", "the arm's, on domain 5");
+  options.example("wbi controller list --robot arm --deploy deploy/arm_controller_host.yaml",
+                  "the arm's, joining the deployment as its file says (domain, network)");
   if (!options.parse(args)) {
     return kExitOk;
   }

@@ -43,8 +43,7 @@ const char* const kModelNotes =
 // The project's arm (models/arm7.urdf: fixed to `world`, joint_1 … joint_7, frame ee_link).
 const char* const kInfoExample = "wbi model info models/arm7.urdf";
 const char* const kEvalExample =
-    "echo '{\"q\": [0, 0.4, 0, 1.6, 0, 1.14, 0], \"frames\": [\"ee_link\"]}' | "
-    "wbi model eval models/arm7.urdf --state -";
+    "echo '{\"q\": [0, 0.4, 0, 1.6, 0, 1.14, 0]}' | wbi model eval models/arm7.urdf --state -";
 const char* const kBenchExample = "wbi model bench models/arm7.urdf";
 const char* const kMjcfExample = "wbi model mjcf models/arm7.urdf -o arm7.xml";
 
@@ -195,7 +194,9 @@ int run_eval(Args args) {
               "rest at 0")
       .option("armature", "LIST", kArmatureHelp)
       .option("backend", "NAME", kBackendHelp, "wbi");
-  opts.example(kEvalExample, "the arm at its home posture, with its end effector's frame")
+  opts.example(kEvalExample, "the arm at its home posture (models/README.md)")
+      .example("echo '{\"frames\": [\"ee_link\"]}' | wbi model eval models/arm7.urdf --state -",
+               "its end effector's pose, Jacobian and dJ nu at q = 0")
       .example("echo '{}' | wbi model eval models/humanoid.urdf --state - --backend dart",
                "the humanoid at q = 0, computed by DART");
   if (!opts.parse(args)) {

@@ -26,7 +26,8 @@ int run_plugins(Args args) {
   opts.option("deploy", "FILE", "also load the plugins this deploy file names");
   opts.rest("PLUGIN", "a plugin's name or path");
   opts.example("wbi plugins", "what the built-in plugin brings");
-  opts.example("wbi plugins --deploy deploy/demo.yaml", "and the plugins a deploy file names");
+  opts.example("wbi plugins --deploy deploy/demo.yaml",
+               "with the plugins a deploy file names (deploy/demo.yaml: none more)");
   if (!opts.parse(args)) {
     return kExitOk;
   }

@@ -43,7 +43,8 @@ int run_list(Args args) {
   add_join_options(options, true, "observer");
   options.option("wait", "SECONDS", "how long to listen to discovery", "1.0");
   options.example("wbi topic list", "what the processes on the domain publish and subscribe");
-  options.example("wbi topic list --domain 5 --wait 3", "domain 5, listening longer");
+  options.example("WBI_DOMAIN_ID=5 wbi topic list --wait 3",
+                  "on domain 5 (as --domain 5), listening to discovery longer");
   if (!options.parse(args)) {
     return kExitOk;
   }
