@@ -1,9 +1,10 @@
 // `wbi`: the one command-line entry point. Dispatches to the verb named by the
 // first argument (see verb_table.cpp); with no verb it prints help.
+#include <algorithm>
 #include <csignal>
-#include <cstring>
 #include <exception>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,12 +13,21 @@
 
 namespace {
 
+// The verbs by task, each with its help and, under it, an example: what a
+// newcomer reads first, so it fits one screen (about 40 lines, 100 columns).
 void print_help(std::ostream& out) {
   out << "usage: wbi [--help] [--version] VERB [ARGS...]\n\n"
-         "wbi: the whole-body interface over DDS. Each verb has --help.\n\nverbs:\n";
+         "wbi: the whole-body interface over DDS. Each verb's --help ends with examples.\n\n";
+  std::optional<wbi::cli::Task> task;
   for (const auto& verb : wbi::cli::verbs()) {
-    out << "  " << verb.name << std::string(10 - std::strlen(verb.name), ' ') << verb.help
-        << (verb.run == nullptr ? " [not built yet]" : "") << "\n";
+    if (verb.task != task) {
+      task = verb.task;
+      out << wbi::cli::task_heading(verb.task) << "\n";
+    }
+    std::string name = verb.name;
+    name.resize(std::max<std::size_t>(name.size() + 2, 12), ' ');
+    out << "  " << name << verb.help << (verb.run == nullptr ? " [not built yet]" : "") << "\n"
+        << "  " << std::string(name.size(), ' ') << verb.example << "\n";
   }
 }
 

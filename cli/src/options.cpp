@@ -6,6 +6,15 @@
 
 namespace wbi::cli {
 
+std::string examples_text(const std::vector<Example>& examples) {
+  std::string text = examples.size() == 1 ? "Example:\n" : "Examples:\n";
+  for (const auto& example : examples) {
+    text += example.what.empty() ? "" : "  # " + example.what + "\n";
+    text += "  " + example.command + "\n";
+  }
+  return text;
+}
+
 Options::Options(std::string usage, std::string summary)
     : usage_(std::move(usage)), summary_(std::move(summary)) {}
 
@@ -27,6 +36,11 @@ Options& Options::positional(const std::string& name, const std::string& help, b
 
 Options& Options::rest(const std::string& name, const std::string& help) {
   rest_ = Positional{name, help, false};
+  return *this;
+}
+
+Options& Options::example(const std::string& command, const std::string& what) {
+  examples_.push_back({command, what});
   return *this;
 }
 
@@ -152,6 +166,9 @@ std::string Options::help_text() const {
       out << " (default: " << *spec.default_value << ")";
     }
     out << "\n";
+  }
+  if (!examples_.empty()) {
+    out << "\n" << examples_text(examples_);
   }
   return out.str();
 }

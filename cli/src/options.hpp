@@ -11,6 +11,16 @@
 
 namespace wbi::cli {
 
+// A command of --help's closing examples, and what it does (may be empty).
+struct Example {
+  std::string command;
+  std::string what;
+};
+
+// "Examples:" (or "Example:"), then each command under a comment line saying
+// what it does: the last section of every --help, so that it ends with a command.
+std::string examples_text(const std::vector<Example>& examples);
+
 class Options {
  public:
   // usage: e.g. "wbi model info URDF [options]"; summary: one paragraph.
@@ -25,6 +35,8 @@ class Options {
   Options& positional(const std::string& name, const std::string& help, bool required = true);
   // Accept any number of extra positionals after the declared ones.
   Options& rest(const std::string& name, const std::string& help);
+  // A command for the examples that end --help (every verb has at least one).
+  Options& example(const std::string& command, const std::string& what = "");
 
   // Parses args. Returns false when --help was given (help already printed to stdout).
   // Throws UsageError naming the offending argument otherwise.
@@ -59,6 +71,7 @@ class Options {
   std::vector<Spec> specs_;
   std::vector<Positional> positionals_;
   std::optional<Positional> rest_;
+  std::vector<Example> examples_;
   std::map<std::string, std::string> values_;
   std::vector<std::string> rest_values_;
 };

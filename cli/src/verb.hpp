@@ -1,6 +1,7 @@
 // A verb of the `wbi` command line: one file per verb in verbs/, registered in
 // verb_table.cpp. The verb's run() gets the arguments after its name and
-// returns the process exit code; errors are thrown (see main.cpp).
+// returns the process exit code; errors are thrown (see main.cpp). `wbi --help`
+// lists the verbs by the task they serve, each with its help and an example.
 #pragma once
 
 #include <span>
@@ -12,9 +13,17 @@ namespace wbi::cli {
 
 using Args = std::span<const std::string>;
 
+// The tasks `wbi --help` groups the verbs by, in its order.
+enum class Task { run, watch, control, record, model, robot };
+
+// "run: start a deployment", the heading of a task's verbs.
+const char* task_heading(Task task);
+
 struct Verb {
   const char* name;
-  const char* help;  // one line, shown by `wbi --help`
+  Task task;
+  const char* help;     // one line, shown by `wbi --help`
+  const char* example;  // one command, shown by `wbi --help` under the help
   int (*run)(Args args);
 };
 
@@ -24,7 +33,7 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Every verb, in the order `wbi --help` lists them.
+// Every verb, in the order `wbi --help` lists them (by task).
 std::span<const Verb> verbs();
 
 // Exit codes shared by all verbs.

@@ -266,7 +266,24 @@ std::vector<TopicInfo> Participant::discovered_topics() const { return impl_->di
 
 std::optional<TopicInfo> Participant::wait_for_topic(const std::string& topic,
                                                      std::chrono::nanoseconds timeout) const {
-  return impl_->wait_for_topic(topic, timeout);
+  std::optional<TopicInfo> found;
+  impl_->wait_for_topics(
+      [&](const std::vector<TopicInfo>& topics) {
+        for (const auto& info : topics) {
+          if (info.name == topic) {
+            found = info;
+            return true;
+          }
+        }
+        return false;
+      },
+      timeout);
+  return found;
+}
+
+bool Participant::wait_for_topics(const std::function<bool(const std::vector<TopicInfo>&)>& holds,
+                                  std::chrono::nanoseconds timeout) const {
+  return impl_->wait_for_topics(holds, timeout);
 }
 
 }  // namespace wbi::dds

@@ -252,20 +252,11 @@ std::vector<TopicInfo> ParticipantImpl::discovered_topics() const {
   return collect_topics();
 }
 
-std::optional<TopicInfo> ParticipantImpl::wait_for_topic(const std::string& topic,
-                                                         std::chrono::nanoseconds timeout) const {
-  std::optional<TopicInfo> found;
+bool ParticipantImpl::wait_for_topics(
+    const std::function<bool(const std::vector<TopicInfo>&)>& holds,
+    std::chrono::nanoseconds timeout) const {
   std::unique_lock lock(discovery_mutex_);
-  discovery_changed_.wait_for(lock, timeout, [&] {
-    for (auto& info : collect_topics()) {
-      if (info.name == topic) {
-        found = std::move(info);
-        return true;
-      }
-    }
-    return false;
-  });
-  return found;
+  return discovery_changed_.wait_for(lock, timeout, [&] { return holds(collect_topics()); });
 }
 
 }  // namespace wbi::dds::detail

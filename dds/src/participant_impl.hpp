@@ -61,8 +61,8 @@ class ParticipantImpl : public fdds::DomainParticipantListener {
   fdds::DataReaderQos reader_qos(const std::string& profile) const;
 
   std::vector<TopicInfo> discovered_topics() const;
-  std::optional<TopicInfo> wait_for_topic(const std::string& topic,
-                                          std::chrono::nanoseconds timeout) const;
+  bool wait_for_topics(const std::function<bool(const std::vector<TopicInfo>&)>& holds,
+                       std::chrono::nanoseconds timeout) const;
 
   std::vector<ParticipantInfo> publishers_of(const std::string& topic) const;
 

@@ -1,10 +1,14 @@
-// The `wbi` command line as a user meets it: help, version, exit codes, clear
-// errors, and `wbi topic list|echo` against a real publisher process.
+// The `wbi` command line as a user meets it: help that teaches (verbs by task,
+// examples), version, exit codes, clear errors, `wbi topic list|echo` against
+// a real publisher process, and `wbi controller`/`wbi param` finding the only
+// robot with a controller host on the domain.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -31,13 +35,107 @@ bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+// The verbs `wbi --help` lists (the verb table): the first word of each line
+// indented by two spaces.
+std::vector<std::string> listed_verbs(const std::string& help) {
+  std::vector<std::string> verbs;
+  for (const auto& line : lines_of(help)) {
+    if (line.size() > 2 && line.rfind("  ", 0) == 0 && line[2] != ' ') {
+      verbs.push_back(line.substr(2, line.find(' ', 2) - 2));
+    }
+  }
+  return verbs;
+}
+
 TEST(Cli, HelpListsEveryVerb) {
   const auto run = wbi_cli({"--help"});
   EXPECT_EQ(run.code, 0);
-  for (const char* verb : {"launch", "record", "play", "bag", "render", "topic", "events", "model",
-                           "robot", "estimate"}) {
+  for (const char* verb : {"launch", "topic", "events", "bridge", "controller", "param", "record",
+                           "play", "bag", "render", "model", "estimate", "robot", "plugins"}) {
     EXPECT_TRUE(contains(run.output, std::string("\n  ") + verb + " ")) << verb << "\n"
                                                                         << run.output;
+  }
+}
+
+// `wbi --help` groups the verbs by task, each with its help and under it an
+// example naming it; it fits a screen (40 lines of at most 100 columns).
+TEST(Cli, HelpGroupsTheVerbsByTaskWithAnExampleEach) {
+  const auto run = wbi_cli({"--help"});
+  ASSERT_EQ(run.code, 0) << run.output;
+  const auto lines = lines_of(run.output);
+  EXPECT_LE(lines.size(), 40u) << run.output;
+  std::vector<std::string> headings;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    EXPECT_LE(lines[i].size(), 100u) << lines[i];
+    if (i > 2 && !lines[i].empty() && lines[i][0] != ' ') {
+      headings.push_back(lines[i].substr(0, lines[i].find(':')));
+    }
+    if (lines[i].size() > 2 && lines[i].rfind("  ", 0) == 0 && lines[i][2] != ' ') {
+      const std::string verb = lines[i].substr(2, lines[i].find(' ', 2) - 2);
+      ASSERT_LT(i + 1, lines.size());
+      EXPECT_TRUE(contains(lines[i + 1], "  wbi " + verb + " "))
+          << "the example of " << verb << ": " << lines[i + 1];
+    }
+  }
+  EXPECT_EQ(headings,
+            (std::vector<std::string>{"run", "watch", "control", "record", "model", "robot"}))
+      << run.output;
+  EXPECT_EQ(listed_verbs(run.output).size(), 14u) << run.output;
+}
+
+// `wbi WORDS --help` exits 0 and ends with an "Example:"/"Examples:" section
+// whose last command names `wbi WORDS`. Returns the help.
+std::string expect_help_ends_with_example(const std::vector<std::string>& words) {
+  std::string command = "wbi";
+  for (const auto& word : words) {
+    command += " " + word;
+  }
+  auto args = words;
+  args.push_back("--help");
+  const auto run = wbi_cli(args);
+  EXPECT_EQ(run.code, 0) << command << " --help:\n" << run.output;
+  const auto section = run.output.rfind("\nExample");
+  EXPECT_NE(section, std::string::npos) << command << " --help has no examples:\n" << run.output;
+  if (section == std::string::npos) {
+    return run.output;
+  }
+  const auto examples = lines_of(run.output.substr(section + 1));
+  for (std::size_t i = 1; i < examples.size(); ++i) {
+    EXPECT_EQ(examples[i].rfind("  ", 0), 0u)
+        << command << " --help: the examples are not its last section:\n"
+        << run.output;
+  }
+  EXPECT_TRUE(contains(examples.back(), command + " ") || examples.back().ends_with(command))
+      << command << " --help does not end with an example of it:\n"
+      << run.output;
+  return run.output;
+}
+
+// Every verb of the table, and every sub-command of those that have some
+// (`usage: wbi VERB {a,b,c}`), ends its --help with an example of itself.
+TEST(Cli, EveryVerbsHelpEndsWithAnExample) {
+  const auto verbs = listed_verbs(wbi_cli({"--help"}).output);
+  ASSERT_FALSE(verbs.empty());
+  for (const auto& verb : verbs) {
+    const std::string help = expect_help_ends_with_example({verb});
+    const std::string usage = "usage: wbi " + verb + " {";
+    if (help.rfind(usage, 0) != 0) {
+      continue;
+    }
+    const auto end = help.find('}');
+    std::istringstream names(help.substr(usage.size(), end - usage.size()));
+    for (std::string sub; std::getline(names, sub, ',');) {
+      expect_help_ends_with_example({verb, sub});
+    }
   }
 }
 
@@ -57,15 +155,6 @@ TEST(Cli, UnknownVerbFailsWithMessage) {
   const auto run = wbi_cli({"frobnicate"});
   EXPECT_EQ(run.code, 1);
   EXPECT_TRUE(contains(run.output, "unknown verb 'frobnicate'")) << run.output;
-}
-
-TEST(Cli, EveryVerbHasHelp) {
-  for (const char* verb :
-       {"topic", "events", "model", "robot", "estimate", "bag", "launch", "render"}) {
-    const auto run = wbi_cli({verb, "--help"});
-    EXPECT_EQ(run.code, 0) << verb << ": " << run.output;
-    EXPECT_TRUE(contains(run.output, "usage: wbi")) << run.output;
-  }
 }
 
 // `wbi robot check`: a valid file is summarised; an error is the parser's one line, exit 1.
@@ -142,6 +231,52 @@ TEST(Cli, TopicListAndEchoSeeAnotherProcess) {
   EXPECT_GT(rate, 0.0) << hz.output;
   EXPECT_LT(rate, 200.0) << hz.output;
   EXPECT_EQ(talker.stop(), 0);
+}
+
+// `wbi controller` and `wbi param` without --robot: the only robot with a
+// controller host on the test's domain, named on stderr; with several, one
+// line listing them; with none, one line saying so. The hosts are stubs
+// (wbi_test_controller_host): real processes on the domain, no robot.
+TEST(Cli, ControllerAndParamUseTheOnlyRobotOnTheDomain) {
+  const char* domain_env = std::getenv("WBI_DOMAIN_ID");
+  const std::string domain = "domain " + std::string(domain_env != nullptr ? domain_env : "0");
+  const auto stub = wbi::test::binary_dir() / "tests" / "wbi_test_controller_host";
+
+  const auto none = wbi_cli({"controller", "list", "--timeout", "1"});
+  EXPECT_EQ(none.code, 1) << none.output;
+  EXPECT_TRUE(contains(none.output,
+                       "wbi controller: no controller host found on " + domain + " within 1 s"))
+      << none.output;
+  EXPECT_EQ(std::count(none.output.begin(), none.output.end(), '\n'), 1) << none.output;
+
+  ChildProcess arm(stub, {"arm"});
+  ASSERT_TRUE(arm.wait_for_output("stub: ready", 20s)) << arm.output();
+  const std::string using_arm =
+      "using robot 'arm', the only one with a controller host on " + domain + "\n";
+  const auto list = wbi_cli({"controller", "list"});
+  EXPECT_EQ(list.code, 0) << list.output;
+  EXPECT_TRUE(contains(list.output, "wbi controller: " + using_arm)) << list.output;
+  EXPECT_TRUE(contains(list.output, "* stub  [stub]  active")) << list.output;
+  const auto get = wbi_cli({"param", "get", "stub", "gain"});
+  EXPECT_EQ(get.code, 0) << get.output;
+  EXPECT_TRUE(contains(get.output, "wbi param: " + using_arm)) << get.output;
+  EXPECT_TRUE(contains(get.output, "gain = 1\n")) << get.output;
+
+  ChildProcess others(stub, {"leg", "hand"});
+  ASSERT_TRUE(others.wait_for_output("stub: ready", 20s)) << others.output();
+  const auto several = wbi_cli({"param", "list", "stub"});
+  EXPECT_EQ(several.code, 1) << several.output;
+  EXPECT_TRUE(contains(several.output, "wbi param: 3 robots have a controller host on " + domain +
+                                           " (arm, hand, leg): give --robot NAME"))
+      << several.output;
+  EXPECT_EQ(std::count(several.output.begin(), several.output.end(), '\n'), 1) << several.output;
+  const auto named = wbi_cli({"controller", "list", "--robot", "leg"});
+  EXPECT_EQ(named.code, 0) << named.output;
+  EXPECT_FALSE(contains(named.output, "using robot")) << named.output;
+  EXPECT_TRUE(contains(named.output, "* stub  [stub]  active")) << named.output;
+
+  EXPECT_EQ(others.stop(), 0) << others.output();
+  EXPECT_EQ(arm.stop(), 0) << arm.output();
 }
 
 }  // namespace

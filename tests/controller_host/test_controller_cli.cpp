@@ -1,7 +1,8 @@
 // The controller host driven from other processes: `wbi launch` runs the arm
 // with a host of two controllers; `wbi controller` and `wbi param` (each a
-// process of its own) list them, refuse what cannot be done with one line and
-// no change, set a gain, and switch the arm to hold.
+// process of its own; some without --robot: the arm is the only robot) list
+// them, refuse what cannot be done with one line and no change, set a gain,
+// and switch the arm to hold.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -19,10 +20,13 @@ struct Outcome {
   std::string output;
 };
 
-// One `wbi` command against the launched robot, bounded in time.
-Outcome wbi_command(std::vector<std::string> args) {
-  args.push_back("--robot");
-  args.push_back("arm");
+// One `wbi` command against the launched robot, bounded in time; with
+// name_robot false, without --robot (the arm is the only robot on the domain).
+Outcome wbi_command(std::vector<std::string> args, bool name_robot = true) {
+  if (name_robot) {
+    args.push_back("--robot");
+    args.push_back("arm");
+  }
   wbi::test::ChildProcess command(wbi::test::binary_dir() / "bin" / "wbi", args);
   const auto code = command.wait(30s);
   return {code.value_or(-1), command.output()};
@@ -39,8 +43,10 @@ TEST(ControllerCli, ListSetRefuseAndSwitchWhileTheArmRuns) {
        "--duration", "60"});
   ASSERT_TRUE(launch.wait_for_output("max joint error", 60s)) << launch.output();
 
-  const auto list = wbi_command({"controller", "list"});
+  const auto list = wbi_command({"controller", "list"}, false);
   ASSERT_EQ(list.code, 0) << list.output;
+  EXPECT_TRUE(contains(list.output, "using robot 'arm', the only one with a controller host"))
+      << list.output;
   EXPECT_TRUE(contains(list.output, "* pd  [pd_gravity]  active")) << list.output;
   EXPECT_TRUE(contains(list.output, "  hold  [hold]  inactive")) << list.output;
 
@@ -53,7 +59,7 @@ TEST(ControllerCli, ListSetRefuseAndSwitchWhileTheArmRuns) {
   EXPECT_TRUE(contains(not_live.output, "cannot change while the controller is active"))
       << not_live.output;
 
-  const auto halved = wbi_command({"param", "set", "pd", "gain_scale", "0.5"});
+  const auto halved = wbi_command({"param", "set", "pd", "gain_scale", "0.5"}, false);
   ASSERT_EQ(halved.code, 0) << halved.output;
   EXPECT_TRUE(contains(halved.output, "pd.gain_scale = 0.5")) << halved.output;
   const auto get = wbi_command({"param", "get", "pd", "gain_scale"});

@@ -162,7 +162,15 @@ TEST(Cli, BadInput) {
     }
     return "no error";
   };
-  EXPECT_NE(error_of({}).find("usage: "), std::string::npos);
+  {
+    // No sub-verb: the usage, which lists them, and exit 1 (as every verb's sub-commands).
+    std::ostringstream usage;
+    std::streambuf* old = std::cout.rdbuf(usage.rdbuf());
+    const int rc = wbi::cli::run_model({});
+    std::cout.rdbuf(old);
+    EXPECT_EQ(rc, 1);
+    EXPECT_EQ(usage.str().find("usage: wbi model {info,eval,bench,mjcf}"), 0u) << usage.str();
+  }
   EXPECT_NE(error_of({"frob"}).find("frob"), std::string::npos);
   EXPECT_NE(error_of({"info"}).find("usage: "), std::string::npos);
   EXPECT_NE(error_of({"info", "/no/such.urdf"}).find("/no/such.urdf"), std::string::npos);

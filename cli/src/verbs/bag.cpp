@@ -245,6 +245,8 @@ void print_text(const std::string& file, const mcap::FileInfo& info, const Summa
   }
 }
 
+constexpr const char* kInfoExample = "wbi bag info run.mcap";
+
 int run_info(Args args) {
   Options options("wbi bag info FILE [options]",
                   "Prints what an MCAP recording holds: its duration, start and end, size and\n"
@@ -257,6 +259,8 @@ int run_info(Args args) {
   options.positional("FILE", "the .mcap file");
   options.flag("json", "print one JSON object instead of text");
   options.flag("verify", "also read every chunk and check every CRC (reads the whole file)");
+  options.example(kInfoExample, "topics, types, counts, rates and events of a wbi record file");
+  options.example("wbi bag info run.mcap --verify --json", "every CRC checked, as JSON");
   if (!options.parse(args)) {
     return kExitOk;
   }
@@ -291,14 +295,15 @@ int run_info(Args args) {
 }  // namespace
 
 int run_bag_compare(Args args);  // bag_compare.cpp
+extern const char* const kBagCompareExample;
 
 int run_bag(Args args) {
   return run_subcommand(
       "bag", args,
       {
-          {"info", "print what an MCAP recording holds", run_info},
+          {"info", "print what an MCAP recording holds", kInfoExample, run_info},
           {"compare", "whether two recordings hold the same messages (first difference)",
-           run_bag_compare},
+           kBagCompareExample, run_bag_compare},
       });
 }
 

@@ -27,6 +27,9 @@
 
 namespace wbi::cli {
 
+extern const char* const kBagCompareExample;  // also in `wbi bag --help`
+const char* const kBagCompareExample = "wbi bag compare run1.mcap run2.mcap";
+
 namespace {
 
 struct TopicMessages {
@@ -175,6 +178,9 @@ int run_compare(Args args) {
   options.positional("A", "the first .mcap file");
   options.positional("B", "the second .mcap file");
   options.option("topic", "REGEX", "compare only the topics this matches (search)", "");
+  options.example(kBagCompareExample, "two recordings, every topic");
+  options.example("wbi bag compare run1.mcap run2.mcap --topic ground_truth",
+                  "the ground truth of two lockstep runs (scripts/repro-check does so)");
   if (!options.parse(args)) {
     return kExitOk;
   }

@@ -100,6 +100,9 @@ int run_bridge(Args args) {
                  "2");
   options.option("duration", "SECONDS", "stop after this long (0: until Ctrl-C)", "0");
   add_join_options(options);
+  options.example("wbi bridge", "then open ws://127.0.0.1:8765 in Foxglove or Lichtblick");
+  options.example("wbi bridge --robot arm --ground-truth",
+                  "the arm only, drawn from the simulation's ground truth");
   if (!options.parse(args)) {
     return kExitOk;
   }

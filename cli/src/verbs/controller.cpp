@@ -14,10 +14,19 @@ namespace wbi::cli {
 
 namespace {
 
+// Against `wbi launch deploy/arm_controller_host.yaml` (no --robot: the only robot).
+constexpr const char* kListExample = "wbi controller list";
+constexpr const char* kSwitchExample = "wbi controller switch --activate hold --deactivate pd";
+
 int run_list(Args args) {
-  Options options("wbi controller list --robot NAME [options]",
+  Options options("wbi controller list [--robot NAME] [options]",
                   "Lists the controllers of the robot's controller host; * marks the active one.");
   add_controller_host_options(options);
+  options.example(kListExample,
+                  "the only robot's controllers (wbi launch "
+                  "deploy/arm_controller_host.yaml)");
+  options.example("wbi controller list --robot arm --deploy deploy/arm_controller_host.yaml",
+                  "the arm's, joining the deployment as its file says (domain, network)");
   if (!options.parse(args)) {
     return kExitOk;
   }
@@ -35,13 +44,16 @@ int run_list(Args args) {
 
 int run_switch(Args args) {
   Options options(
-      "wbi controller switch --robot NAME --activate A --deactivate B [options]",
+      "wbi controller switch --activate A --deactivate B [--robot NAME] [options]",
       "Deactivates B and activates A at one tick boundary, or refuses the switch whole\n"
       "(an unknown name, B not active, A not configured) and changes nothing. Prints\n"
       "when it took effect and the joint-torque step it made.");
   options.option("activate", "NAME", "the controller to activate");
   options.option("deactivate", "NAME", "the controller to deactivate (the active one)");
   add_controller_host_options(options);
+  options.example(kSwitchExample, "from pd to hold, at one tick");
+  options.example("wbi controller switch --activate pd --deactivate hold --robot arm",
+                  "and back, naming the robot");
   if (!options.parse(args)) {
     return kExitOk;
   }
@@ -66,9 +78,11 @@ int run_controller(Args args) {
   return run_subcommand(
       "controller", args,
       {
-          {"list", "the controllers of a robot's controller host", run_list},
-          {"switch", "activate one and deactivate another at one tick boundary", run_switch},
-      });
+          {"list", "the controllers of a robot's controller host", kListExample, run_list},
+          {"switch", "activate one and deactivate another at one tick boundary", kSwitchExample,
+           run_switch},
+      },
+      kWhichRobotNote);
 }
 
 }  // namespace wbi::cli

@@ -78,6 +78,11 @@ int run_estimate(Args args) {
       .option("output", "OUT.csv", "where to write the estimates");
   std::set<std::string> parameter_names;
   declare_method_options(options, parameter_names);
+  options.example("wbi estimate --list", "the methods");
+  options.example(
+      "wbi estimate --method split-kalman --input estimation/examples/encoder.csv "
+      "--output dq.csv",
+      "two arm joints read by encoders at 1 kHz (a file of the repository)");
   if (!options.parse(args)) {
     return kExitOk;
   }

@@ -56,6 +56,11 @@ int run_events(Args args) {
   options.option("timeout", "SECONDS",
                  "stop after this long (0: never); with --count, exit 1 when fewer came", "0");
   add_join_options(options, true, "observer");
+  options.example("wbi events", "everything that happens on the domain, until Ctrl-C");
+  options.example("wbi events --robot arm --severity warning",
+                  "the arm's warnings, errors and fatal events");
+  options.example("wbi events --kind CONTROLLER_SWITCHED --count 1 --timeout 60",
+                  "wait up to a minute for a controller switch (exit 1 if none)");
   if (!options.parse(args)) {
     return kExitOk;
   }

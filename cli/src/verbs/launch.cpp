@@ -32,6 +32,12 @@ int run_launch(Args args) {
                  "hosts and are waited for by their topics as usual)");
   // Above the file's blocks and the environment, for every process started.
   add_join_options(options, false);
+  options.example("wbi launch deploy/demo.yaml --duration 8",
+                  "the demo: PD + gravity compensation moves the simulated arm, for 8 s");
+  options.example("wbi launch deploy/arm_controller_host.yaml",
+                  "the arm under a controller host, to drive with wbi controller and wbi param");
+  options.example("wbi launch deploy/demo.yaml --one-process --duration 8",
+                  "the same demo, every process's components in one wbi_host");
   if (!options.parse(args)) {
     return kExitOk;
   }

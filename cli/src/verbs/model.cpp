@@ -23,6 +23,7 @@
 #include <wbi/robot_config/robot_config.hpp>
 
 #include "../options.hpp"
+#include "../subcommands.hpp"
 #include "verbs.hpp"
 
 namespace wbi::cli {
@@ -34,20 +35,17 @@ namespace {
 namespace wm = wbi::model;
 namespace inspect = wbi::model_inspect;
 
-const char* const kModelUsage = "wbi model {info|eval|bench|mjcf} URDF [options]";
-const char* const kModelHelp =
-    "Inspect and evaluate robot models (rigid-body model library).\n"
-    "\n"
-    "sub-verbs:\n"
-    "  info   joints with limits, frames, bodies after lumping, total mass, base kind\n"
-    "  eval   evaluate M, h, G, CoM, centroidal momentum and frame quantities at a JSON state\n"
-    "  bench  median ns per call of the main algorithms at random states\n"
-    "  mjcf   write the model as MJCF, MuJoCo's XML, the same multibody to the last bit\n"
-    "\n"
-    "eval and bench take --backend wbi|dart: the dynamics library that computes (default wbi).\n"
-    "All three take --armature JOINT=VALUE,...: per-joint rotor inertia (default 0).\n"
-    "\n"
-    "Run `wbi model SUBVERB --help` for the options of each.\n";
+const char* const kModelNotes =
+    "Each reads a URDF (the project's robots: models/). eval and bench take\n"
+    "--backend wbi|dart: the dynamics library that computes (default wbi). info, eval\n"
+    "and bench take --armature JOINT=VALUE,...: per-joint rotor inertia (default 0).\n";
+
+// The project's arm (models/arm7.urdf: fixed to `world`, joint_1 … joint_7, frame ee_link).
+const char* const kInfoExample = "wbi model info models/arm7.urdf";
+const char* const kEvalExample =
+    "echo '{\"q\": [0, 0.4, 0, 1.6, 0, 1.14, 0]}' | wbi model eval models/arm7.urdf --state -";
+const char* const kBenchExample = "wbi model bench models/arm7.urdf";
+const char* const kMjcfExample = "wbi model mjcf models/arm7.urdf -o arm7.xml";
 
 // "a,b,c" → {"a","b","c"}
 std::vector<std::string> split_list(const std::string& text, const std::string& option = "joints",
@@ -158,6 +156,10 @@ int run_info(Args args) {
               "rest at 0")
       .option("armature", "LIST", kArmatureHelp)
       .flag("json", "print JSON instead of text");
+  opts.example(kInfoExample, "the project's 7-joint arm")
+      .example("wbi model info models/humanoid.urdf --joints l_hip_pitch,l_knee,l_ankle_pitch",
+               "a reduced humanoid: three joints of its left leg, the others locked at 0")
+      .example("wbi model info models/humanoid.urdf --json", "as JSON");
   if (!opts.parse(args)) {
     return kExitOk;
   }
@@ -192,6 +194,11 @@ int run_eval(Args args) {
               "rest at 0")
       .option("armature", "LIST", kArmatureHelp)
       .option("backend", "NAME", kBackendHelp, "wbi");
+  opts.example(kEvalExample, "the arm at its home posture (models/README.md)")
+      .example("echo '{\"frames\": [\"ee_link\"]}' | wbi model eval models/arm7.urdf --state -",
+               "its end effector's pose, Jacobian and dJ nu at q = 0")
+      .example("echo '{}' | wbi model eval models/humanoid.urdf --state - --backend dart",
+               "the humanoid at q = 0, computed by DART");
   if (!opts.parse(args)) {
     return kExitOk;
   }
@@ -226,6 +233,9 @@ int run_bench(Args args) {
       .option("batch", "N", "calls per batch", "200")
       .option("backend", "NAME", kBackendHelp, "wbi")
       .flag("json", "print JSON instead of text");
+  opts.example(kBenchExample, "the arm's algorithms, timed")
+      .example("wbi model bench models/humanoid.urdf --backend dart --json",
+               "the humanoid's, computed by DART, as JSON");
   if (!opts.parse(args)) {
     return kExitOk;
   }
@@ -296,6 +306,11 @@ int run_mjcf(Args args) {
       .option("integrator", "NAME",
               "MuJoCo's integrator: euler, rk4 or implicit (default euler, or the robot "
               "config's)");
+  opts.example(kMjcfExample, "the arm for MuJoCo")
+      .example(
+          "wbi model mjcf models/humanoid.urdf --robot-config deploy/robots/humanoid.yaml "
+          "-o humanoid.xml",
+          "what the MuJoCo engine loads for the humanoid: contacts, ground, sensors");
   if (!opts.parse(args)) {
     return kExitOk;
   }
@@ -357,28 +372,19 @@ int run_mjcf(Args args) {
 }  // namespace
 
 int run_model(Args args) {
-  if (args.empty()) {
-    throw UsageError("missing sub-verb: info, eval, bench or mjcf");
-  }
-  const std::string& sub = args[0];
-  if (sub == "--help" || sub == "-h") {
-    std::cout << "usage: " << kModelUsage << "\n\n" << kModelHelp;
-    return kExitOk;
-  }
-  const Args rest = args.subspan(1);
-  if (sub == "info") {
-    return run_info(rest);
-  }
-  if (sub == "eval") {
-    return run_eval(rest);
-  }
-  if (sub == "bench") {
-    return run_bench(rest);
-  }
-  if (sub == "mjcf") {
-    return run_mjcf(rest);
-  }
-  throw UsageError("unknown sub-verb '" + sub + "' (expected info, eval, bench or mjcf)");
+  return run_subcommand(
+      "model", args,
+      {
+          {"info", "joints with limits, frames, bodies after lumping, total mass, base kind",
+           kInfoExample, run_info},
+          {"eval", "M, h, G, CoM, centroidal momentum and frame quantities at a JSON state",
+           kEvalExample, run_eval},
+          {"bench", "median ns per call of the main algorithms at random states", kBenchExample,
+           run_bench},
+          {"mjcf", "write the model as MJCF, MuJoCo's XML, the same multibody to the last bit",
+           kMjcfExample, run_mjcf},
+      },
+      kModelNotes);
 }
 
 }  // namespace wbi::cli

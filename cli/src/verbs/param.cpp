@@ -39,17 +39,25 @@ void print_parameter(const controllers::ParameterInfo& parameter, bool details) 
   std::cout << "\n";
 }
 
+// Against `wbi launch deploy/arm_controller_host.yaml` (no --robot: the only robot).
+constexpr const char* kListExample = "wbi param list pd";
+constexpr const char* kGetExample = "wbi param get pd gain_scale";
+constexpr const char* kSetExample = "wbi param set pd gain_scale 0.5";
+
 int refused(const char* what, const Error& refusal) {
   std::cerr << "wbi param " << what << ": " << refusal.what() << "\n";
   return kExitError;
 }
 
 int run_list(Args args) {
-  Options options("wbi param list CONTROLLER --robot NAME [options]",
+  Options options("wbi param list CONTROLLER [--robot NAME] [options]",
                   "Lists a controller's parameters: value, unit, range, whether it may change\n"
                   "while the controller is active (live), and what it does.");
   options.positional("CONTROLLER", "a controller of the robot's host (wbi controller list)");
   add_controller_host_options(options);
+  options.example(kListExample,
+                  "the parameters of controller pd (wbi launch deploy/arm_controller_host.yaml)");
+  options.example("wbi param list hold --robot arm", "of hold, naming the robot");
   if (!options.parse(args)) {
     return kExitOk;
   }
@@ -65,11 +73,12 @@ int run_list(Args args) {
 }
 
 int run_get(Args args) {
-  Options options("wbi param get CONTROLLER NAME --robot NAME [options]",
+  Options options("wbi param get CONTROLLER NAME [--robot NAME] [options]",
                   "Prints one parameter's current value.");
   options.positional("CONTROLLER", "a controller of the robot's host");
   options.positional("NAME", "the parameter");
   add_controller_host_options(options);
+  options.example(kGetExample, "pd's gain scale");
   if (!options.parse(args)) {
     return kExitOk;
   }
@@ -92,7 +101,7 @@ int run_get(Args args) {
 }
 
 int run_set(Args args) {
-  Options options("wbi param set CONTROLLER NAME VALUE... --robot NAME [options]",
+  Options options("wbi param set CONTROLLER NAME VALUE... [--robot NAME] [options]",
                   "Sets a parameter; the host applies it between two ticks and answers once it\n"
                   "has. A value out of range, of the wrong size, or a parameter that cannot\n"
                   "change while its controller is active is refused with one line.");
@@ -100,6 +109,9 @@ int run_set(Args args) {
   options.positional("NAME", "the parameter");
   options.rest("VALUE", "the value (one per joint for a per-joint parameter)");
   add_controller_host_options(options);
+  options.example(kSetExample, "halve pd's gains while it runs");
+  options.example("wbi param set pd target 0 0.5 0 1 0 0.5 0",
+                  "a new target posture, one value per joint (reached in transition_s)");
   if (!options.parse(args)) {
     return kExitOk;
   }
@@ -136,10 +148,11 @@ int run_param(Args args) {
       "param", args,
       {
           {"list", "a controller's parameters, with unit, range and whether they are live",
-           run_list},
-          {"get", "one parameter's value", run_get},
-          {"set", "change a parameter while the controller runs", run_set},
-      });
+           kListExample, run_list},
+          {"get", "one parameter's value", kGetExample, run_get},
+          {"set", "change a parameter while the controller runs", kSetExample, run_set},
+      },
+      kWhichRobotNote);
 }
 
 }  // namespace wbi::cli

@@ -133,6 +133,10 @@ int run_play(Args raw_args) {
                  "CAP_SYS_NICE; else a warning; 0: off)",
                  "0");
   add_join_options(options);
+  options.example("wbi play run.mcap", "a recording of wbi record, at its recorded pace");
+  options.example("wbi play run.mcap --rate 0.5 --loop", "at half speed, over and over");
+  options.example("wbi play run.mcap --topics 'wbi/arm/state' --clock",
+                  "the arm's state alone, with the recording's time on wbi/clock");
   std::vector<std::string> args(raw_args.begin(), raw_args.end());
   const bool wants_help = std::find(args.begin(), args.end(), "--help") != args.end() ||
                           std::find(args.begin(), args.end(), "-h") != args.end();

@@ -22,9 +22,12 @@ int run_plugins(Args args) {
                "List the component types, controller types and engines a process can make, "
                "with the plugin each comes from: the built-in plugin, the PLUGINs (names "
                "searched in $WBI_PLUGIN_PATH then wbi's plugin folder, or paths), and the "
-               "plugins a deploy file names. Example: wbi plugins my_lab --deploy lab.yaml");
+               "plugins a deploy file names.");
   opts.option("deploy", "FILE", "also load the plugins this deploy file names");
   opts.rest("PLUGIN", "a plugin's name or path");
+  opts.example("wbi plugins", "what the built-in plugin brings");
+  opts.example("wbi plugins --deploy deploy/demo.yaml",
+               "with the plugins a deploy file names (deploy/demo.yaml: none more)");
   if (!opts.parse(args)) {
     return kExitOk;
   }

@@ -90,6 +90,12 @@ int run_record(Args args) {
   options.option("queue", "N", "samples that may wait for the writer thread before drops", "16384");
   add_window_options(options);
   add_join_options(options, true, "observer");
+  options.example("wbi record -o run.mcap --all --duration 10",
+                  "every topic for 10 s (e.g. of wbi launch deploy/demo.yaml)");
+  options.example("wbi record -o arm.mcap 'wbi/arm/.*' --exclude 'wbi/arm/commands'",
+                  "the arm's topics but its commands, until Ctrl-C");
+  options.example("wbi record --window 10:2 --trigger WATCHDOG_TRIP,PROCESS_EXITED -o faults --all",
+                  "10 s before and 2 s after each fault, one file each in faults/");
   if (!options.parse(args)) {
     return kExitOk;
   }

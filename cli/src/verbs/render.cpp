@@ -68,6 +68,11 @@ int run_render(Args args) {
   options.option("start", "S", "first recorded second drawn", "0");
   options.option("end", "S", "last recorded second drawn (default: the end)");
   options.option("speed", "X", "recorded seconds per second of video", "1");
+  options.example("wbi render run.mcap -o run.mp4",
+                  "a recording of the demo (wbi record -o run.mcap --all) as a video");
+  options.example("wbi render run.mcap --png 2 -o frame.png", "the frame at 2 s");
+  options.example("wbi render run.mcap --compare -o compare.mp4",
+                  "the ground truth beside the estimator's state");
   if (!options.parse(args)) {
     return kExitOk;
   }

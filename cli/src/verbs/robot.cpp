@@ -7,17 +7,23 @@
 #include <wbi/robot_config/robot_config.hpp>
 
 #include "../options.hpp"
+#include "../subcommands.hpp"
 #include "verbs.hpp"
 
 namespace wbi::cli {
 
 namespace {
 
+constexpr const char* kCheckExample = "wbi robot check deploy/robots/arm.yaml";
+
 int run_check(Args args) {
   Options opts("wbi robot check FILE",
                "Load a robot config file, check it against its URDF (every key, type, size, "
                "value and joint, link or frame name) and summarise it.");
   opts.positional("FILE", "the robot config file (YAML)");
+  opts.example(kCheckExample, "the project's arm")
+      .example("wbi robot check deploy/robots/humanoid.yaml",
+               "the humanoid: contacts, IMU, F/T sensors");
   if (!opts.parse(args)) {
     return kExitOk;
   }
@@ -50,21 +56,10 @@ int run_check(Args args) {
 }  // namespace
 
 int run_robot(Args args) {
-  if (args.empty()) {
-    throw UsageError("missing sub-verb: check");
-  }
-  const std::string& sub = args[0];
-  if (sub == "--help" || sub == "-h") {
-    std::cout << "usage: wbi robot check FILE\n\n"
-                 "Robot config files (robot_side/robot_config/README.md).\n\n"
-                 "sub-verbs:\n"
-                 "  check  validate a robot config file against its URDF and summarise it\n";
-    return kExitOk;
-  }
-  if (sub == "check") {
-    return run_check(args.subspan(1));
-  }
-  throw UsageError("unknown sub-verb '" + sub + "' (check)");
+  return run_subcommand("robot", args,
+                        {{"check", "validate a robot config file against its URDF and summarise it",
+                          kCheckExample, run_check}},
+                        "Robot config files: robot_side/robot_config/README.md.\n");
 }
 
 }  // namespace wbi::cli

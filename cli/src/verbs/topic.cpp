@@ -26,6 +26,9 @@ using std::chrono::duration;
 using std::chrono::duration_cast;
 using std::chrono::nanoseconds;
 
+constexpr const char* kEchoExample = "wbi topic echo wbi/arm/state --count 1";
+constexpr const char* kHzExample = "wbi topic hz wbi/arm/sensors --duration 3";
+
 nanoseconds seconds(double s) { return duration_cast<nanoseconds>(duration<double>(s)); }
 
 // On a secured deployment, the topic verbs look as the observer (subscribe only).
@@ -39,6 +42,9 @@ int run_list(Args args) {
                   "with their type and the number of writers and readers.");
   add_join_options(options, true, "observer");
   options.option("wait", "SECONDS", "how long to listen to discovery", "1.0");
+  options.example("wbi topic list", "what the processes on the domain publish and subscribe");
+  options.example("WBI_DOMAIN_ID=5 wbi topic list --wait 3",
+                  "on domain 5 (as --domain 5), listening to discovery longer");
   if (!options.parse(args)) {
     return kExitOk;
   }
@@ -79,6 +85,8 @@ int run_echo(Args args) {
   add_join_options(options, true, "observer");
   options.option("count", "N", "exit after N samples (0: until Ctrl-C)", "0");
   options.option("timeout", "SECONDS", "give up when the topic is not found within this time", "5");
+  options.example(kEchoExample, "one estimate of the arm's state (wbi launch deploy/demo.yaml)");
+  options.example("wbi topic echo wbi/events", "every event, until Ctrl-C");
   if (!options.parse(args)) {
     return kExitOk;
   }
@@ -138,6 +146,7 @@ int run_hz(Args args) {
   options.option("window", "SECONDS", "length of a reporting window", "1.0");
   options.option("duration", "SECONDS", "stop after this long (0: until Ctrl-C)", "0");
   options.option("timeout", "SECONDS", "give up when the topic is not found within this time", "5");
+  options.example(kHzExample, "the rate of the arm's sensors, for 3 s");
   if (!options.parse(args)) {
     return kExitOk;
   }
@@ -184,9 +193,9 @@ int run_hz(Args args) {
 int run_topic(Args args) {
   return run_subcommand("topic", args,
                         {
-                            {"list", "list the topics on the domain", run_list},
-                            {"echo", "print the samples of a topic", run_echo},
-                            {"hz", "measure the rate of a topic", run_hz},
+                            {"list", "list the topics on the domain", "wbi topic list", run_list},
+                            {"echo", "print the samples of a topic", kEchoExample, run_echo},
+                            {"hz", "measure the rate of a topic", kHzExample, run_hz},
                         });
 }
 

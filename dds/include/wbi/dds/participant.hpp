@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -68,6 +69,7 @@ struct TopicInfo {
   int readers = 0;
   bool writers_reliable = true;         // every known writer is reliable
   bool writers_transient_local = true;  // every known writer keeps history for late joiners
+  bool operator==(const TopicInfo&) const = default;
 };
 
 // A participant as discovery announces it. wbi's participants announce their
@@ -108,6 +110,12 @@ class Participant {
   // Waits until a remote writer or reader of `topic` is known.
   std::optional<TopicInfo> wait_for_topic(const std::string& topic,
                                           std::chrono::nanoseconds timeout) const;
+  // Waits until `holds` is true of the discovered topics (asked at once and at
+  // each endpoint discovered or removed), at most `timeout`; returns whether it
+  // held. `holds` runs under the discovery lock: it must not call back into
+  // this participant.
+  bool wait_for_topics(const std::function<bool(const std::vector<TopicInfo>&)>& holds,
+                       std::chrono::nanoseconds timeout) const;
 
   // This participant, as others see it.
   const ParticipantInfo& info() const;
