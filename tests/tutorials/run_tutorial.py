@@ -5,7 +5,7 @@ The tutorial's Markdown says what runs:
   ```sh run                 a shell block the reader types: it runs, in order
   ```text expect            what the reader should see: each line is looked for, in
                             order, in the output of the run block just above it;
-                            "…" in a line stands for any text
+                            "…" (and the spaces around it) stands for any text
   ```cpp file=my_lab/x.cpp  a file the reader writes (any language): written there
 Blocks without these words are shown, not run.
 
@@ -117,7 +117,8 @@ def block_seconds(blocks, started):
 
 
 def pattern_of(expected_line):
-    return re.compile(".*".join(re.escape(piece) for piece in expected_line.split("…")))
+    """'…' and the spaces around it stand for any text."""
+    return re.compile(".*".join(re.escape(piece) for piece in re.split(r"\s*…\s*", expected_line)))
 
 
 def check_expectations(blocks, parts, markdown_path):

@@ -14,12 +14,11 @@
 #include <wbi/dds/participant.hpp>
 #include <wbi/dds/producers.hpp>
 #include <wbi/dds/subscriber.hpp>
+#include <wbi/vocabulary/seconds_text.hpp>
 
 #include "wbi/types.hpp"
 
 namespace wbi::proxy {
-
-inline std::string seconds_text(double s) { return std::to_string(s) + " s"; }
 
 // The sample read last: its header, and when it arrived.
 struct LastRead {

@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include <wbi/runtime/process_exit.hpp>
+#include <wbi/vocabulary/seconds_text.hpp>
 
 #include "launcher_impl.hpp"
 
@@ -150,7 +151,7 @@ bool Launcher::wait_until_ready(const Managed& process) {
       }
       if (Clock::now() >= deadline) {
         say(process.spec->name + ": not started: " + topic + " did not appear within " +
-            std::to_string(process.spec->wait_timeout_s) + " s");
+            seconds_text(process.spec->wait_timeout_s));
         return false;
       }
     }
@@ -178,8 +179,8 @@ bool Launcher::wait_until_running(Managed& process) {
       return true;  // ended, not fatal (reap said so; respawn may follow)
     }
     if (Clock::now() >= deadline) {
-      say(process.spec->name + ": not running after " + std::to_string(kStartTimeoutS) +
-          " s: going on with the next process");
+      say(process.spec->name + ": not running after " + seconds_text(kStartTimeoutS) +
+          ": going on with the next process");
       return true;
     }
   }
@@ -271,8 +272,8 @@ bool Launcher::check_hangs(bool& failed) {
     const auto heard = heartbeats_->newest(process.spec->components);
     if (heard && !process.heard) {
       process.heard = true;  // watched from now on (a start may take any time)
-      say(process.spec->name + ": heartbeat heard; hung after " + std::to_string(timeout_s) +
-          " s without one or without loop iterations");
+      say(process.spec->name + ": heartbeat heard; hung after " + seconds_text(timeout_s) +
+          " without one or without loop iterations");
     }
     if (!heard) {
       process.hang_reported = false;
@@ -282,15 +283,15 @@ bool Launcher::check_hangs(bool& failed) {
     std::string why;
     if (Clock::now() - *heard >= timeout) {
       const double silent_s = std::chrono::duration<double>(Clock::now() - *heard).count();
-      why = "no status heartbeat from its components for " + std::to_string(silent_s) +
-            " s (hang_timeout " + std::to_string(timeout_s) + " s): hung or stopped";
+      why = "no status heartbeat from its components for " + seconds_text(silent_s) +
+            " (hang_timeout " + seconds_text(timeout_s) + "): hung or stopped";
     } else if (const auto stalled = heartbeats_->stalled_loop(process.spec->components, timeout)) {
       const double still_s =
           std::chrono::duration<double>(Clock::now() - stalled->advanced_at).count();
       why = "the loop of '" + stalled->instance + "' stopped at iteration " +
-            std::to_string(stalled->iterations) + " " + std::to_string(still_s) +
-            " s ago while its status goes on (hang_timeout " + std::to_string(timeout_s) +
-            " s): deadlocked, or waiting for an input that stopped";
+            std::to_string(stalled->iterations) + " " + seconds_text(still_s) +
+            " ago while its status goes on (hang_timeout " + seconds_text(timeout_s) +
+            "): deadlocked, or waiting for an input that stopped";
     }
     if (why.empty()) {
       process.hang_reported = false;
@@ -334,7 +335,7 @@ bool Launcher::supervise(Clock::time_point start) {
       return failed;
     }
     if (options_.duration_s > 0 && Clock::now() - start >= seconds(options_.duration_s)) {
-      say("duration of " + std::to_string(options_.duration_s) + " s reached");
+      say("duration of " + seconds_text(options_.duration_s) + " reached");
       return failed;
     }
   }
@@ -385,8 +386,8 @@ void Launcher::stop_all() {
   }
   for (auto& process : processes_) {
     if (process.pid > 0) {
-      say(process.spec->name + ": did not stop within " + std::to_string(options_.stop_grace_s) +
-          " s: SIGKILL");
+      say(process.spec->name + ": did not stop within " + seconds_text(options_.stop_grace_s) +
+          ": SIGKILL");
       kill(-process.pid, SIGKILL);
       int status = 0;
       waitpid(process.pid, &status, 0);
