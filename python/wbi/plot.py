@@ -16,6 +16,7 @@ Agg backend (no display needed). Exit codes: 0 success, 1 error (one line on std
 """
 
 import argparse
+import os
 import re
 import sys
 
@@ -159,6 +160,7 @@ def main(argv=None):
             print(f"wbi-plot: warning: {warning}", file=sys.stderr)
         if args.list:
             _list(recording, sys.stdout)
+            sys.stdout.flush()  # a closed pipe shows here, where it is handled
             return 0
         if not args.topic or not args.fields or not args.output:
             parser.error("give TOPIC, at least one FIELD and -o OUT.png (or --list)")
@@ -168,6 +170,11 @@ def main(argv=None):
               f"{(data.t[-1] - data.t[0]) if len(data) else 0.0:.3f} s; fields "
               + ", ".join(args.fields)
               + (f"; {len(events)} events marked" if events is not None else ""))
+        return 0
+    except BrokenPipeError:
+        # The reader left (`wbi-plot run.mcap --list | head`): not an error. Later writes
+        # to the closed pipe at exit would raise again, so stdout goes nowhere from here.
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
     except (McapError, RecordingError, OSError) as error:
         print(f"wbi-plot: {error}", file=sys.stderr)

@@ -7,6 +7,7 @@ the omgidl schemas in the file, and the values match the helper's formulas
 import importlib.util
 import os
 import shutil
+import subprocess
 import sys
 import tempfile
 import unittest
@@ -211,6 +212,21 @@ class RecordingValues(unittest.TestCase):
                               timeout_s=60)
         self.assertEqual(listing.returncode, 0, listing.stderr)
         self.assertIn("wbi/arm/state  (wbi::msg::StateEstimate, 50 messages)", listing.stdout)
+
+    def test_plot_list_into_a_closed_pipe_is_not_an_error(self):
+        # `wbi-plot run.mcap --list | head -n 3`: the reader is gone before the listing ends.
+        # Its read end is closed before wbi-plot starts, so every write meets the closed pipe.
+        path = self.write("zstd")
+        read_end, write_end = os.pipe()
+        os.close(read_end)
+        try:
+            result = subprocess.run([str(support.BINARY_DIR / "bin" / "wbi-plot"), path, "--list"],
+                                    stdout=write_end, stderr=subprocess.PIPE, text=True,
+                                    timeout=60, check=False)
+        finally:
+            os.close(write_end)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(result.stderr, "")
 
 
 class IdlSubset(unittest.TestCase):
