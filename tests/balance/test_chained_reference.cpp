@@ -9,24 +9,38 @@
 #include <chrono>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "child_process.hpp"
+#include "lockstep_fallbacks.hpp"
 #include "test_support.hpp"
 
 namespace {
 
 using namespace std::chrono_literals;
 
-// The launch's last "com tracking rms: X m" line, as printed.
-std::string rms_line(const std::string& deploy) {
+// One launch: its last "com tracking rms: X m" line, as printed ("none" if
+// it has none), and the wall-clock fallbacks it reached.
+struct LaunchRun {
+  std::string rms = "none";
+  std::vector<std::string> fallbacks;
+};
+
+LaunchRun run_once(const std::string& deploy) {
   wbi::test::ChildProcess launch(wbi::test::binary_dir() / "bin" / "wbi",
                                  {"launch", (wbi::test::source_dir() / "deploy" / deploy).string(),
                                   "--one-process", "--duration", "200"});
   const auto code = launch.wait(240s);
   const std::string out = launch.output();
   EXPECT_EQ(code.value_or(-1), 0) << out;
-  const auto at = out.rfind("com tracking rms: ");
-  return at == std::string::npos ? "none" : out.substr(at, out.find('\n', at) - at);
+  LaunchRun run;
+  run.fallbacks = wbi::test::lockstep_fallbacks(out);
+  if (const auto at = out.rfind("com tracking rms: "); at != std::string::npos) {
+    run.rms = out.substr(at, out.find('\n', at) - at);
+  }
+  std::printf("%s: %s%s\n", deploy.c_str(), run.rms.c_str(),
+              run.fallbacks.empty() ? "" : " (reached a wall-clock fallback)");
+  return run;
 }
 
 struct Pair {
@@ -37,16 +51,27 @@ struct Pair {
 
 class ChainedReference : public ::testing::TestWithParam<Pair> {};
 
+// Equal figures are required of two runs that reached no wall-clock fallback.
+// A pair that differs where one of them reached a fallback (a reference point
+// late on a busy machine: deploy/README.md, "Reproducible lockstep") is run
+// again, three pairs at most.
 TEST_P(ChainedReference, GivesTheFigureOfTheTopicRoute) {
   if (GetParam().shared && !wbi::test::shared_models_dir()) {
     GTEST_SKIP() << wbi::test::kSharedMissing;
   }
-  const std::string topic = rms_line(GetParam().topic);
-  const std::string chained = rms_line(GetParam().chained);
-  std::printf("%s: %s\n%s: %s\n", GetParam().topic, topic.c_str(), GetParam().chained,
-              chained.c_str());
-  EXPECT_NE(topic, "none");
-  EXPECT_EQ(chained, topic);
+  for (int pair = 1; pair <= 3; ++pair) {
+    const LaunchRun topic = run_once(GetParam().topic);
+    const LaunchRun chained = run_once(GetParam().chained);
+    ASSERT_NE(topic.rms, "none");
+    if (chained.rms == topic.rms) {
+      return;
+    }
+    ASSERT_FALSE(topic.fallbacks.empty() && chained.fallbacks.empty())
+        << "the routes differ and neither run reached a wall-clock fallback: " << chained.rms
+        << " against " << topic.rms;
+    std::printf("pair %d differs where a run reached a fallback: run again\n", pair);
+  }
+  ADD_FAILURE() << "three pairs differed, each with a run that reached a wall-clock fallback";
 }
 
 INSTANTIATE_TEST_SUITE_P(Robots, ChainedReference,
