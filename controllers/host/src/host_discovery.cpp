@@ -4,15 +4,22 @@
 #include <optional>
 #include <string_view>
 
+#include <wbi/dds/rpc.hpp>
+#include <wbi/dds/topics.hpp>
+
 namespace wbi::controllers {
 
 namespace {
 
-// "wbi/<robot>/controllers/reply" (topics::service_reply(topics::controller_service(robot)))
-// -> "<robot>"; "" for any other topic.
+// "wbi/<robot>/controllers/reply" -> "<robot>"; "" for any other topic. The
+// name's shape comes from the functions that name it, with a placeholder robot.
 std::string robot_of_reply_topic(std::string_view topic) {
-  constexpr std::string_view prefix = "wbi/";
-  constexpr std::string_view suffix = "/controllers/reply";
+  static const std::string kPlaceholder = "\x01";
+  static const std::string kShape =
+      dds::topics::service_reply(dds::topics::controller_service(kPlaceholder));
+  static const std::size_t kAt = kShape.find(kPlaceholder);
+  const std::string_view prefix = std::string_view(kShape).substr(0, kAt);
+  const std::string_view suffix = std::string_view(kShape).substr(kAt + kPlaceholder.size());
   if (topic.size() <= prefix.size() + suffix.size() || !topic.starts_with(prefix) ||
       !topic.ends_with(suffix)) {
     return "";
