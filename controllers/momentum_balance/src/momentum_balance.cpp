@@ -6,24 +6,20 @@
 
 #include <Eigen/Geometry>
 
+#include "wbi/controllers/foot_contact.hpp"
+
 namespace wbi::controllers {
 
 namespace {
 
 constexpr int kContacts = 2;
 constexpr int kWrenches = 6 * kContacts;
-constexpr int kRowsPerFoot = 11;
+constexpr int kRowsPerFoot = kFootConstraintRows;
 
 void require(bool ok, const std::string& what) {
   if (!ok) {
     throw Error("momentum balance: " + what);
   }
-}
-
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d S;
-  S << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return S;
 }
 
 }  // namespace
@@ -147,21 +143,12 @@ void MomentumBalance::resolve_wrench_links() {
 // Per foot, on the wrench (f, τ) in the sole frame, rows · w ≥ 0 (the first ≥ f_min):
 // unilateral; inscribed friction pyramid; CoP in the rectangle; torsional friction.
 void MomentumBalance::build_constraints() {
-  const double mu = p_.friction / std::sqrt(2.0);
-  const double mt = p_.torsional_friction;
-  auto& F = foot_constraints_;
-  F.setZero();
-  F.row(0) << 0, 0, 1, 0, 0, 0;                // f_z ≥ f_min
-  F.row(1) << -1, 0, mu, 0, 0, 0;              // f_x ≤ μ' f_z
-  F.row(2) << 1, 0, mu, 0, 0, 0;               // −f_x ≤ μ' f_z
-  F.row(3) << 0, -1, mu, 0, 0, 0;              // f_y ≤ μ' f_z
-  F.row(4) << 0, 1, mu, 0, 0, 0;               // −f_y ≤ μ' f_z
-  F.row(5) << 0, 0, -p_.foot_x_min, 0, -1, 0;  // CoP_x = −τ_y / f_z ≥ x_min
-  F.row(6) << 0, 0, p_.foot_x_max, 0, 1, 0;    // CoP_x ≤ x_max
-  F.row(7) << 0, 0, -p_.foot_y_min, 1, 0, 0;   // CoP_y = τ_x / f_z ≥ y_min
-  F.row(8) << 0, 0, p_.foot_y_max, -1, 0, 0;   // CoP_y ≤ y_max
-  F.row(9) << 0, 0, mt, 0, 0, -1;              // τ_z ≤ μ_t f_z
-  F.row(10) << 0, 0, mt, 0, 0, 1;              // −τ_z ≤ μ_t f_z
+  foot_constraints_ = foot_wrench_constraints({.x_min = p_.foot_x_min,
+                                               .x_max = p_.foot_x_max,
+                                               .y_min = p_.foot_y_min,
+                                               .y_max = p_.foot_y_max,
+                                               .friction = p_.friction,
+                                               .torsional_friction = p_.torsional_friction});
   qp_d_.setZero();
   for (int foot = 0; foot < kContacts; ++foot) {
     qp_d_[foot * kRowsPerFoot] = p_.min_normal_force;
