@@ -15,9 +15,13 @@
 // from the DCM at the command (standing: the CoM, at rest).
 //
 // A walk: double support, then per footstep one single support (the other
-// foot swings from its pose to the footstep) and one double support, the
-// last one longer (final_double_support_s) ending with the DCM at rest
-// between the feet.
+// foot swings from its pose to the footstep) and one double support. The
+// first and the last double support last final_double_support_s (the first
+// moves the DCM from between the feet onto the first stance foot: at
+// double_support_s that shift would be abrupt); the last ends with the DCM at
+// rest between the feet. The VRP of the LIPM switches from one stance foot to
+// the next in the middle of each double support (the recursion's virtual
+// switch); the CoM follows ẋ = ω (ξ − x) in closed form, phase by phase.
 #pragma once
 
 #include <array>
@@ -44,11 +48,11 @@ struct Footstep {
 struct WalkingParameters {
   double single_support_s = 0.6;
   double double_support_s = 0.2;
-  double final_double_support_s = 0.6;  // the last, to stand still
-  double step_height = 0.04;             // swing foot apex above the ground [m]
-  double com_height = 0.5;               // z_c of the LIPM [m] (its CoM's height)
-  double gravity = 9.81;                 // [m/s²]
-  double step_width = 0.15;              // lateral distance between the soles [m]
+  double final_double_support_s = 0.6;  // the first and the last: to start, to stand still
+  double step_height = 0.04;            // swing foot apex above the ground [m]
+  double com_height = 0.5;              // z_c of the LIPM [m] (its CoM's height)
+  double gravity = 9.81;                // [m/s²]
+  double step_width = 0.15;             // lateral distance between the soles [m]
   // Limits of one step, in the frame of the foot it starts from; a command
   // needing more is cut into more steps, a footstep beyond them is refused.
   double max_step_forward = 0.12;  // [m]
@@ -111,10 +115,40 @@ class WalkingPlan {
   void sample(double t, WalkingReference& out) const;
 
  private:
+  enum class PhaseKind { double_support, single_support, rest };
+  // One piece of the plan, from `begin` for `duration` (rest: for ever).
+  struct Phase {
+    PhaseKind kind = PhaseKind::rest;
+    double begin = 0.0, duration = 0.0;
+    // DCM: double support, ξ(τ) = Σ dcm[k] τ^k (a cubic); single support,
+    // ξ(τ) = dcm[0] + e^{ωτ} dcm[1] (VRP, offset from it); rest, ξ = dcm[0].
+    std::array<Eigen::Vector3d, 4> dcm{};
+    Eigen::Vector3d com_begin = Eigen::Vector3d::Zero();
+    std::array<FootPose, 2> feet_begin{};  // left, right when the phase begins
+    int step = -1;                         // single support: the footstep swung to
+    std::array<double, 2> weight_begin{1.0, 1.0}, weight_end{1.0, 1.0};
+  };
+
+  std::string check_parameters() const;
+  std::string check_and_unwrap(std::array<FootPose, 2> feet);  // scratch_steps_ from these feet
+  std::string plan(double t);                                  // scratch_steps_ from time t
+  void fill_timing(double t, const std::array<FootPose, 2>& feet);
+  void fill_dcm(const Eigen::Vector3d& dcm_now);
+  void fill_com(const Eigen::Vector3d& com_now);
+  const Phase& phase_at(double t) const;
+  void dcm_at(const Phase& phase, double tau, Eigen::Vector3d& x, Eigen::Vector3d& v,
+              Eigen::Vector3d& a) const;
+  void com_at(const Phase& phase, double tau, Eigen::Vector3d& x, Eigen::Vector3d& v,
+              Eigen::Vector3d& a) const;
+  Eigen::Vector3d vrp(const FootPose& sole) const;
+
   WalkingParameters p_;
   std::vector<Footstep> steps_;
-  // The implementation's own members follow (phases, DCM boundary values,
-  // swing polynomials), sized when a walk is planned.
+  std::vector<Phase> phases_;  // in time order; the last is the rest after the walk
+  // walk_to builds here, then swaps: reserved at construction for the
+  // longest walk_to, so that planning one allocates nothing.
+  std::vector<Footstep> scratch_steps_;
+  std::vector<Phase> scratch_phases_;
 };
 
 }  // namespace wbi::controllers::walking
