@@ -81,6 +81,8 @@ std::vector<ParameterSpec> WalkingController::parameters() const {
              "end the run this long after activation (0: never)"),
       number("fall_height", "m", 0.2, 0.0, kInfinity, false,
              "the base below this height above the lower sole is a fall"),
+      number("speed_distance", "m", 1.0, 1e-3, kInfinity, false,
+             "the forward speed figure is timed over this much of the CoM's travel"),
   };
   for (const LiveField& live : kLive) {
     specs.push_back(number(live.name, live.unit, d.*live.field, 0.0, kInfinity, true, live.help));
@@ -120,6 +122,7 @@ void WalkingController::configure(WholeBodyInterface& robot, const ParameterTabl
   p.posture_bandwidth_hz = value("posture_bandwidth_hz");
   exit_after_s_ = value("exit_after_s");
   fall_height_ = value("fall_height");
+  speed_distance_ = value("speed_distance");
   live_.clear();
   for (const LiveField& live : kLive) {
     live_.push_back(parameters.index(live.name));
@@ -146,7 +149,7 @@ void WalkingController::parameters_changed(const ParameterTable& parameters) {
 
 void WalkingController::activate(const RobotState& measured) {
   qp_->start(measured);
-  figures_.reset(fall_height_);
+  figures_.reset(fall_height_, speed_distance_);
   finished_ = false;
   start_ns_ = -1;
   has_seq_ = false;

@@ -6,9 +6,10 @@
 
 namespace wbi::controllers::walking {
 
-void WalkingFigures::reset(double fall_height) {
+void WalkingFigures::reset(double fall_height, double speed_distance) {
   *this = WalkingFigures{};
   fall_height_ = fall_height;
+  speed_distance_ = speed_distance;
 }
 
 void WalkingFigures::add(double t, const WalkingTargets& plan, const WalkingQp& qp) {
@@ -30,6 +31,9 @@ void WalkingFigures::add(double t, const WalkingTargets& plan, const WalkingQp& 
     }
     walk_end_t_ = t;
     walk_end_com_ = qp.com().head<2>();
+    if (speed_time_ < 0.0 && walked_distance() >= speed_distance_) {
+      speed_time_ = t - walk_start_t_;
+    }
   }
   walking_ = walking;
 
@@ -41,7 +45,11 @@ void WalkingFigures::add(double t, const WalkingTargets& plan, const WalkingQp& 
     }
     if (last_weight_[f] == 0.0 && w > 0.0) {
       ++steps_;
-      step_length_sum_ += (feet[f] - lift_off_[f]).head<2>().norm();
+      const Eigen::Vector2d middle = 0.5 * (feet[0] + feet[1]).head<2>();
+      if (steps_ > 1) {
+        step_length_sum_ += (middle - last_touchdown_middle_).norm();
+      }
+      last_touchdown_middle_ = middle;
       max_touchdown_error_ =
           std::max(max_touchdown_error_, (feet[f] - plan.feet[f].position).norm());
       if (last_touchdown_t_ >= 0.0) {
@@ -77,6 +85,10 @@ double WalkingFigures::average_speed() const {
   return time > 0.0 ? walked_distance() / time : 0.0;
 }
 
+double WalkingFigures::forward_speed() const {
+  return speed_time_ > 0.0 ? speed_distance_ / speed_time_ : -1.0;
+}
+
 double WalkingFigures::dcm_rms() const {
   return ticks_ > 0 ? std::sqrt(dcm_squared_ / static_cast<double>(ticks_)) : 0.0;
 }
@@ -86,19 +98,30 @@ double WalkingFigures::com_rms() const {
 }
 
 std::string WalkingFigures::text() const {
-  char text[768];
+  char speed_line[96];
+  if (forward_speed() > 0.0) {
+    std::snprintf(speed_line, sizeof speed_line, "forward speed over the first %.2f m: %.3f m/s",
+                  speed_distance_, forward_speed());
+  } else {
+    std::snprintf(speed_line, sizeof speed_line,
+                  "forward speed over the first %.2f m: none (the CoM never got that far)",
+                  speed_distance_);
+  }
+  char text[896];
   std::snprintf(text, sizeof text,
                 "steps: %d\n"
                 "walked: %.3f m in %.2f s, average speed %.3f m/s\n"
-                "step length: %.3f m mean, step duration %.3f s mean\n"
+                "%s\n"
+                "step length (the feet's middle, touch-down to touch-down): %.3f m mean, step "
+                "duration %.3f s mean\n"
                 "dcm tracking rms: %.6f m\n"
                 "com tracking rms: %.6f m\n"
                 "largest stance foot slip: %.4f m\n"
                 "largest touch-down position error: %.4f m\n"
                 "smallest stance normal force (planned, single support): %.1f N\n"
                 "falls: %s",
-                steps_, walked_distance(), walking_time(), average_speed(),
-                steps_ > 0 ? step_length_sum_ / steps_ : 0.0,
+                steps_, walked_distance(), walking_time(), average_speed(), speed_line,
+                timed_steps_ > 0 ? step_length_sum_ / timed_steps_ : 0.0,
                 timed_steps_ > 0 ? step_duration_sum_ / timed_steps_ : 0.0, dcm_rms(), com_rms(),
                 max_slip_, max_touchdown_error_, single_support_seen_ ? min_stance_force_ : 0.0,
                 fell() ? "1" : "0");

@@ -85,7 +85,7 @@ WalkingQp::WalkingQp(WholeBodyInterface& robot, WalkingQpParameters parameters,
       sole_{robot.frame_index(p_.left_sole), robot.frame_index(p_.right_sole)},
       torso_(robot.frame_index(p_.torso)),
       posture_(std::move(posture)),
-      qp_(nx_, kEqualities, 2 * kRowsPerFoot) {
+      qp_(nx_, kEqualities, 2 * kRowsPerFoot + 2 * n_) {
   require(posture_.size() == n_, "posture has " + std::to_string(posture_.size()) +
                                      " values, the controller has " + std::to_string(n_) +
                                      " joints");
@@ -118,8 +118,13 @@ WalkingQp::WalkingQp(WholeBodyInterface& robot, WalkingQpParameters parameters,
   g_.setZero(nx_);
   A_eq_.setZero(kEqualities, nx_);
   b_eq_.setZero(kEqualities);
-  C_.setZero(2 * kRowsPerFoot, nx_);
-  d_.setZero(2 * kRowsPerFoot);
+  C_.setZero(2 * kRowsPerFoot + 2 * n_, nx_);
+  d_.setZero(2 * kRowsPerFoot + 2 * n_);
+  effort_.resize(n_);
+  for (int j = 0; j < n_; ++j) {
+    // No limit in the URDF: a bound never reached keeps the rows' count fixed.
+    effort_[j] = std::min(robot.joint_limits(j).effort_max, 1e6);
+  }
   torque_map_.setZero(n_, nx_);
   task_b_.setZero(n_);
   tau_.setZero(n_);
@@ -212,7 +217,7 @@ void WalkingQp::fill_constraints(const WalkingTargets& t) {
   A_eq_.topLeftCorner(6, N_) = M_.topRows(6);
   A_eq_.block(0, N_, 6, 12) = -Jfeet_.leftCols<6>().transpose();
   b_eq_.head<6>() = -h_.head<6>();
-  C_.setZero();
+  C_.topRows(2 * kRowsPerFoot).setZero();
   const double weight_of_robot = -mass_ * p_.gravity.z();
   for (int f = 0; f < 2; ++f) {
     const double w = t.contact_weight[f];
@@ -239,6 +244,13 @@ void WalkingQp::fill_constraints(const WalkingTargets& t) {
       d_.segment<kRowsPerFoot>(c).setConstant(-1.0);  // its wrench is 0 by an equality
     }
   }
+  // The joints' torque limits: −τ_max ≤ [M_j  −J_jᵀ] x + h_j ≤ τ_max.
+  torque_map_.leftCols(N_) = M_.bottomRows(n_);
+  torque_map_.rightCols<12>() = -Jfeet_.rightCols(n_).transpose();
+  C_.middleRows(2 * kRowsPerFoot, n_) = torque_map_;
+  C_.bottomRows(n_) = -torque_map_;
+  d_.segment(2 * kRowsPerFoot, n_) = -effort_ - h_.tail(n_);
+  d_.tail(n_) = -effort_ + h_.tail(n_);
 }
 
 void WalkingQp::add_acceleration_task(const Eigen::Ref<const Eigen::MatrixXd>& J,
@@ -299,8 +311,6 @@ void WalkingQp::fill_costs(const WalkingTargets& t) {
   g_.segment(6, n_) -= p_.posture_weight * task_b_;
 
   // Torques, τ = [M_j  −J_jᵀ] x + h_j, divided by m.
-  torque_map_.leftCols(N_) = M_.bottomRows(n_);
-  torque_map_.rightCols<12>() = -Jfeet_.rightCols(n_).transpose();
   H_.noalias() += (p_.torque_weight / m2) * torque_map_.transpose() * torque_map_;
   g_.noalias() += (p_.torque_weight / m2) * torque_map_.transpose() * h_.tail(n_);
 

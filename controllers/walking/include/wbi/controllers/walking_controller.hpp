@@ -53,7 +53,7 @@ class WalkingController final : public Controller {
   WalkingReference reference_;
   WalkingTargets targets_, standing_;
   WalkingFigures figures_;
-  double exit_after_s_ = 0.0, fall_height_ = 0.0;
+  double exit_after_s_ = 0.0, fall_height_ = 0.0, speed_distance_ = 1.0;
   bool finished_ = false;
   std::int64_t start_ns_ = -1, stamp_ns_ = 0;
   std::uint64_t last_seq_ = 0;

@@ -9,6 +9,7 @@
 //                 w f_min ≤ f_z ≤ w f_max, w the contact weight (0..1) that
 //                 ramps a foot's load down before it lifts and up after it lands
 //               per swinging foot:    f = 0
+//               |τ| within the joints' effort limits (URDF)
 //
 // Tasks, by weight: the centroidal momentum's rate (Ḣ = A f + m g; its linear
 // part from the DCM law below, the angular part damped), the swing foot's
@@ -117,7 +118,7 @@ class WalkingQp {
   int n_, N_, nx_;
   std::array<int, 2> sole_;
   int torso_;
-  Eigen::VectorXd posture_;
+  Eigen::VectorXd posture_, effort_;  // effort_: the joints' torque limits
   double mass_ = 0.0, posture_kp_ = 0.0, posture_kd_ = 0.0;
   Eigen::Matrix3d torso_offset_ = Eigen::Matrix3d::Identity();  // Rz(feet yaw)ᵀ R_torso standing
   Eigen::Matrix<double, kFootConstraintRows, 6> foot_rows_;
