@@ -524,8 +524,8 @@ void WalkingPlan::sample(double t, WalkingReference& out) const {
 
   const double ramp = phase.kind == PhaseKind::double_support ? quintic(u).s : 0.0;
   for (int f = 0; f < 2; ++f) {
-    out.position[14 + f] =
-        phase.weight_begin[f] + (phase.weight_end[f] - phase.weight_begin[f]) * ramp;
+    out.position[14 + f] = std::clamp(
+        phase.weight_begin[f] + (phase.weight_end[f] - phase.weight_begin[f]) * ramp, 0.0, 1.0);
   }
   out.velocity.tail<2>().setZero();
   out.acceleration.tail<2>().setZero();
