@@ -1,0 +1,142 @@
+// The walking deploy files as a user runs them (three processes, lockstep,
+// MuJoCo): the robot stands in hold, is switched to walking, walks its goal
+// forward, turns 90° in place, stops and is switched back to hold. Checked
+// from the launch's output: exit code 0, no fall, the steps and the distance
+// the plan asked for (within 10 %), the feet's slip and touch-down error, a
+// forward speed, and no torque step at either switch. The humanoid always;
+// iCub 3 and TALOS when ../shared exists.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "child_process.hpp"
+#include "test_support.hpp"
+
+namespace {
+
+using namespace std::chrono_literals;
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// The number after the last `marker` in text (a failure, and a huge value, without one).
+double number_after(const std::string& text, const std::string& marker) {
+  const auto at = text.rfind(marker);
+  if (at == std::string::npos) {
+    ADD_FAILURE() << "no '" << marker << "' in\n" << text;
+    return 1e9;
+  }
+  return std::stod(text.substr(at + marker.size()));
+}
+
+struct Expected {
+  std::string deploy;
+  double distance;   // the goal's forward part [m]
+  double min_speed;  // over the first speed_distance [m/s]
+};
+
+// Runs the deploy file and checks its figures; returns the launch's output.
+std::string expect_walk(const Expected& expected, std::chrono::seconds timeout) {
+  wbi::test::ChildProcess launch(
+      wbi::test::binary_dir() / "bin" / "wbi",
+      {"launch", (wbi::test::source_dir() / "deploy" / expected.deploy).string(), "--duration",
+       std::to_string(timeout.count() - 10)});
+  const auto code = launch.wait(timeout);
+  EXPECT_TRUE(code.has_value()) << launch.output();
+  const std::string out = launch.output();
+  EXPECT_EQ(code.value_or(-1), 0) << out;
+
+  EXPECT_TRUE(contains(out, "falls: 0")) << out;
+  EXPECT_EQ(number_after(out, "qp failures: "), 0.0) << out;
+  const double planned_steps = number_after(out, "steps walked of ");
+  EXPECT_GE(planned_steps, 4.0) << out;
+  EXPECT_EQ(number_after(out, "steps: "), planned_steps) << out;
+  const double walked = number_after(out, "walked: ");
+  EXPECT_NEAR(walked, expected.distance, 0.1 * expected.distance) << out;
+  EXPECT_GE(number_after(out, "forward speed over the first "), 0.0) << out;
+  const auto speed_at = out.rfind("forward speed over the first ");
+  const auto colon = out.find(": ", speed_at);
+  EXPECT_GE(std::stod(out.substr(colon + 2)), expected.min_speed) << out;
+  EXPECT_LT(number_after(out, "largest stance foot slip: "), 0.01) << out;
+  EXPECT_LT(number_after(out, "largest touch-down position error: "), 0.02) << out;
+
+  // Hold → walking (its planner with it) and back, each without a torque step.
+  const std::regex switch_line(
+      R"(switch: ([\w, ]+) → ([\w, ]+) at t = [0-9.]+ s; torque step ([0-9.]+) %)");
+  int switches = 0;
+  for (std::sregex_iterator it(out.begin(), out.end(), switch_line), end; it != end; ++it) {
+    ++switches;
+    EXPECT_LT(std::stod((*it)[3].str()), 5.0) << it->str();
+  }
+  EXPECT_EQ(switches, 2) << out;
+  return out;
+}
+
+TEST(WalkLaunch, TheHumanoidWalksOneMetreTurnsAndStops) {
+  expect_walk({.deploy = "walk.yaml", .distance = 1.0, .min_speed = 0.15}, 120s);
+}
+
+TEST(WalkLaunch, Icub3WalksTwoMetresAtThreeTenthsOfAMetrePerSecond) {
+  if (!wbi::test::shared_models_dir()) {
+    GTEST_SKIP() << wbi::test::kSharedMissing;
+  }
+  expect_walk({.deploy = "icub3_walk.yaml", .distance = 2.0, .min_speed = 0.3}, 180s);
+}
+
+TEST(WalkLaunch, TalosWalksTwoMetresWithTheSameCode) {
+  if (!wbi::test::shared_models_dir()) {
+    GTEST_SKIP() << wbi::test::kSharedMissing;
+  }
+  expect_walk({.deploy = "talos_walk.yaml", .distance = 2.0, .min_speed = 0.2}, 180s);
+}
+
+struct Outcome {
+  int code = -1;
+  std::string output;
+};
+
+Outcome wbi_command(std::vector<std::string> args) {
+  args.insert(args.end(), {"--robot", "humanoid"});
+  wbi::test::ChildProcess command(wbi::test::binary_dir() / "bin" / "wbi", args);
+  const auto code = command.wait(30s);
+  return {code.value_or(-1), command.output()};
+}
+
+int count_lines_with(const std::string& text, const std::string& part) {
+  int count = 0;
+  for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) {
+    ++count;
+  }
+  return count;
+}
+
+// Two goals it cannot do, sent while the humanoid walks: one out of range
+// (refused by the host), one while walking (refused by the planner). Each is
+// refused with one line; the walk goes on as planned and ends standing.
+TEST(WalkLaunch, RefusedGoalsLeaveTheHumanoidWalkingItsPlan) {
+  wbi::test::ChildProcess launch(
+      wbi::test::binary_dir() / "bin" / "wbi",
+      {"launch", (wbi::test::source_dir() / "deploy" / "walk.yaml").string(), "--duration", "110"});
+  ASSERT_TRUE(launch.wait_for_output("planned at t =", 60s)) << launch.output();
+
+  const auto out_of_range = wbi_command({"param", "set", "planner", "goal", "1000", "0", "0"});
+  EXPECT_EQ(out_of_range.code, 1) << out_of_range.output;
+  EXPECT_TRUE(contains(out_of_range.output, "refused: planner: goal")) << out_of_range.output;
+  const auto while_walking = wbi_command({"param", "set", "planner", "goal", "0.5", "0", "0"});
+  EXPECT_EQ(while_walking.code, 0) << while_walking.output;  // the host takes it; the planner not
+
+  const auto code = launch.wait(120s);
+  ASSERT_TRUE(code.has_value()) << launch.output();
+  const std::string out = launch.output();
+  EXPECT_EQ(*code, 0) << out;
+  EXPECT_EQ(count_lines_with(out, "walking_planner: goal refused:"), 1) << out;
+  EXPECT_TRUE(contains(out, "1 goals refused")) << out;
+  EXPECT_TRUE(contains(out, "falls: 0")) << out;
+  EXPECT_NEAR(number_after(out, "walked: "), 1.0, 0.1) << out;
+}
+
+}  // namespace
