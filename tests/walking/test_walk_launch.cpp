@@ -3,7 +3,7 @@
 // forward, turns 90° in place, stops and is switched back to hold. Checked
 // from the launch's output: exit code 0, no fall, the steps and the distance
 // the plan asked for (within 10 %), the feet's slip and touch-down error, a
-// forward speed, and no torque step at either switch. The humanoid always;
+// forward speed, the base estimate's drift, and no torque step at either switch. The humanoid always;
 // iCub 3 and TALOS when ../shared exists.
 #include <gtest/gtest.h>
 
@@ -63,6 +63,8 @@ std::string expect_walk(const Expected& expected, std::chrono::seconds timeout) 
   EXPECT_GE(std::stod(out.substr(colon + 2)), expected.min_speed) << out;
   EXPECT_LT(number_after(out, "largest stance foot slip: "), 0.01) << out;
   EXPECT_LT(number_after(out, "largest touch-down position error: "), 0.02) << out;
+  // The legged base estimate (IMU, the feet's F/T sensors and kinematics) against the truth.
+  EXPECT_LT(number_after(out, "horizontal drift at the end "), 20.0) << "mm\n" << out;
 
   // Hold → walking (its planner with it) and back, each without a torque step.
   const std::regex switch_line(

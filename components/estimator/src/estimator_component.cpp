@@ -338,6 +338,7 @@ void register_components(runtime::Registry& registry) {
       "estimator",
       "joint velocity/acceleration, filtered torques and base state "
       "from sensor samples");
+  register_base_drift(registry);
 }
 
 }  // namespace wbi::estimator

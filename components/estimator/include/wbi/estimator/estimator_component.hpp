@@ -35,5 +35,7 @@
 namespace wbi::estimator {
 
 void register_components(runtime::Registry& registry);
+// `base_drift` (base_drift_component.cpp), registered by register_components.
+void register_base_drift(runtime::Registry& registry);
 
 }  // namespace wbi::estimator
