@@ -30,6 +30,7 @@ int replace_all(std::string& text, const std::string& from, const std::string& t
 std::string deploy_text(const std::string& name) {
   const std::filesystem::path deploy = source_dir() / "deploy";
   std::string text = read_text(deploy / name);
+  replace_all(text, "../../shared/", (source_dir().parent_path() / "shared").string() + "/");
   replace_all(text, "../models/", (source_dir() / "models").string() + "/");
   replace_all(text, "config: robots/", "config: " + (deploy / "robots").string() + "/");
   return text;

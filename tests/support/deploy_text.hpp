@@ -13,8 +13,8 @@ std::string read_text(const std::filesystem::path& file);
 // Replaces every occurrence; returns how many there were.
 int replace_all(std::string& text, const std::string& from, const std::string& to);
 
-// deploy/<name>'s text with its model (../models/) and robot configuration
-// (config: robots/) paths made absolute.
+// deploy/<name>'s text with its model (../models/, ../../shared/) and robot
+// configuration (config: robots/) paths made absolute.
 std::string deploy_text(const std::string& name);
 
 // Writes text to <build>/tests/<name> and returns that path.

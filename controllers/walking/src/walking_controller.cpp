@@ -48,6 +48,12 @@ constexpr LiveField kLive[] = {
     {"torso_weight", "", &WalkingQpParameters::torso_weight, "of the torso task"},
     {"posture_weight", "", &WalkingQpParameters::posture_weight, "of the posture task"},
     {"torque_weight", "", &WalkingQpParameters::torque_weight, "of |tau / m|^2"},
+    {"step_adjustment_gain", "", &WalkingQpParameters::step_adjustment_gain,
+     "a swinging foot lands off its plan by this x the DCM error beyond the dead band"},
+    {"step_adjustment_dead_band", "m", &WalkingQpParameters::step_adjustment_dead_band,
+     "DCM error not corrected by a step"},
+    {"max_step_adjustment", "m", &WalkingQpParameters::max_step_adjustment,
+     "the largest step adjustment"},
 };
 
 }  // namespace

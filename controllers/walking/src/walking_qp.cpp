@@ -73,6 +73,9 @@ void WalkingQp::set_gains(const WalkingQpParameters& g) {
   p_.acceleration_weight = g.acceleration_weight;
   p_.wrench_weight = g.wrench_weight;
   p_.foot_moment_weight = g.foot_moment_weight;
+  p_.step_adjustment_gain = g.step_adjustment_gain;
+  p_.step_adjustment_dead_band = g.step_adjustment_dead_band;
+  p_.max_step_adjustment = g.max_step_adjustment;
 }
 
 WalkingQp::WalkingQp(WholeBodyInterface& robot, WalkingQpParameters parameters,
@@ -207,6 +210,15 @@ void WalkingQp::momentum_rate_target(const WalkingTargets& t) {
   acceleration.z() = t.com_acceleration.z() + p_.com_height_kp * (t.com.z() - com_.z()) +
                      p_.com_height_kd * (t.com_velocity.z() - com_velocity_.z());
   momentum_rate_.head<3>() = mass_ * acceleration;
+  // Step adjustment: a swinging foot lands off its plan by the DCM's error
+  // beyond a dead band, times a gain (a push: the next step catches the DCM).
+  step_offset_.setZero();
+  const Eigen::Vector2d error = (dcm_ - t.dcm).head<2>();
+  const double beyond = error.norm() - p_.step_adjustment_dead_band;
+  if (p_.step_adjustment_gain > 0.0 && beyond > 0.0) {
+    const double length = std::min(p_.step_adjustment_gain * beyond, p_.max_step_adjustment);
+    step_offset_.head<2>() = length * error.normalized();
+  }
   momentum_rate_.tail<3>() = -p_.angular_momentum_kd * momentum_.tail<3>();
 }
 
@@ -283,7 +295,8 @@ void WalkingQp::fill_costs(const WalkingTargets& t) {
     const Eigen::Vector4d& v = t.feet_velocity[f];
     const Eigen::Vector4d& a = t.feet_acceleration[f];
     Eigen::Matrix<double, 6, 1> desired;
-    desired.head<3>() = a.head<3>() + p_.swing_kp * (t.feet[f].position - foot_[f].position) +
+    desired.head<3>() = a.head<3>() +
+                        p_.swing_kp * (t.feet[f].position + step_offset_ - foot_[f].position) +
                         p_.swing_kd * (v.head<3>() - foot_velocity_[f].head<3>());
     const Eigen::Matrix3d target_rotation =
         Eigen::AngleAxisd(t.feet[f].yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();

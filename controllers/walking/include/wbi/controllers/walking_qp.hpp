@@ -52,6 +52,12 @@ struct WalkingQpParameters {
   double angular_momentum_kd = 5.0;                    // [1/s]
   double swing_kp = 600.0, swing_kd = 50.0;            // swing foot pose
   double torso_kp = 200.0, torso_kd = 30.0;            // torso orientation
+  // A swinging foot lands off its plan by gain × (the DCM's horizontal error
+  // beyond the dead band), at most max_step_adjustment: the step that catches
+  // a push. 0: the plan's footsteps exactly.
+  double step_adjustment_gain = 0.0;
+  double step_adjustment_dead_band = 0.02;  // [m]: walking undisturbed stays inside
+  double max_step_adjustment = 0.1;         // [m]
   double posture_bandwidth_hz = 1.0;
   // Task weights, each on a residual in m/s² or rad/s² (the momentum rate and
   // the torques divided by the mass m).
@@ -135,7 +141,7 @@ class WalkingQp {
   std::array<bool, 2> contact_{true, true};
   Eigen::Matrix3d torso_rotation_ = Eigen::Matrix3d::Identity();
   Eigen::Vector3d com_ = Eigen::Vector3d::Zero(), com_velocity_ = Eigen::Vector3d::Zero(),
-                  dcm_ = Eigen::Vector3d::Zero();
+                  dcm_ = Eigen::Vector3d::Zero(), step_offset_ = Eigen::Vector3d::Zero();
 
   Eigen::MatrixXd H_, A_eq_, C_, torque_map_;
   Eigen::VectorXd g_, b_eq_, d_, task_b_;
