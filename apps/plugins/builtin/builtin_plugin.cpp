@@ -8,6 +8,7 @@
 #include <wbi/controllers/momentum_balance_controller.hpp>
 #include <wbi/controllers/pd_gravity_controller.hpp>
 #include <wbi/controllers/reference_generators.hpp>
+#include <wbi/controllers/walking_planner.hpp>
 #include <wbi/estimator/estimator_component.hpp>
 #include <wbi/model_service/component.hpp>
 #include <wbi/plugin.hpp>
@@ -40,6 +41,7 @@ WBI_PLUGIN(catalog) {
   controllers::register_momentum_balance(controller_types);
   controllers::register_reference_generators(components);
   controllers::register_reference_planners(controller_types);
+  controllers::register_walking_planner(controller_types);
   controllers::register_components(components, lent(controller_types));
   // `type: pd_gravity` as a component: for every controller type, a lab's too.
   catalog.after_loading([](Catalog& all) {
