@@ -53,6 +53,7 @@ TEST(PluginLoader, BuiltinPluginBringsTheProjectsTypes) {
   const auto& controllers = catalog.registry<wbi::controllers::ControllerRegistry>();
   EXPECT_TRUE(controllers.contains("pd_gravity"));
   EXPECT_TRUE(controllers.contains("momentum_balance"));
+  EXPECT_TRUE(controllers.contains("walking_planner"));
   EXPECT_FALSE(controllers.contains("hold")) << "hold is the controller host's own";
   EXPECT_TRUE(catalog.registry<wbi::sim_robot::EngineRegistry>().contains("wbi"));
 }

@@ -144,6 +144,9 @@ TEST_F(TwoMetresAndATurn, ComContinuousFollowsTheDcmAndEndsAtRestBetweenTheFeet)
   EXPECT_LE((dcm(done) - middle).norm(), 1e-12);
   EXPECT_LE(done.velocity.head<3>().norm(), 1e-12);
   EXPECT_LE((com(done) - middle).norm(), 0.01);
+  std::printf(
+      "CoM at end_time(): %.2f mm from the rest point; largest DCM, CoM speed %.3f, %.3f m/s\n",
+      1e3 * (com(done) - middle).norm(), largest(plan, 0, 3, &WalkingReference::velocity), speed);
 }
 
 TEST_F(TwoMetresAndATurn, SwingFeetLandOnTheFootstepsAndStanceFeetStayPut) {

@@ -19,10 +19,10 @@ namespace wbi::controllers::walking {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kMaxGoalDistance = 100.0;  // [m]
-constexpr double kMaxGoalTurn = 4.0 * kPi;  // [rad]
-constexpr std::size_t kMaxReservedSteps = 4096;
-constexpr double kSlack = 1e-9;  // rounding allowed at a limit [m, rad]
+constexpr double kMaxGoalDistance = 100.0;       // [m]
+constexpr double kMaxGoalTurn = 4.0 * kPi;       // [rad]
+constexpr std::size_t kMaxReservedSteps = 4096;  // more: that walk_to allocates
+constexpr double kSlack = 1e-9;                  // rounding allowed at a limit [m, rad]
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 int index(Foot foot) { return static_cast<int>(foot); }
@@ -204,11 +204,6 @@ std::string WalkingPlan::walk_to(double t, double dx, double dy, double dyaw) {
                           : 0;
   if (straight == 0 && turning == 0) {
     return {};  // there already: nothing to walk
-  }
-  const std::size_t needed = static_cast<std::size_t>(straight + turning) + 2;
-  if (needed > scratch_steps_.capacity()) {
-    return line("walk_to: the goal needs %zu steps, more than the %zu this plan holds", needed,
-                scratch_steps_.capacity());
   }
 
   // The middle of the feet and their mean heading now.

@@ -53,8 +53,9 @@ struct WalkingParameters {
   double com_height = 0.5;              // z_c of the LIPM [m] (its CoM's height)
   double gravity = 9.81;                // [m/s²]
   double step_width = 0.15;             // lateral distance between the soles [m]
-  // Limits of one step, in the frame of the foot it starts from; a command
-  // needing more is cut into more steps, a footstep beyond them is refused.
+  // Limits of one step, in the frame of the stance foot it starts from (the
+  // other foot); a command needing more is cut into more steps, a footstep
+  // beyond them is refused.
   double max_step_forward = 0.12;  // [m]
   double max_step_backward = 0.05;
   double max_step_lateral = 0.05;  // beyond step_width, either way [m]
@@ -98,12 +99,16 @@ class WalkingPlan {
   // first step is by the foot that the direction of travel favours. Returns
   // "" when planned, else one line saying why not (a NaN or infinite value,
   // the robot is walking already (walking(t)), a goal farther than 100 m or
-  // turned more than 4π), and the plan is unchanged.
+  // turned more than 4π, a footstep it would need out of the limits), and the
+  // plan is unchanged. A goal where the robot stands already plans nothing.
+  // Allocates nothing (buffers reserved at construction for the longest goal;
+  // a copied plan's are not).
   std::string walk_to(double t, double dx, double dy, double dyaw);
 
-  // Walk the given footsteps (world frame) from time t. Returns "" or one line
-  // naming the first footstep out of the limits relative to the foot it
-  // starts from, or that the robot is walking already; unchanged then.
+  // Walk the given footsteps (world frame) from time t, the feet alternating.
+  // Returns "" or one line naming the first footstep out of the limits
+  // relative to the stance foot it starts from (the other foot, where it
+  // stands then), or that the robot is walking already; unchanged then.
   std::string walk(double t, const std::vector<Footstep>& footsteps);
 
   bool walking(double t) const;  // a walk is planned and not over at t
