@@ -54,8 +54,9 @@ void WalkingQp::set_gains(const WalkingQpParameters& g) {
               g.torso_kp >= 0.0 && g.torso_kd >= 0.0 && g.posture_bandwidth_hz >= 0.0,
           "gains must be >= 0");
   require(g.momentum_weight > 0.0 && g.swing_weight >= 0.0 && g.torso_weight >= 0.0 &&
-              g.posture_weight >= 0.0 && g.torque_weight >= 0.0 && g.acceleration_weight > 0.0 &&
-              g.wrench_weight > 0.0 && g.foot_moment_weight >= 0.0,
+              g.posture_weight >= 0.0 && g.angular_momentum_weight >= 0.0 &&
+              g.leg_posture_weight >= 0.0 && g.torque_weight >= 0.0 &&
+              g.acceleration_weight > 0.0 && g.wrench_weight > 0.0 && g.foot_moment_weight >= 0.0,
           "weights must be >= 0 (momentum, acceleration and wrench weights > 0)");
   p_.dcm_gain = g.dcm_gain;
   p_.com_height_kp = g.com_height_kp;
@@ -69,6 +70,8 @@ void WalkingQp::set_gains(const WalkingQpParameters& g) {
   p_.swing_weight = g.swing_weight;
   p_.torso_weight = g.torso_weight;
   p_.posture_weight = g.posture_weight;
+  p_.angular_momentum_weight = g.angular_momentum_weight;
+  p_.leg_posture_weight = g.leg_posture_weight;
   p_.torque_weight = g.torque_weight;
   p_.acceleration_weight = g.acceleration_weight;
   p_.wrench_weight = g.wrench_weight;
@@ -135,6 +138,14 @@ WalkingQp::WalkingQp(WholeBodyInterface& robot, WalkingQpParameters parameters,
 
   robot_.mass_matrix(posture_, Transform::Identity(), M_);
   mass_ = M_(0, 0);
+  // A leg joint moves a sole: its column in a sole's Jacobian is not zero.
+  leg_joint_.assign(n_, false);
+  for (int f = 0; f < 2; ++f) {
+    robot_.jacobian(posture_, Transform::Identity(), sole_[f], Jfeet_.middleRows(6 * f, 6));
+  }
+  for (int j = 0; j < n_; ++j) {
+    leg_joint_[j] = Jfeet_.col(6 + j).norm() > 1e-9;
+  }
   const double omega = 2.0 * M_PI * p_.posture_bandwidth_hz;
   posture_kp_ = omega * omega;
   posture_kd_ = 2.0 * omega;
@@ -282,8 +293,12 @@ void WalkingQp::fill_costs(const WalkingTargets& t) {
     A_.block<3, 3>(3, 6 * f) = skew(foot_[f].position - com_);
     A_.block<3, 3>(3, 6 * f + 3).setIdentity();
   }
+  // The angular rows weigh angular_momentum_weight of the linear ones.
   Eigen::Matrix<double, 6, 1> target = momentum_rate_;
   target.head<3>() -= mass_ * p_.gravity;
+  const double angular = std::sqrt(p_.angular_momentum_weight);
+  A_.bottomRows<3>() *= angular;
+  target.tail<3>() *= angular;
   H_.block<12, 12>(N_, N_).noalias() += (p_.momentum_weight / m2) * A_.transpose() * A_;
   g_.segment<12>(N_).noalias() -= (p_.momentum_weight / m2) * A_.transpose() * target;
 
@@ -319,9 +334,17 @@ void WalkingQp::fill_costs(const WalkingTargets& t) {
   add_acceleration_task(Jtorso_.bottomRows<3>(), torso_acceleration, p_.torso_weight);
 
   // Posture: q̈ = kp (q₀ − q) − kd q̇.
+  // The legs' weight apart from the rest's: a firm leg posture holds the legs
+  // back from stepping (iCub 3 fell at its first steps with 0.3). A firm rest
+  // keeps the arms near their posture, but the QP then lacks them to damp the
+  // angular momentum (iCub 3 fell at the turn with 1.0); both light by default,
+  // and the arms swing wide (README.md, "Limits").
   task_b_ = posture_kp_ * (posture_ - state_.q) - posture_kd_ * state_.dq;
-  H_.diagonal().segment(6, n_).array() += p_.posture_weight;
-  g_.segment(6, n_) -= p_.posture_weight * task_b_;
+  for (int j = 0; j < n_; ++j) {
+    const double w = leg_joint_[j] ? p_.leg_posture_weight : p_.posture_weight;
+    H_(6 + j, 6 + j) += w;
+    g_[6 + j] -= w * task_b_[j];
+  }
 
   // Torques, τ = [M_j  −J_jᵀ] x + h_j, divided by m.
   H_.noalias() += (p_.torque_weight / m2) * torque_map_.transpose() * torque_map_;

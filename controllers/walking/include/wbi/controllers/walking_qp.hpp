@@ -31,6 +31,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 #include <wbi/qp/dense_qp.hpp>
@@ -61,7 +62,10 @@ struct WalkingQpParameters {
   double posture_bandwidth_hz = 1.0;
   // Task weights, each on a residual in m/s² or rad/s² (the momentum rate and
   // the torques divided by the mass m).
-  double momentum_weight = 10.0, swing_weight = 10.0, torso_weight = 1.0, posture_weight = 1e-2;
+  double momentum_weight = 10.0, swing_weight = 10.0, torso_weight = 1.0;
+  double angular_momentum_weight = 1.0;  // × momentum_weight, on the angular part
+  double posture_weight = 1e-2;          // the joints that move no sole: torso, arms, neck
+  double leg_posture_weight = 1e-2;      // the joints that move a sole
   double torque_weight = 1e-3, acceleration_weight = 1e-6, wrench_weight = 1e-6;
   double foot_moment_weight = 1e-2;  // extra, on the feet moments: the CoP near the sole's centre
   Eigen::Vector3d gravity = Eigen::Vector3d(0.0, 0.0, -9.81);
@@ -124,6 +128,7 @@ class WalkingQp {
   int n_, N_, nx_;
   std::array<int, 2> sole_;
   int torso_;
+  std::vector<bool> leg_joint_;       // per joint: it moves a sole
   Eigen::VectorXd posture_, effort_;  // effort_: the joints' torque limits
   double mass_ = 0.0, posture_kp_ = 0.0, posture_kd_ = 0.0;
   Eigen::Matrix3d torso_offset_ = Eigen::Matrix3d::Identity();  // Rz(feet yaw)ᵀ R_torso standing
