@@ -20,9 +20,10 @@
 #include <wbi/controllers/momentum_balance.hpp>
 #include <wbi/dds_interface.hpp>
 #include <wbi/runtime/runner.hpp>
-#include <wbi/sim_rig/in_process_robot.hpp>
 
 #include <wbi/sim_rig/humanoid_joints.hpp>
+
+#include "lockstep_controller_rig.hpp"
 
 namespace {
 
@@ -51,14 +52,7 @@ BalancedRobot icub3() {
   BalancedRobot r;
   r.sim_parameters = "engine: mujoco\nconfig: " + source + "/deploy/robots/icub3.yaml\n";
   r.urdf = source + "/../shared/models/iCubGenova09/model.urdf";
-  r.joints = {"torso_roll",      "torso_pitch",    "torso_yaw",        "l_shoulder_pitch",
-              "l_shoulder_roll", "l_shoulder_yaw", "l_elbow",          "l_wrist_prosup",
-              "l_wrist_pitch",   "l_wrist_yaw",    "r_shoulder_pitch", "r_shoulder_roll",
-              "r_shoulder_yaw",  "r_elbow",        "r_wrist_prosup",   "r_wrist_pitch",
-              "r_wrist_yaw",     "neck_pitch",     "neck_roll",        "neck_yaw",
-              "l_hip_pitch",     "l_hip_roll",     "l_hip_yaw",        "l_knee",
-              "l_ankle_pitch",   "l_ankle_roll",   "r_hip_pitch",      "r_hip_roll",
-              "r_hip_yaw",       "r_knee",         "r_ankle_pitch",    "r_ankle_roll"};
+  r.joints = wbi::sim_rig::icub3_joints();
   r.parameters.foot_x_min = -0.08;
   r.parameters.foot_x_max = 0.08;
   r.parameters.foot_y_min = -0.03;
@@ -68,22 +62,10 @@ BalancedRobot icub3() {
 }
 
 void run_ticks(benchmark::State& state, const BalancedRobot& balanced, const std::string& robot) {
-  wbi::sim_rig::InProcessRobot rig(
-      robot,
-      "robot: " + robot + "\n" + balanced.sim_parameters +
-          "lockstep: true\nlockstep_controllers: [balance]\n",
-      "robot: " + robot + "\nbase: topic\nmethod: backward-difference\ncutoff: 50\n");
-  wbi::DdsInterfaceOptions options;
-  options.robot = robot;
-  options.controller = "balance";
-  options.urdf = balanced.urdf;
-  options.max_age_s = 5.0;
-  auto interface = wbi::make_dds_interface(options);
-  interface->add_joints(balanced.joints);
-  rig.start_simulation();
-  interface->init(20s);
-  Eigen::VectorXd q_posture(interface->dofs());
-  interface->read_estimates(wbi::EstimateKind::joint_position, q_posture);
+  wbi::bench::LockstepControllerRig rig(robot, balanced.sim_parameters, "balance", balanced.urdf,
+                                        balanced.joints);
+  wbi::WholeBodyInterface* interface = &rig.robot();
+  const Eigen::VectorXd q_posture = rig.measured_posture();
   wbi::controllers::MomentumBalance balance(*interface, balanced.parameters, q_posture);
   balance.start();
   wbi::controllers::ComSinusoid reference;
@@ -114,8 +96,6 @@ void run_ticks(benchmark::State& state, const BalancedRobot& balanced, const std
   state.counters["read_state_us"] = 1e6 * read_s / static_cast<double>(state.iterations());
   state.counters["qp_failures"] = static_cast<double>(balance.qp_failures());
   state.counters["joints"] = static_cast<double>(balanced.joints.size());
-  rig.sim().shutdown();
-  rig.estimator().shutdown();
 }
 
 void BM_MomentumBalanceTick(benchmark::State& state) {

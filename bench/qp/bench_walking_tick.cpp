@@ -21,7 +21,8 @@
 #include <wbi/controllers/walking_qp.hpp>
 #include <wbi/dds_interface.hpp>
 #include <wbi/sim_rig/humanoid_joints.hpp>
-#include <wbi/sim_rig/in_process_robot.hpp>
+
+#include "lockstep_controller_rig.hpp"
 
 namespace {
 
@@ -57,14 +58,7 @@ WalkingRobot icub3() {
   WalkingRobot r;
   r.sim_parameters = "engine: mujoco\nconfig: " + source + "/deploy/robots/icub3.yaml\n";
   r.urdf = source + "/../shared/models/iCubGenova09/model.urdf";
-  r.joints = {"torso_roll",      "torso_pitch",    "torso_yaw",        "l_shoulder_pitch",
-              "l_shoulder_roll", "l_shoulder_yaw", "l_elbow",          "l_wrist_prosup",
-              "l_wrist_pitch",   "l_wrist_yaw",    "r_shoulder_pitch", "r_shoulder_roll",
-              "r_shoulder_yaw",  "r_elbow",        "r_wrist_prosup",   "r_wrist_pitch",
-              "r_wrist_yaw",     "neck_pitch",     "neck_roll",        "neck_yaw",
-              "l_hip_pitch",     "l_hip_roll",     "l_hip_yaw",        "l_knee",
-              "l_ankle_pitch",   "l_ankle_roll",   "r_hip_pitch",      "r_hip_roll",
-              "r_hip_yaw",       "r_knee",         "r_ankle_pitch",    "r_ankle_roll"};
+  r.joints = wbi::sim_rig::icub3_joints();
   r.controller.support = {.x_min = -0.08, .x_max = 0.08, .y_min = -0.03, .y_max = 0.03};
   r.plan.com_height = 0.50;
   r.plan.max_step_forward = 0.19;
@@ -86,22 +80,10 @@ walking::FootPose sole_pose(wbi::WholeBodyInterface& robot, const wbi::RobotStat
 }
 
 void run_ticks(benchmark::State& state, WalkingRobot walker, const std::string& robot) {
-  wbi::sim_rig::InProcessRobot rig(
-      robot,
-      "robot: " + robot + "\n" + walker.sim_parameters +
-          "lockstep: true\nlockstep_controllers: [walking]\n",
-      "robot: " + robot + "\nbase: topic\nmethod: backward-difference\ncutoff: 50\n");
-  wbi::DdsInterfaceOptions options;
-  options.robot = robot;
-  options.controller = "walking";
-  options.urdf = walker.urdf;
-  options.max_age_s = 5.0;
-  auto interface = wbi::make_dds_interface(options);
-  interface->add_joints(walker.joints);
-  rig.start_simulation();
-  interface->init(20s);
-  Eigen::VectorXd posture(interface->dofs());
-  interface->read_estimates(wbi::EstimateKind::joint_position, posture);
+  wbi::bench::LockstepControllerRig rig(robot, walker.sim_parameters, "walking", walker.urdf,
+                                        walker.joints);
+  wbi::WholeBodyInterface* interface = &rig.robot();
+  const Eigen::VectorXd posture = rig.measured_posture();
   walking::WalkingQp qp(*interface, walker.controller, posture);
 
   // Stand on the measured feet; walk 2 m from t = 0.2 s.
@@ -145,8 +127,6 @@ void run_ticks(benchmark::State& state, WalkingRobot walker, const std::string& 
   state.counters["qp_failures"] = static_cast<double>(qp.qp_failures());
   state.counters["joints"] = static_cast<double>(walker.joints.size());
   state.counters["largest_tick_us"] = 1e6 * largest_s;
-  rig.sim().shutdown();
-  rig.estimator().shutdown();
 }
 
 void BM_WalkingTick(benchmark::State& state) { run_ticks(state, humanoid(), "bench_walking"); }

@@ -8,12 +8,14 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <regex>
 #include <string>
 #include <vector>
 
 #include "child_process.hpp"
 #include "deploy_text.hpp"
+#include "progress_lines.hpp"
 #include "test_support.hpp"
 
 namespace {
@@ -24,14 +26,9 @@ bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
-// The number after the last `marker` in text (a failure, and a huge value, without one).
+// The number after the last `marker` in text; NaN (no comparison holds) without one.
 double number_after(const std::string& text, const std::string& marker) {
-  const auto at = text.rfind(marker);
-  if (at == std::string::npos) {
-    ADD_FAILURE() << "no '" << marker << "' in\n" << text;
-    return 1e9;
-  }
-  return std::stod(text.substr(at + marker.size()));
+  return wbi::test::last_value_after(text, marker).value_or(std::nan(""));
 }
 
 struct Expected {

@@ -12,18 +12,6 @@ namespace {
 
 const MomentumBalanceParameters kDefaults{};
 
-// A number the balancer reads at configure (live: false) or per tick (live: true).
-ParameterSpec number(const char* name, const char* unit, double value, double min, double max,
-                     bool live, const char* help) {
-  return {.name = name,
-          .unit = unit,
-          .help = help,
-          .default_value = {value},
-          .min = min,
-          .max = max,
-          .live = live};
-}
-
 }  // namespace
 
 std::vector<ParameterSpec> MomentumBalanceController::parameters() const {
@@ -38,24 +26,30 @@ std::vector<ParameterSpec> MomentumBalanceController::parameters() const {
        .help = "right contact frame",
        .text = true,
        .text_default = d.right_sole},
-      number("foot_x_min", "m", d.foot_x_min, -1.0, 0.0, false, "support rectangle, sole frame"),
-      number("foot_x_max", "m", d.foot_x_max, 0.0, 1.0, false, "support rectangle, sole frame"),
-      number("foot_y_min", "m", d.foot_y_min, -1.0, 0.0, false, "support rectangle, sole frame"),
-      number("foot_y_max", "m", d.foot_y_max, 0.0, 1.0, false, "support rectangle, sole frame"),
-      number("friction", "", d.friction, 1e-3, 10.0, false, "friction pyramid's mu"),
-      number("torsional_friction", "m", d.torsional_friction, 0.0, 1.0, false,
-             "|tau_z| <= this x f_z"),
-      number("min_normal_force", "N", d.min_normal_force, 0.0, inf, false, "per foot"),
-      number("com_kp", "1/s^2", d.com_kp, 0.0, inf, true, "CoM stiffness"),
-      number("com_kd", "1/s", d.com_kd, 0.0, inf, true, "CoM damping"),
-      number("angular_momentum_kd", "1/s", d.angular_momentum_kd, 0.0, inf, true,
-             "angular momentum damping"),
-      number("posture_bandwidth_hz", "Hz", d.posture_bandwidth_hz, 0.0, 100.0, false,
-             "null-space joint PD"),
-      number("torque_weight", "", d.torque_weight, 0.0, inf, true, "of |tau|^2 in the QP"),
-      number("wrench_weight", "", d.wrench_weight, 1e-12, inf, true, "|f|^2 regularisation"),
-      number("foot_moment_weight", "", d.foot_moment_weight, 0.0, inf, true,
-             "extra weight on the feet moments"),
+      number_parameter("foot_x_min", "m", d.foot_x_min, -1.0, 0.0, false,
+                       "support rectangle, sole frame"),
+      number_parameter("foot_x_max", "m", d.foot_x_max, 0.0, 1.0, false,
+                       "support rectangle, sole frame"),
+      number_parameter("foot_y_min", "m", d.foot_y_min, -1.0, 0.0, false,
+                       "support rectangle, sole frame"),
+      number_parameter("foot_y_max", "m", d.foot_y_max, 0.0, 1.0, false,
+                       "support rectangle, sole frame"),
+      number_parameter("friction", "", d.friction, 1e-3, 10.0, false, "friction pyramid's mu"),
+      number_parameter("torsional_friction", "m", d.torsional_friction, 0.0, 1.0, false,
+                       "|tau_z| <= this x f_z"),
+      number_parameter("min_normal_force", "N", d.min_normal_force, 0.0, inf, false, "per foot"),
+      number_parameter("com_kp", "1/s^2", d.com_kp, 0.0, inf, true, "CoM stiffness"),
+      number_parameter("com_kd", "1/s", d.com_kd, 0.0, inf, true, "CoM damping"),
+      number_parameter("angular_momentum_kd", "1/s", d.angular_momentum_kd, 0.0, inf, true,
+                       "angular momentum damping"),
+      number_parameter("posture_bandwidth_hz", "Hz", d.posture_bandwidth_hz, 0.0, 100.0, false,
+                       "null-space joint PD"),
+      number_parameter("torque_weight", "", d.torque_weight, 0.0, inf, true,
+                       "of |tau|^2 in the QP"),
+      number_parameter("wrench_weight", "", d.wrench_weight, 1e-12, inf, true,
+                       "|f|^2 regularisation"),
+      number_parameter("foot_moment_weight", "", d.foot_moment_weight, 0.0, inf, true,
+                       "extra weight on the feet moments"),
       {.name = "contact_forces",
        .help = "planned: the torques are those of the QP's feet wrenches; estimated: they are "
                "corrected so that the feet carry them, by the feet wrenches the state estimates "
@@ -69,19 +63,21 @@ std::vector<ParameterSpec> MomentumBalanceController::parameters() const {
       {.name = "right_wrench_links",
        .help = "likewise for the right foot (default: right_sole)",
        .text = true},
-      number("wrench_correction", "", d.wrench_correction, 0.0, 1.0, true,
-             "with contact_forces: estimated, the share of the feet wrenches' error corrected"),
-      number("wrench_correction_cutoff_hz", "Hz", d.wrench_correction_cutoff_hz, 1e-3, 1000.0,
-             false, "low-pass of the feet wrenches' error"),
+      number_parameter(
+          "wrench_correction", "", d.wrench_correction, 0.0, 1.0, true,
+          "with contact_forces: estimated, the share of the feet wrenches' error corrected"),
+      number_parameter("wrench_correction_cutoff_hz", "Hz", d.wrench_correction_cutoff_hz, 1e-3,
+                       1000.0, false, "low-pass of the feet wrenches' error"),
       {.name = "posture",
        .unit = "rad",
        .help = "postural task's reference (default: measured at configure)",
        .size = kPerJoint,
        .live = false,
        .optional = true},
-      number("settle_s", "s", 0.5, 0.0, inf, false,
-             "CoM error figures count from this long after activation"),
-      number("exit_after_s", "s", 0.0, 0.0, inf, false, "end the run after this long (0: never)"),
+      number_parameter("settle_s", "s", 0.5, 0.0, inf, false,
+                       "CoM error figures count from this long after activation"),
+      number_parameter("exit_after_s", "s", 0.0, 0.0, inf, false,
+                       "end the run after this long (0: never)"),
   };
 }
 

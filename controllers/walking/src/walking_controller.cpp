@@ -11,17 +11,6 @@ namespace {
 const WalkingQpParameters kDefaults{};
 const double kInfinity = std::numeric_limits<double>::infinity();
 
-ParameterSpec number(const char* name, const char* unit, double value, double min, double max,
-                     bool live, const char* help) {
-  return {.name = name,
-          .unit = unit,
-          .help = help,
-          .default_value = {value},
-          .min = min,
-          .max = max,
-          .live = live};
-}
-
 ParameterSpec text(const char* name, const std::string& value, const char* help) {
   return {.name = name, .help = help, .text = true, .text_default = value};
 }
@@ -69,34 +58,40 @@ std::vector<ParameterSpec> WalkingController::parameters() const {
       text("left_sole", d.left_sole, "left contact frame (z up, x forward)"),
       text("right_sole", d.right_sole, "right contact frame"),
       text("torso", d.torso, "the link held upright, heading with the feet"),
-      number("foot_x_min", "m", d.support.x_min, -1.0, 0.0, false, "support rectangle, sole frame"),
-      number("foot_x_max", "m", d.support.x_max, 0.0, 1.0, false, "support rectangle, sole frame"),
-      number("foot_y_min", "m", d.support.y_min, -1.0, 0.0, false, "support rectangle, sole frame"),
-      number("foot_y_max", "m", d.support.y_max, 0.0, 1.0, false, "support rectangle, sole frame"),
-      number("friction", "", d.support.friction, 1e-3, 10.0, false, "friction pyramid's mu"),
-      number("torsional_friction", "m", d.support.torsional_friction, 0.0, 1.0, false,
-             "|tau_z| <= this x f_z"),
-      number("min_normal_force", "N", d.min_normal_force, 0.0, kInfinity, false,
-             "a foot in contact, at full weight"),
-      number("max_normal_force", "", d.max_normal_force, 1e-3, kInfinity, false,
-             "a foot's normal force at most this x m g, at full weight"),
-      number("posture_bandwidth_hz", "Hz", d.posture_bandwidth_hz, 0.0, 100.0, false,
-             "postural task"),
+      number_parameter("foot_x_min", "m", d.support.x_min, -1.0, 0.0, false,
+                       "support rectangle, sole frame"),
+      number_parameter("foot_x_max", "m", d.support.x_max, 0.0, 1.0, false,
+                       "support rectangle, sole frame"),
+      number_parameter("foot_y_min", "m", d.support.y_min, -1.0, 0.0, false,
+                       "support rectangle, sole frame"),
+      number_parameter("foot_y_max", "m", d.support.y_max, 0.0, 1.0, false,
+                       "support rectangle, sole frame"),
+      number_parameter("friction", "", d.support.friction, 1e-3, 10.0, false,
+                       "friction pyramid's mu"),
+      number_parameter("torsional_friction", "m", d.support.torsional_friction, 0.0, 1.0, false,
+                       "|tau_z| <= this x f_z"),
+      number_parameter("min_normal_force", "N", d.min_normal_force, 0.0, kInfinity, false,
+                       "a foot in contact, at full weight"),
+      number_parameter("max_normal_force", "", d.max_normal_force, 1e-3, kInfinity, false,
+                       "a foot's normal force at most this x m g, at full weight"),
+      number_parameter("posture_bandwidth_hz", "Hz", d.posture_bandwidth_hz, 0.0, 100.0, false,
+                       "postural task"),
       {.name = "posture",
        .unit = "rad",
        .help = "postural task's reference (default: measured at configure)",
        .size = kPerJoint,
        .live = false,
        .optional = true},
-      number("exit_after_s", "s", 0.0, 0.0, kInfinity, false,
-             "end the run this long after activation (0: never)"),
-      number("fall_height", "m", 0.2, 0.0, kInfinity, false,
-             "the base below this height above the lower sole is a fall"),
-      number("speed_distance", "m", 1.0, 1e-3, kInfinity, false,
-             "the forward speed figure is timed over this much of the CoM's travel"),
+      number_parameter("exit_after_s", "s", 0.0, 0.0, kInfinity, false,
+                       "end the run this long after activation (0: never)"),
+      number_parameter("fall_height", "m", 0.2, 0.0, kInfinity, false,
+                       "the base below this height above the lower sole is a fall"),
+      number_parameter("speed_distance", "m", 1.0, 1e-3, kInfinity, false,
+                       "the forward speed figure is timed over this much of the CoM's travel"),
   };
   for (const LiveField& live : kLive) {
-    specs.push_back(number(live.name, live.unit, d.*live.field, 0.0, kInfinity, true, live.help));
+    specs.push_back(
+        number_parameter(live.name, live.unit, d.*live.field, 0.0, kInfinity, true, live.help));
   }
   return specs;
 }

@@ -40,6 +40,18 @@ struct ParameterSpec {
   std::string text_default{};
 };
 
+// A number with its default and range, the common case of a spec.
+inline ParameterSpec number_parameter(const char* name, const char* unit, double value, double min,
+                                      double max, bool live, const char* help) {
+  return {.name = name,
+          .unit = unit,
+          .help = help,
+          .default_value = {value},
+          .min = min,
+          .max = max,
+          .live = live};
+}
+
 class ParameterTable {
  public:
   // owner: the controller's name, in error texts ("pd: kp_scale = 7 is outside [0, 4]").
