@@ -106,10 +106,10 @@ HostInput host_input(const std::string& file, const std::string& processes) {
   wbi::deploy::ProcessHost host = wbi::deploy::load_process_host(file, processes);
   return {host.document,
           {{},
-           [deploy = std::move(host.deploy)](const YAML::Node&, const std::string&,
-                                             const std::string& identity,
-                                             wbi::dds::ParticipantOptions& options) {
-             wbi::deploy::apply_join_keys(deploy, identity, options);
+           [join = std::move(host.join)](const YAML::Node&, const std::string&,
+                                         const std::string& identity,
+                                         wbi::dds::ParticipantOptions& options) {
+             wbi::deploy::apply_join_keys(join, identity, options);
            }}};
 }
 

@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
         {},
         [&process](const YAML::Node&, const std::string&, const std::string& identity,
                    wbi::dds::ParticipantOptions& options) {
-          wbi::deploy::apply_join_keys(process.deploy, identity, options);
+          wbi::deploy::apply_join_keys(process.join, identity, options);
         }};
     wbi::runtime::Host host(process.document, argv[1], argv[3], registry, join);
     host.start();

@@ -65,8 +65,8 @@ processes:
     shutdown_on_exit: true
     wait_for: {topics: [wbi/arm/state], timeout: 3}
 )"));
-  EXPECT_EQ(deploy.domain_id, 42);
-  EXPECT_EQ(deploy.qos_file, dir_ / "qos.xml");
+  EXPECT_EQ(deploy.join.domain_id, 42);
+  EXPECT_EQ(deploy.join.qos_file, (dir_ / "qos.xml").string());
   EXPECT_EQ(deploy.environment.at("A"), "1");
   ASSERT_EQ(deploy.processes.size(), 2u);
   const auto& robot = deploy.processes[0];

@@ -96,7 +96,7 @@ TEST_F(OneReader, AGoodFileJoinsTheSameForEveryReader) {
   wbi::deploy::read_join_options(file_, "observer", tool);
   wbi::dds::ParticipantOptions host;
   const auto process = wbi::deploy::load_process_host(file_, "robot");
-  wbi::deploy::apply_join_keys(process.deploy, "robot", host);
+  wbi::deploy::apply_join_keys(process.join, "robot", host);
   for (const auto* options : {&tool, &host}) {
     EXPECT_EQ(options->domain_id, 12);
     EXPECT_EQ(std::filesystem::path(options->qos_file), dir_ / "qos.xml");

@@ -54,7 +54,7 @@ TEST(ProcessHost, TakesTheProcessComponentsAndPlugins) {
 
 TEST(ProcessHost, TheJoinKeysComeFromTheDeployFile) {
   wbi::dds::ParticipantOptions options;
-  wbi::deploy::apply_join_keys(deploy_of(kDeploy), "robot", options);
+  wbi::deploy::apply_join_keys(deploy_of(kDeploy).join, "robot", options);
   EXPECT_EQ(options.domain_id, 7);
   EXPECT_EQ(options.discovery, wbi::dds::Discovery::multicast);
   EXPECT_EQ(options.security.identity, "robot");  // recorded for a directory given later

@@ -95,32 +95,22 @@ DeployFile read_deploy_file(const YAML::Node& root, const std::filesystem::path&
   DeployFile deploy;
   deploy.path = path;
   // The join keys first: they are all a tool pointed at the file needs.
+  deploy.join = read_placement_blocks(root, path.string());
   if (root["domain_id"]) {
-    deploy.domain_id = read_domain_id(in, root["domain_id"]);
+    deploy.join.domain_id = read_domain_id(in, root["domain_id"]);
   }
   if (const YAML::Node qos_file = root["qos_file"]) {
-    deploy.qos_file = path.parent_path() / in.non_empty_text(qos_file, "qos_file");
-    if (!std::filesystem::exists(deploy.qos_file)) {
-      in.fail(qos_file, "qos_file", "no such file: " + deploy.qos_file.string());
+    const auto qos_path = path.parent_path() / in.non_empty_text(qos_file, "qos_file");
+    if (!std::filesystem::exists(qos_path)) {
+      in.fail(qos_file, "qos_file", "no such file: " + qos_path.string());
     }
+    deploy.join.qos_file = qos_path.string();
   }
-  deploy.placement = read_placement_blocks(root, path.string());
   if (root["environment"]) {
     deploy.environment = in.string_map(root["environment"], "environment");
   }
   read_processes(in, root, deploy);
   return deploy;
-}
-
-void apply_join_keys(const DeployFile& deploy, const std::string& identity,
-                     dds::ParticipantOptions& options) {
-  if (deploy.domain_id) {
-    options.domain_id = *deploy.domain_id;
-  }
-  if (!deploy.qos_file.empty()) {
-    options.qos_file = deploy.qos_file.string();
-  }
-  apply_placement(deploy.placement, identity, options);
 }
 
 }  // namespace wbi::deploy

@@ -78,7 +78,7 @@ dds::Participant& Launcher::participant() {
 dds::ParticipantOptions Launcher::join_options() const {
   dds::ParticipantOptions join;
   join.name = "wbi launch";
-  deploy::apply_join_keys(deploy_, "launcher", join);
+  deploy::apply_join_keys(deploy_.join, "launcher", join);
   // A process's identity is its own; the launcher's is "launcher" (or the
   // file's) whatever the environment says.
   const std::string identity = join.security.identity;

@@ -53,9 +53,8 @@ YAML::Node process_host_document(const DeployFile& deploy,
 }
 
 ProcessHost load_process_host(const std::string& deploy_file, const std::string& processes) {
-  ProcessHost host{read_deploy_file(deploy_file), {}};
-  host.document = process_host_document(host.deploy, split_names(processes, ','));
-  return host;
+  const DeployFile deploy = read_deploy_file(deploy_file);
+  return {deploy.join, process_host_document(deploy, split_names(processes, ','))};
 }
 
 }  // namespace wbi::deploy

@@ -21,11 +21,13 @@
 //                                          # or without loop iterations (a deadlocked loop)
 //       host: my_host                      # components: only; their program (default wbi_host)
 //       plugins: [my_controllers]          # components: only; after the file's
+//
+// A process joins with apply_join_keys(deploy.join, its name, options)
+// (placement_blocks.hpp); the WBI_* environment and flags go on top.
 #pragma once
 
 #include <filesystem>
 #include <map>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -77,14 +79,14 @@ struct SummarySpec {
 
 struct DeployFile {
   std::filesystem::path path;
-  std::optional<int> domain_id;    // checked in [0, 232]
-  std::filesystem::path qos_file;  // empty: the built-in profiles; else it exists
+  // domain_id (checked in [0, 232]), qos_file (made absolute; it exists),
+  // the network and security blocks.
+  JoinKeys join;
   std::map<std::string, std::string> environment;
   std::vector<ProcessSpec> processes;
   std::vector<SummarySpec> summaries;
-  Placement placement;  // the network and security blocks
 
-  bool secured() const { return !placement.security_directory.empty(); }
+  bool secured() const { return join.security_directory.has_value(); }
 };
 
 // Reads and checks a deploy file. Throws std::runtime_error "FILE[:LINE]: …"
@@ -93,12 +95,5 @@ DeployFile read_deploy_file(const std::filesystem::path& path);
 // The same, from YAML already parsed (its marks give the lines); `path` names
 // it and anchors its relative paths.
 DeployFile read_deploy_file(const YAML::Node& root, const std::filesystem::path& path);
-
-// The deploy's join keys (domain_id, qos_file, network, security) on top of
-// `options`, for the participant named `identity` (the security identity when
-// the file names none). The WBI_* environment and flags go on top of these
-// (dds/README.md, "Joining a deployment").
-void apply_join_keys(const DeployFile& deploy, const std::string& identity,
-                     dds::ParticipantOptions& options);
 
 }  // namespace wbi::deploy

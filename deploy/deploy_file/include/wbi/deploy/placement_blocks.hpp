@@ -18,38 +18,33 @@
 #pragma once
 
 #include <array>
-#include <optional>
 #include <string>
-#include <vector>
 
 #include <yaml-cpp/yaml.h>
 
+#include <wbi/dds/join_options.hpp>
 #include <wbi/dds/participant.hpp>
 
 namespace wbi::deploy {
 
-// The two blocks as written (read once; applied per participant, whose
-// identity differs).
-struct Placement {
-  std::optional<dds::Discovery> discovery;  // set by a network block (multicast without a mode)
-  std::optional<std::vector<std::string>> peers;
-  std::optional<std::vector<std::string>> interfaces;
-  std::optional<std::string> discovery_server;
-  std::string security_directory;  // empty: no security block; else made absolute from the file
-  std::string security_identity;   // empty: the participant's own name
-  std::string security_where;      // "FILE:LINE" of the security block, for its errors
+// A file's layer of the join options (dds/join_options.hpp), as written: read
+// once, applied per participant (whose identity differs). A network block
+// sets `discovery` (multicast without a mode); a security block sets
+// `security_directory` (made absolute from the file) and `identity` (when it
+// names one).
+struct JoinKeys : dds::JoinOverrides {
+  std::string security_where;  // "FILE:LINE" of the security block, for its errors
 };
 
 // Reads root["network"] and root["security"]. Throws std::runtime_error
 // "FILE:LINE: field: what".
-Placement read_placement_blocks(const YAML::Node& root, const std::string& file);
+JoinKeys read_placement_blocks(const YAML::Node& root, const std::string& file);
 
-// Writes the blocks into `options` (discovery, network, security) for the
-// participant named `identity` (the security identity when the block names
-// none; recorded even without a block, for a security directory given later).
-// Throws "FILE:LINE: security.identity: missing (...)" for a secured file
-// when neither names one.
-void apply_placement(const Placement& placement, const std::string& identity,
+// Writes the keys into `options` for the participant named `identity` (the
+// security identity when the file names none; recorded even without a
+// security block, for a directory given later). Throws "FILE:LINE:
+// security.identity: missing (...)" for a secured file when neither names one.
+void apply_join_keys(const JoinKeys& keys, const std::string& identity,
                      dds::ParticipantOptions& options);
 
 // Both at once, for a wbi_host file (runtime::PlacementReader).

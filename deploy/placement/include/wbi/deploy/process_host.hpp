@@ -25,7 +25,7 @@ YAML::Node process_host_document(const DeployFile& deploy,
                                  const std::vector<std::string>& processes);
 
 struct ProcessHost {
-  DeployFile deploy;    // for its join keys
+  JoinKeys join;        // the deploy's (apply_join_keys)
   YAML::Node document;  // the host document
 };
 
