@@ -87,6 +87,32 @@ int configuration_error(const std::exception& error) {
   return wbi::runtime::kExitConfigurationError;
 }
 
+// What `wbi_host FILE [--process NAMES]` hosts, and how it joins DDS.
+struct HostInput {
+  YAML::Node document;
+  wbi::runtime::PlacementReader placement;
+};
+
+HostInput host_input(const std::string& file, const std::string& processes) {
+  if (processes.empty()) {
+    // A host file: the runtime reads it; its network and security blocks are
+    // the deploy format's (the key check accepts the keys that reader reads).
+    return {wbi::runtime::read_host_file(file),
+            {{wbi::deploy::kPlacementKeys.begin(), wbi::deploy::kPlacementKeys.end()},
+             wbi::deploy::read_placement}};
+  }
+  // Processes of a deploy file: its reader has read and checked every key; the
+  // runtime gets their components, and the file's join keys as join options.
+  wbi::deploy::ProcessHost host = wbi::deploy::load_process_host(file, processes);
+  return {host.document,
+          {{},
+           [join = std::move(host.join)](const YAML::Node&, const std::string&,
+                                         const std::string& identity,
+                                         wbi::dds::ParticipantOptions& options) {
+             wbi::deploy::apply_join_keys(join, identity, options);
+           }}};
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -132,24 +158,15 @@ int main(int argc, char** argv) {
   // error here is the configuration's (respawning cannot fix it).
   std::unique_ptr<wbi::runtime::Host> made;
   try {
-    // One process of a deploy file: the deploy reader picks it out (the
-    // runtime reads host documents only).
-    const YAML::Node document = from_deploy
-                                    ? wbi::deploy::load_process_host(file, arguments.processes)
-                                    : wbi::runtime::read_host_file(file);
+    const HostInput input = host_input(file, arguments.processes);
     std::vector<std::string> plugins = arguments.plugins;
-    for (auto& plugin : wbi::runtime::plugins_of(document, file)) {
+    for (auto& plugin : wbi::runtime::plugins_of(input.document, file)) {
       plugins.push_back(std::move(plugin));
     }
     wbi::runtime::load_plugins(catalog, plugins, std::filesystem::path(file).parent_path());
-    // The deploy reader turns the file's network and security blocks into join
-    // options; the host file's key check accepts the keys it reads.
-    const wbi::runtime::PlacementReader placement{
-        {wbi::deploy::kPlacementKeys.begin(), wbi::deploy::kPlacementKeys.end()},
-        wbi::deploy::read_placement};
-    made =
-        std::make_unique<wbi::runtime::Host>(document, file, from_deploy ? arguments.processes : "",
-                                             catalog.registry<wbi::runtime::Registry>(), placement);
+    made = std::make_unique<wbi::runtime::Host>(
+        input.document, file, from_deploy ? arguments.processes : "",
+        catalog.registry<wbi::runtime::Registry>(), input.placement);
   } catch (const std::exception& error) {
     return configuration_error(error);
   }

@@ -12,6 +12,7 @@
 
 #include <pthread.h>
 
+#include <wbi/dds/participant.hpp>
 #include <wbi/deploy/process_host.hpp>
 #include <wbi/launch/launcher.hpp>
 #include <wbi/runtime/builtin.hpp>
@@ -60,8 +61,15 @@ int main(int argc, char** argv) {
   sigaddset(&signals, SIGTERM);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
   try {
-    wbi::runtime::Host host(wbi::deploy::load_process_host(argv[1], argv[3]), argv[1], argv[3],
-                            registry);
+    const wbi::deploy::ProcessHost process = wbi::deploy::load_process_host(argv[1], argv[3]);
+    // The deploy's join keys, as wbi_host applies them.
+    const wbi::runtime::PlacementReader join{
+        {},
+        [&process](const YAML::Node&, const std::string&, const std::string& identity,
+                   wbi::dds::ParticipantOptions& options) {
+          wbi::deploy::apply_join_keys(process.join, identity, options);
+        }};
+    wbi::runtime::Host host(process.document, argv[1], argv[3], registry, join);
     host.start();
     wbi::runtime::print_line(stdout, "wbi_host: running " + std::to_string(host.size()) +
                                          " component(s) from " + argv[1]);

@@ -1,5 +1,6 @@
-// Deploy files: a good one is read completely; every mistake is reported
-// with the file, the line and the field.
+// Deploy files (the one reader, wbi/deploy/deploy_file.hpp, and what the
+// launcher does with them): a good one is read completely; every mistake is
+// reported with the file, the line and the field.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -21,7 +22,7 @@ class DeployFileTest : public ::testing::Test {
   std::string error_of(const std::string& text) {
     const auto path = write(text);
     try {
-      wbi::launch::load_deploy_file(path);
+      wbi::deploy::read_deploy_file(path);
     } catch (const std::runtime_error& e) {
       const std::string message = e.what();
       EXPECT_EQ(message.rfind(path.string(), 0), 0u)
@@ -46,7 +47,7 @@ class DeployFileTest : public ::testing::Test {
 
 TEST_F(DeployFileTest, ReadsEveryField) {
   std::ofstream(dir_ / "qos.xml") << "<dds/>";
-  const auto deploy = wbi::launch::load_deploy_file(write(R"(
+  const auto deploy = wbi::deploy::read_deploy_file(write(R"(
 domain_id: 42
 qos_file: qos.xml
 environment: {A: "1"}
@@ -64,8 +65,8 @@ processes:
     shutdown_on_exit: true
     wait_for: {topics: [wbi/arm/state], timeout: 3}
 )"));
-  EXPECT_EQ(deploy.domain_id, 42);
-  EXPECT_EQ(deploy.qos_file, dir_ / "qos.xml");
+  EXPECT_EQ(deploy.join.domain_id, 42);
+  EXPECT_EQ(deploy.join.qos_file, (dir_ / "qos.xml").string());
   EXPECT_EQ(deploy.environment.at("A"), "1");
   ASSERT_EQ(deploy.processes.size(), 2u);
   const auto& robot = deploy.processes[0];
@@ -92,7 +93,7 @@ processes:
 }
 
 TEST_F(DeployFileTest, SeveralSummariesInFileOrder) {
-  const auto deploy = wbi::launch::load_deploy_file(write(
+  const auto deploy = wbi::deploy::read_deploy_file(write(
       "summary:\n  - {process: b, match: \"arm error\"}\n  - {process: a, match: \"com rms\"}\n"
       "processes:\n  - {name: a, command: [x]}\n  - {name: b, command: [y]}\n"));
   ASSERT_EQ(deploy.summaries.size(), 2u);
@@ -102,7 +103,7 @@ TEST_F(DeployFileTest, SeveralSummariesInFileOrder) {
 
 // host: the program that runs a components: process (a wbi_host of your own).
 TEST_F(DeployFileTest, HostNamesTheProgramOfComponents) {
-  const auto deploy = wbi::launch::load_deploy_file(
+  const auto deploy = wbi::deploy::read_deploy_file(
       write("processes:\n  - {name: a, host: my_host, components: [{name: i, type: idle}]}\n"));
   ASSERT_EQ(deploy.processes.size(), 1u);
   EXPECT_EQ(deploy.processes[0].command.front(), "my_host");
@@ -134,7 +135,7 @@ TEST_F(DeployFileTest, MistakesNameFileLineAndField) {
                      "processes:\n  - {name: a, command: [x]}\n"),
             ":3: summary[1].process: no process named 'c'");
   EXPECT_EQ(error_of("domain_id: 900\nprocesses:\n  - {name: a, command: [x]}\n"),
-            ":1: domain_id: must be in [0, 232]");
+            ":1: domain_id: must be an integer in [0, 232], got '900'");
   EXPECT_EQ(error_of("processes:\n  - {name: a, command: [x], wait_for: {timeout: -1}}\n"),
             ":2: processes[0].wait_for.timeout: must be > 0");
   const std::string syntax = error_of("processes:\n  - name: [unclosed\n");
@@ -144,10 +145,10 @@ TEST_F(DeployFileTest, MistakesNameFileLineAndField) {
 
 TEST_F(DeployFileTest, MissingFileIsNamed) {
   try {
-    wbi::launch::load_deploy_file(dir_ / "absent.yaml");
+    wbi::deploy::read_deploy_file(dir_ / "absent.yaml");
     FAIL();
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("absent.yaml: cannot open the deploy file"),
+    EXPECT_NE(std::string(e.what()).find("absent.yaml: cannot read the deploy file"),
               std::string::npos)
         << e.what();
   }
@@ -156,7 +157,7 @@ TEST_F(DeployFileTest, MissingFileIsNamed) {
 // `wbi launch --one-process`: one process hosting every component in file order,
 // ending the launch when it ends; the summaries read from it.
 TEST_F(DeployFileTest, OneProcessHostsEveryComponentInFileOrder) {
-  const auto deploy = wbi::launch::in_one_process(wbi::launch::load_deploy_file(write(R"(
+  const auto deploy = wbi::launch::in_one_process(wbi::deploy::read_deploy_file(write(R"(
 summary: {process: controller, match: "final max joint error"}
 processes:
   - name: robot
@@ -192,7 +193,7 @@ TEST_F(DeployFileTest, OneProcessNamesWhatCannotShareAProcess) {
   const auto error_in_one_process = [&](const std::string& text) -> std::string {
     const auto path = write(text);
     try {
-      wbi::launch::in_one_process(wbi::launch::load_deploy_file(path));
+      wbi::launch::in_one_process(wbi::deploy::read_deploy_file(path));
     } catch (const std::runtime_error& e) {
       return std::string(e.what()).substr(path.string().size());
     }
@@ -235,7 +236,7 @@ processes:
   - {name: controller, components: [{type: pd_gravity, name: pd}]}
 )");
   const auto part =
-      wbi::launch::only_processes(wbi::launch::load_deploy_file(path), {"controller", "estimator"});
+      wbi::launch::only_processes(wbi::deploy::read_deploy_file(path), {"controller", "estimator"});
   ASSERT_EQ(part.processes.size(), 2u);
   EXPECT_EQ(part.processes[0].name, "estimator");
   EXPECT_EQ(part.processes[0].wait_for_topics, (std::vector<std::string>{"wbi/arm/sensors"}));
@@ -245,7 +246,7 @@ processes:
 
   const auto error_of_only = [&](const std::vector<std::string>& names) -> std::string {
     try {
-      wbi::launch::only_processes(wbi::launch::load_deploy_file(path), names);
+      wbi::launch::only_processes(wbi::deploy::read_deploy_file(path), names);
     } catch (const std::runtime_error& e) {
       return std::string(e.what()).substr(path.string().size());
     }

@@ -46,7 +46,7 @@ class JoinOptions : public ::testing::Test {
     std::ofstream(deploy_) << "domain_id: 5\n"
                               "network: {discovery: multicast, interfaces: [10.0.0.1]}\n"
                               "security: {directory: keys, identity: controller}\n"
-                              "processes: []\n";
+                              "processes: [{name: robot, command: [x]}]\n";
   }
   void TearDown() override {
     for (const char* name : kVariables) {

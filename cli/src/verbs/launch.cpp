@@ -48,7 +48,7 @@ int run_launch(Args args) {
   if (launch_options.duration_s < 0 || launch_options.stop_grace_s < 0) {
     throw UsageError("--duration and --grace must be >= 0");
   }
-  auto deploy = launch::load_deploy_file(options.get("FILE"));
+  auto deploy = wbi::deploy::read_deploy_file(options.get("FILE"));
   if (const auto processes = options.get_optional("process"); processes) {
     deploy = launch::only_processes(std::move(deploy), split_names(*processes, ','));
   }

@@ -34,7 +34,7 @@ int run_plugins(Args args) {
   std::vector<std::string> specs = opts.rest_values();
   std::filesystem::path near;
   if (const auto deploy_path = opts.get_optional("deploy")) {
-    const launch::DeployFile deploy = launch::load_deploy_file(*deploy_path);
+    const launch::DeployFile deploy = wbi::deploy::read_deploy_file(*deploy_path);
     near = deploy.path.parent_path();
     for (const auto& process : deploy.processes) {
       specs.insert(specs.end(), process.plugins.begin(), process.plugins.end());

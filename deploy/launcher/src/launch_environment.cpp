@@ -78,17 +78,12 @@ dds::Participant& Launcher::participant() {
 dds::ParticipantOptions Launcher::join_options() const {
   dds::ParticipantOptions join;
   join.name = "wbi launch";
-  if (deploy_.domain_id) {
-    join.domain_id = *deploy_.domain_id;
-  }
-  join.qos_file = deploy_.qos_file.string();
-  join.discovery = deploy_.discovery;
-  join.network = deploy_.network;
-  join.security = deploy_.security;
+  deploy::apply_join_keys(deploy_.join, "launcher", join);
+  // A process's identity is its own; the launcher's is "launcher" (or the
+  // file's) whatever the environment says.
+  const std::string identity = join.security.identity;
   dds::apply_environment(join);
-  // A process's identity is its own; the launcher's is "launcher" whatever the environment says.
-  join.security.identity =
-      deploy_.security.identity.empty() ? "launcher" : deploy_.security.identity;
+  join.security.identity = identity;
   dds::apply(options_.join, join);
   return join;
 }

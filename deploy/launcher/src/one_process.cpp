@@ -15,7 +15,7 @@ namespace {
 }  // namespace
 
 DeployFile in_one_process(DeployFile deploy) {
-  if (deploy.security.enabled()) {
+  if (deploy.secured()) {
     refuse(deploy,
            "a secured deployment gives each process its own identity; run its processes "
            "apart");

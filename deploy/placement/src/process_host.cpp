@@ -2,9 +2,8 @@
 // format is read here, not in the runtime (wbi/runtime/host.hpp).
 #include "wbi/deploy/process_host.hpp"
 
+#include <algorithm>
 #include <stdexcept>
-
-#include "wbi/deploy/placement.hpp"
 
 #include <wbi/vocabulary/joined_names.hpp>
 
@@ -12,52 +11,37 @@ namespace wbi::deploy {
 
 namespace {
 
-std::string line_of(const std::string& file, const YAML::Node& node) {
-  return file + ":" + std::to_string(node.Mark().line + 1);
-}
-
-// The entry of `processes` named `name`; throws naming the file when there is none.
-YAML::Node find_process(const YAML::Node& deploy, const std::string& file,
-                        const std::string& name) {
-  const YAML::Node processes = deploy["processes"];
-  if (processes && processes.IsSequence()) {
-    for (const auto& entry : processes) {
-      if (entry.IsMap() && entry["name"] && entry["name"].IsScalar() &&
-          entry["name"].Scalar() == name) {
-        return entry;
-      }
-    }
+const ProcessSpec& find_process(const DeployFile& deploy, const std::string& name) {
+  const auto found = std::find_if(deploy.processes.begin(), deploy.processes.end(),
+                                  [&](const ProcessSpec& process) { return process.name == name; });
+  if (found == deploy.processes.end()) {
+    throw std::runtime_error(deploy.path.string() + ": no process named '" + name +
+                             "' in the deploy file");
   }
-  throw std::runtime_error(file + ": no process named '" + name + "' in the deploy file");
+  return *found;
 }
 
 }  // namespace
 
-YAML::Node process_host_document(const YAML::Node& deploy, const std::string& file,
+YAML::Node process_host_document(const DeployFile& deploy,
                                  const std::vector<std::string>& processes) {
   if (processes.empty()) {
-    throw std::runtime_error(file + ": no process named to host");
+    throw std::runtime_error(deploy.path.string() + ": no process named to host");
   }
   YAML::Node components(YAML::NodeType::Sequence);
-  // The deploy file's plugins, then each process's (the loader skips a repeat).
+  // Each process's plugins: the file's, then its own (the loader skips a repeat).
   YAML::Node plugins(YAML::NodeType::Sequence);
-  const auto add_plugins = [&](const YAML::Node& list) {
-    if (list && list.IsSequence()) {
-      for (const auto& plugin : list) {
-        plugins.push_back(plugin);
-      }
-    }
-  };
-  add_plugins(deploy["plugins"]);
   for (const auto& name : processes) {
-    const YAML::Node entry = find_process(deploy, file, name);
-    add_plugins(entry["plugins"]);
-    if (!entry["components"]) {
-      throw std::runtime_error(line_of(file, entry) + ": process '" + name +
-                               "' has no 'components' to host");
+    const ProcessSpec& process = find_process(deploy, name);
+    if (!process.hosts_components) {
+      throw std::runtime_error(deploy.path.string() + ":" + std::to_string(process.line) +
+                               ": process '" + name + "' has no 'components' to host");
     }
-    for (const auto& component : entry["components"]) {
+    for (const auto& component : process.component_nodes) {
       components.push_back(component);
+    }
+    for (const auto& plugin : process.plugins) {
+      plugins.push_back(plugin);
     }
   }
   YAML::Node host;
@@ -65,22 +49,12 @@ YAML::Node process_host_document(const YAML::Node& deploy, const std::string& fi
   if (plugins.size() > 0) {
     host["plugins"] = plugins;
   }
-  for (const char* key : {"domain_id", "qos_file", kNetworkKey, kSecurityKey}) {
-    if (deploy[key]) {
-      host[key] = deploy[key];
-    }
-  }
   return host;
 }
 
-YAML::Node process_host_document(const YAML::Node& deploy, const std::string& file,
-                                 const std::string& process) {
-  return process_host_document(deploy, file, std::vector<std::string>{process});
-}
-
-YAML::Node load_process_host(const std::string& deploy_file, const std::string& processes) {
-  const std::vector<std::string> names = split_names(processes, ',');
-  return process_host_document(load_deploy_file(deploy_file), deploy_file, names);
+ProcessHost load_process_host(const std::string& deploy_file, const std::string& processes) {
+  const DeployFile deploy = read_deploy_file(deploy_file);
+  return {deploy.join, process_host_document(deploy, split_names(processes, ','))};
 }
 
 }  // namespace wbi::deploy

@@ -40,8 +40,10 @@ struct ParticipantOptions;
 namespace wbi::runtime {
 
 // Reads a host document's placement blocks into the participant's options,
-// for the process named `identity` (wbi_host passes the deploy reader,
-// wbi::deploy::read_placement). Injected, so that the runtime neither depends
+// for the process named `identity` (wbi_host passes the deploy reader's,
+// wbi::deploy::read_placement; for processes of a deploy file, the join keys
+// that file's reader read, domain and QoS file included, and no keys of the
+// document). Injected, so that the runtime neither depends
 // on the deploy-file reader nor knows its keys: `keys` names the top-level
 // keys `read` handles, which the host file's unknown-key check accepts besides
 // the runtime's own. It produces join options; the runtime uses them.
