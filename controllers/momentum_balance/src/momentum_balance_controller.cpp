@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <limits>
 
+#include <wbi/controllers/posture_parameter.hpp>
+
 #include <wbi/vocabulary/joined_names.hpp>
 
 namespace wbi::controllers {
@@ -68,12 +70,7 @@ std::vector<ParameterSpec> MomentumBalanceController::parameters() const {
           "with contact_forces: estimated, the share of the feet wrenches' error corrected"),
       number_parameter("wrench_correction_cutoff_hz", "Hz", d.wrench_correction_cutoff_hz, 1e-3,
                        1000.0, false, "low-pass of the feet wrenches' error"),
-      {.name = "posture",
-       .unit = "rad",
-       .help = "postural task's reference (default: measured at configure)",
-       .size = kPerJoint,
-       .live = false,
-       .optional = true},
+      posture_parameter(),
       number_parameter("settle_s", "s", 0.5, 0.0, inf, false,
                        "CoM error figures count from this long after activation"),
       number_parameter("exit_after_s", "s", 0.0, 0.0, inf, false,
@@ -123,13 +120,7 @@ void MomentumBalanceController::configure(WholeBodyInterface& robot,
   p.left_wrench_links = split_joined_names(parameters.text(parameters.index("left_wrench_links")));
   p.right_wrench_links =
       split_joined_names(parameters.text(parameters.index("right_wrench_links")));
-  const int n = robot.dofs();
-  Eigen::VectorXd posture(n);
-  if (const std::size_t i = parameters.index("posture"); parameters.is_set(i)) {
-    posture = Eigen::Map<const Eigen::VectorXd>(parameters.values(i).data(), n);
-  } else {
-    robot.read_estimates(EstimateKind::joint_position, posture);
-  }
+  const Eigen::VectorXd posture = read_posture(robot, parameters);
   settle_s_ = value("settle_s");
   exit_after_s_ = value("exit_after_s");
   balance_.reset();

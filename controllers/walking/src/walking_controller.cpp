@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <limits>
 
+#include <wbi/controllers/posture_parameter.hpp>
+
 namespace wbi::controllers::walking {
 
 namespace {
@@ -76,12 +78,7 @@ std::vector<ParameterSpec> WalkingController::parameters() const {
                        "a foot's normal force at most this x m g, at full weight"),
       number_parameter("posture_bandwidth_hz", "Hz", d.posture_bandwidth_hz, 0.0, 100.0, false,
                        "postural task"),
-      {.name = "posture",
-       .unit = "rad",
-       .help = "postural task's reference (default: measured at configure)",
-       .size = kPerJoint,
-       .live = false,
-       .optional = true},
+      posture_parameter(),
       number_parameter("exit_after_s", "s", 0.0, 0.0, kInfinity, false,
                        "end the run this long after activation (0: never)"),
       number_parameter("fall_height", "m", 0.2, 0.0, kInfinity, false,
@@ -134,12 +131,7 @@ void WalkingController::configure(WholeBodyInterface& robot, const ParameterTabl
     live_.push_back(parameters.index(live.name));
   }
   parameters_changed(parameters);
-  Eigen::VectorXd posture(robot.dofs());
-  if (const std::size_t i = parameters.index("posture"); parameters.is_set(i)) {
-    posture = Eigen::Map<const Eigen::VectorXd>(parameters.values(i).data(), robot.dofs());
-  } else {
-    robot.read_estimates(EstimateKind::joint_position, posture);
-  }
+  const Eigen::VectorXd posture = read_posture(robot, parameters);
   qp_.reset();
   qp_.emplace(robot, configured_, posture);
 }
