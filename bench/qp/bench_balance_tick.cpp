@@ -22,8 +22,7 @@
 #include <wbi/runtime/runner.hpp>
 
 #include <wbi/sim_rig/humanoid_joints.hpp>
-
-#include "lockstep_controller_rig.hpp"
+#include <wbi/sim_rig/lockstep_controller_rig.hpp>
 
 namespace {
 
@@ -62,8 +61,8 @@ BalancedRobot icub3() {
 }
 
 void run_ticks(benchmark::State& state, const BalancedRobot& balanced, const std::string& robot) {
-  wbi::bench::LockstepControllerRig rig(robot, balanced.sim_parameters, "balance", balanced.urdf,
-                                        balanced.joints);
+  wbi::sim_rig::LockstepControllerRig rig(robot, balanced.sim_parameters, "balance", balanced.urdf,
+                                          balanced.joints);
   wbi::WholeBodyInterface* interface = &rig.robot();
   const Eigen::VectorXd q_posture = rig.measured_posture();
   wbi::controllers::MomentumBalance balance(*interface, balanced.parameters, q_posture);

@@ -21,8 +21,7 @@
 #include <wbi/controllers/walking_qp.hpp>
 #include <wbi/dds_interface.hpp>
 #include <wbi/sim_rig/humanoid_joints.hpp>
-
-#include "lockstep_controller_rig.hpp"
+#include <wbi/sim_rig/lockstep_controller_rig.hpp>
 
 namespace {
 
@@ -80,8 +79,8 @@ walking::FootPose sole_pose(wbi::WholeBodyInterface& robot, const wbi::RobotStat
 }
 
 void run_ticks(benchmark::State& state, WalkingRobot walker, const std::string& robot) {
-  wbi::bench::LockstepControllerRig rig(robot, walker.sim_parameters, "walking", walker.urdf,
-                                        walker.joints);
+  wbi::sim_rig::LockstepControllerRig rig(robot, walker.sim_parameters, "walking", walker.urdf,
+                                          walker.joints);
   wbi::WholeBodyInterface* interface = &rig.robot();
   const Eigen::VectorXd posture = rig.measured_posture();
   walking::WalkingQp qp(*interface, walker.controller, posture);

@@ -1,7 +1,8 @@
-// A controller's bench rig: a robot simulated in lockstep in this process (its
-// base estimated from the ground truth), and the DDS whole-body interface of
-// one controller on the given joints, initialised. The benchmarks of the
-// balancing and walking ticks time what their controller does with it.
+// A controller's rig: a robot simulated in lockstep in this process (its base
+// estimated from the ground truth), and the DDS whole-body interface of one
+// controller on the given joints, initialised. The benchmarks of the balancing
+// and walking ticks time what their controller does with it; tests drive a
+// controller's library on it without a process of its own.
 #pragma once
 
 #include <chrono>
@@ -11,9 +12,10 @@
 
 #include <Eigen/Core>
 #include <wbi/dds_interface.hpp>
-#include <wbi/sim_rig/in_process_robot.hpp>
 
-namespace wbi::bench {
+#include "wbi/sim_rig/in_process_robot.hpp"
+
+namespace wbi::sim_rig {
 
 class LockstepControllerRig {
  public:
@@ -55,4 +57,4 @@ class LockstepControllerRig {
   std::unique_ptr<WholeBodyInterface> interface_;
 };
 
-}  // namespace wbi::bench
+}  // namespace wbi::sim_rig
