@@ -3,6 +3,7 @@
 // counted on the status; a sensors-only instance never powers the backend.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -143,19 +144,32 @@ TEST(RobotDriver, StreamedPositionTargetArrivesLikeOneCommand) {
   // command goes out until joint a is within 10 mrad of `target`: the robot's
   // own clock, so that how late this thread is woken does not count (a CI run
   // under load measured 5.3 % apart on wall time).
+  // `stall_ms`: the longest the driver's loop stopped during the move, from the
+  // samples read (their stamps advance beyond their ticks, 2 ms each at 500 Hz).
+  double stall_ms = 0.0;
   const auto move = [&](double target, bool stream) {
     command.references({target});
     const auto start = std::chrono::steady_clock::now();
     auto next = start;
     const std::int64_t start_ns = sample.sample.header().stamp_ns();
+    std::int64_t last_ns = start_ns;
+    std::uint64_t last_seq = sample.sample.header().seq();
+    stall_ms = 0.0;
     commands.publish(command);
     while (std::chrono::steady_clock::now() - start < 10s) {
       if (stream && std::chrono::steady_clock::now() >= next) {
         commands.publish(command);
         next += 5ms;  // 200 Hz
       }
-      if (sensors.wait_newer(sample, sample.count, 5ms) &&
-          std::abs(sample.sample.encoder_position()[0] - target) < 0.01) {
+      if (!sensors.wait_newer(sample, sample.count, 5ms)) {
+        continue;
+      }
+      const auto& header = sample.sample.header();
+      stall_ms = std::max(stall_ms, 1e-6 * static_cast<double>(header.stamp_ns() - last_ns) -
+                                        2.0 * static_cast<double>(header.seq() - last_seq));
+      last_ns = header.stamp_ns();
+      last_seq = header.seq();
+      if (std::abs(sample.sample.encoder_position()[0] - target) < 0.01) {
         return 1e-9 * static_cast<double>(sample.sample.header().stamp_ns() - start_ns);
       }
     }
@@ -164,10 +178,24 @@ TEST(RobotDriver, StreamedPositionTargetArrivesLikeOneCommand) {
   // The first move is a warm-up: it arrived about 45 ms later than every later
   // one, sent once or streamed (the first samples on a new writer).
   move(0.5, false);
-  const double once = move(0.0, false);
-  const double streamed = move(0.5, true);
-  std::cout << "[measured] driver over DDS, POSITION 0.5 rad: once " << once
-            << " s, streamed at 200 Hz " << streamed << " s\n";
+  // A stall of the driver's loop (ticks skipped) holds the last torque while
+  // the trajectory goes on by the clock, and so moves the arrival either way: a
+  // CI run under load measured 1.60 s once and 1.46 s streamed, and three 0.1 s
+  // stops of this process make a streamed move arrive in 0.92 s. That is the
+  // loop's stall, not streaming: a pair met by one over 20 ms is measured again
+  // (three pairs at most).
+  double once = 0.0, streamed = 0.0;
+  for (int pair = 0; pair < 3; ++pair) {
+    once = move(0.0, false);
+    const double once_stall_ms = stall_ms;
+    streamed = move(0.5, true);
+    std::cout << "[measured] driver over DDS, POSITION 0.5 rad: once " << once
+              << " s, streamed at 200 Hz " << streamed << " s; the loop's longest stall "
+              << once_stall_ms << " and " << stall_ms << " ms\n";
+    if (std::max(once_stall_ms, stall_ms) <= 20.0) {
+      break;
+    }
+  }
   EXPECT_LT(once, 2.5);
   EXPECT_NEAR(streamed, once, 0.05 * once);
   driver.runner->shutdown();
