@@ -18,6 +18,7 @@
 
 #include <Eigen/Geometry>
 #include <wbi/controllers/walking_plan.hpp>
+#include <wbi/controllers/walking_planner.hpp>
 #include <wbi/controllers/walking_qp.hpp>
 #include <wbi/dds_interface.hpp>
 #include <wbi/sim_rig/humanoid_joints.hpp>
@@ -68,16 +69,6 @@ WalkingRobot icub3() {
   return r;
 }
 
-walking::FootPose sole_pose(wbi::WholeBodyInterface& robot, const wbi::RobotState& state,
-                            const std::string& sole) {
-  wbi::Transform pose;
-  robot.frame_pose(state.q, state.world_H_base, robot.frame_index(sole), pose);
-  walking::FootPose foot;
-  foot.position = pose.topRightCorner<3, 1>();
-  foot.yaw = std::atan2(pose(1, 0), pose(0, 0));
-  return foot;
-}
-
 void run_ticks(benchmark::State& state, WalkingRobot walker, const std::string& robot) {
   wbi::sim_rig::LockstepControllerRig rig(robot, walker.sim_parameters, "walking", walker.urdf,
                                           walker.joints);
@@ -91,8 +82,10 @@ void run_ticks(benchmark::State& state, WalkingRobot walker, const std::string& 
   qp.start(measured);
   Eigen::Vector3d com;
   interface->com(measured.q, measured.world_H_base, com);
-  const auto left = sole_pose(*interface, measured, walker.controller.left_sole);
-  const auto right = sole_pose(*interface, measured, walker.controller.right_sole);
+  const auto left = walking::measured_sole(*interface, measured,
+                                           interface->frame_index(walker.controller.left_sole));
+  const auto right = walking::measured_sole(*interface, measured,
+                                            interface->frame_index(walker.controller.right_sole));
   walker.plan.step_width = (left.position - right.position).head<2>().norm();
   walking::WalkingPlan plan(walker.plan);
   plan.stand(0.0, left, right, com);

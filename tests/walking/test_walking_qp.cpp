@@ -9,6 +9,7 @@
 #include <string>
 
 #include <wbi/controllers/walking_plan.hpp>
+#include <wbi/controllers/walking_planner.hpp>
 #include <wbi/controllers/walking_qp.hpp>
 #include <wbi/sim_rig/humanoid_joints.hpp>
 #include <wbi/sim_rig/lockstep_controller_rig.hpp>
@@ -19,16 +20,6 @@
 namespace {
 
 namespace walking = wbi::controllers::walking;
-
-walking::FootPose sole_pose(wbi::WholeBodyInterface& robot, const wbi::RobotState& state,
-                            const std::string& sole) {
-  wbi::Transform pose;
-  robot.frame_pose(state.q, state.world_H_base, robot.frame_index(sole), pose);
-  walking::FootPose foot;
-  foot.position = pose.topRightCorner<3, 1>();
-  foot.yaw = std::atan2(pose(1, 0), pose(0, 0));
-  return foot;
-}
 
 TEST(WalkingQp, TheHumanoidWalksItsPlanWithoutAllocating) {
   wbi::sim_rig::LockstepControllerRig rig(
@@ -51,8 +42,10 @@ TEST(WalkingQp, TheHumanoidWalksItsPlanWithoutAllocating) {
   plan_parameters.single_support_s = 0.5;
   plan_parameters.double_support_s = 0.15;
   plan_parameters.final_double_support_s = 0.5;
-  const auto left = sole_pose(robot, measured, parameters.left_sole);
-  const auto right = sole_pose(robot, measured, parameters.right_sole);
+  const auto left =
+      walking::measured_sole(robot, measured, robot.frame_index(parameters.left_sole));
+  const auto right =
+      walking::measured_sole(robot, measured, robot.frame_index(parameters.right_sole));
   plan_parameters.step_width = (left.position - right.position).head<2>().norm();
   plan_parameters.com_height = com.z() - left.position.z();
   walking::WalkingPlan plan(plan_parameters);

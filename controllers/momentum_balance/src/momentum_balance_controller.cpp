@@ -150,18 +150,17 @@ void MomentumBalanceController::parameters_changed(const ParameterTable& paramet
 
 void MomentumBalanceController::activate(const RobotState& /*measured*/) {
   balance_->start();
-  start_ns_ = -1;
-  has_seq_ = false;
+  answered_.reset();
 }
 
 void MomentumBalanceController::state_source_changed() { new_estimator_ = true; }
 
 bool MomentumBalanceController::update(double /*time_s*/, double /*period_s*/) {
   const Stamp stamp = balance_->read_state(ReadMode::latest);
-  if (has_seq_ && stamp.seq == last_seq_) {
+  if (!answered_.take(stamp)) {
     return false;  // this estimate was answered already
   }
-  if (has_seq_ && new_estimator_) {
+  if (!answered_.first() && new_estimator_) {
     // A new estimator: its world frame need not be the old one's (a legged
     // base starts at x = y = 0 wherever the robot stands). The reference
     // moves with the frame, so that the robot does not (it moved 5 cm to the
@@ -177,13 +176,7 @@ bool MomentumBalanceController::update(double /*time_s*/, double /*period_s*/) {
     std::fflush(stdout);
     new_estimator_ = false;
   }
-  has_seq_ = true;
-  last_seq_ = stamp.seq;
-  stamp_ns_ = stamp.source_ns;
-  if (start_ns_ < 0) {
-    start_ns_ = stamp.source_ns;
-  }
-  const double t = 1e-9 * static_cast<double>(stamp.source_ns - start_ns_);
+  const double t = answered_.time_s();
   follow_reference(stamp.source_ns);
   balance_->compute();
   // The run's figures end at exit_after_s: the ticks answered while the

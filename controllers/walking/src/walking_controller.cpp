@@ -149,22 +149,15 @@ void WalkingController::activate(const RobotState& measured) {
   qp_->start(measured);
   figures_.reset(fall_height_, speed_distance_);
   finished_ = false;
-  start_ns_ = -1;
-  has_seq_ = false;
+  answered_.reset();
 }
 
 bool WalkingController::update(double /*time_s*/, double /*period_s*/) {
   const Stamp stamp = qp_->read_state(ReadMode::latest);
-  if (has_seq_ && stamp.seq == last_seq_) {
+  if (!answered_.take(stamp)) {
     return false;  // this estimate was answered already
   }
-  has_seq_ = true;
-  last_seq_ = stamp.seq;
-  stamp_ns_ = stamp.source_ns;
-  if (start_ns_ < 0) {
-    start_ns_ = stamp.source_ns;
-  }
-  const double t = 1e-9 * static_cast<double>(stamp.source_ns - start_ns_);
+  const double t = answered_.time_s();
   read_targets(stamp.source_ns);
   qp_->compute(targets_);
   if (!finished_) {

@@ -42,12 +42,6 @@ constexpr Field kFields[] = {
     {"max_step_turn", "rad", &WalkingParameters::max_step_turn, 0.001, 3.0},
     {"min_step_width", "m", &WalkingParameters::min_step_width, 0.001, 2.0}};
 
-FootPose sole_pose(WholeBodyInterface& robot, const RobotState& state, int frame) {
-  Transform pose;
-  robot.frame_pose(state.q, state.world_H_base, frame, pose);
-  return {pose.topRightCorner<3, 1>(), std::atan2(pose(1, 0), pose(0, 0))};
-}
-
 class WalkingPlanner final : public Controller {
  public:
   std::vector<ParameterSpec> parameters() const override {
@@ -151,8 +145,8 @@ class WalkingPlanner final : public Controller {
 
   // Stands on the measured feet and CoM; the deploy file's goal waits start_after_s.
   void activate(const RobotState& measured) override {
-    const FootPose left = sole_pose(*robot_, measured, left_);
-    const FootPose right = sole_pose(*robot_, measured, right_);
+    const FootPose left = walking::measured_sole(*robot_, measured, left_);
+    const FootPose right = walking::measured_sole(*robot_, measured, right_);
     Eigen::Vector3d com;
     robot_->com(measured.q, measured.world_H_base, com);
     WalkingParameters p = configured_;

@@ -18,8 +18,6 @@ void require(bool ok, const std::string& what) {
   }
 }
 
-double yaw_of(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
-
 double mean_yaw(double a, double b) {
   return std::atan2(std::sin(a) + std::sin(b), std::cos(a) + std::cos(b));
 }
@@ -156,7 +154,7 @@ void WalkingQp::start(const RobotState& measured) {
   double yaw[2];
   for (int f = 0; f < 2; ++f) {
     robot_.frame_pose(measured.q, measured.world_H_base, sole_[f], pose_);
-    yaw[f] = yaw_of(pose_.topLeftCorner<3, 3>());
+    yaw[f] = FootPose::of(pose_).yaw;
   }
   robot_.frame_pose(measured.q, measured.world_H_base, torso_, pose_);
   torso_offset_ = Eigen::AngleAxisd(mean_yaw(yaw[0], yaw[1]), Eigen::Vector3d::UnitZ())
@@ -178,9 +176,8 @@ void WalkingQp::evaluate_model() {
     robot_.dj_nu(s.q, s.world_H_base, s.dq, s.base_velocity, sole_[f],
                  dj_nu_feet_.segment<6>(6 * f));
     robot_.frame_pose(s.q, s.world_H_base, sole_[f], pose_);
-    foot_[f].position = pose_.topRightCorner<3, 1>();
+    foot_[f] = FootPose::of(pose_);
     foot_rotation_[f] = pose_.topLeftCorner<3, 3>();
-    foot_[f].yaw = yaw_of(foot_rotation_[f]);
     foot_velocity_[f].noalias() = Jfeet_.middleRows(6 * f, 6) * nu_;
   }
   robot_.jacobian(s.q, s.world_H_base, torso_, Jtorso_);
@@ -192,15 +189,18 @@ void WalkingQp::evaluate_model() {
   com_velocity_ = momentum_.head<3>() / mass_;
 }
 
+// Only the soles and the CoM: the input asks for this on every tick that has
+// no plan point, and compute() evaluates the whole model right after.
 void WalkingQp::standing_targets(WalkingTargets& t) {
-  evaluate_model();
-  t.dcm = com_;
-  t.com = com_;
+  const auto& s = state_;
+  robot_.com(s.q, s.world_H_base, t.com);
+  t.dcm = t.com;
   t.dcm_velocity.setZero();
   t.com_velocity.setZero();
   t.com_acceleration.setZero();
   for (int f = 0; f < 2; ++f) {
-    t.feet[f] = foot_[f];
+    robot_.frame_pose(s.q, s.world_H_base, sole_[f], pose_);
+    t.feet[f] = FootPose::of(pose_);
     t.feet_velocity[f].setZero();
     t.feet_acceleration[f].setZero();
     t.contact_weight[f] = 1.0;

@@ -28,6 +28,7 @@
 #include <array>
 #include <optional>
 
+#include "wbi/controllers/answered_states.hpp"
 #include "wbi/controllers/controller.hpp"
 #include "wbi/controllers/momentum_balance.hpp"
 
@@ -47,7 +48,7 @@ class MomentumBalanceController final : public Controller {
   bool finished() const override { return finished_; }
   const Eigen::VectorXd& command() const override { return balance_->torques(); }
   std::span<const double> signals() const override { return signals_; }
-  std::int64_t signals_stamp_ns() const override { return stamp_ns_; }
+  std::int64_t signals_stamp_ns() const override { return answered_.stamp_ns(); }
   void progress(char* line, std::size_t size) const override;
   std::string summary() const override;
   std::string figures_missing() const override;
@@ -65,9 +66,7 @@ class MomentumBalanceController final : public Controller {
   bool finished_ = false;
   bool new_estimator_ = false;
   bool reference_came_ = false;  // the CoM figures count only from the first reference point
-  std::int64_t start_ns_ = -1, stamp_ns_ = 0;
-  std::uint64_t last_seq_ = 0;
-  bool has_seq_ = false;
+  AnsweredStates answered_;
   double squared_error_ = 0.0, max_error_ = 0.0, squared_force_miss_ = 0.0,
          squared_moment_miss_ = 0.0;
   std::uint64_t samples_ = 0, new_estimators_ = 0;

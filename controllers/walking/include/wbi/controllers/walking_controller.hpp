@@ -19,6 +19,7 @@
 #include <array>
 #include <optional>
 
+#include "wbi/controllers/answered_states.hpp"
 #include "wbi/controllers/controller.hpp"
 #include "wbi/controllers/walking_figures.hpp"
 #include "wbi/controllers/walking_qp.hpp"
@@ -38,7 +39,7 @@ class WalkingController final : public Controller {
   bool finished() const override { return finished_; }
   const Eigen::VectorXd& command() const override { return qp_->torques(); }
   std::span<const double> signals() const override { return signals_; }
-  std::int64_t signals_stamp_ns() const override { return stamp_ns_; }
+  std::int64_t signals_stamp_ns() const override { return answered_.stamp_ns(); }
   void progress(char* line, std::size_t size) const override;
   std::string summary() const override;
   std::string figures_missing() const override;
@@ -55,9 +56,7 @@ class WalkingController final : public Controller {
   WalkingFigures figures_;
   double exit_after_s_ = 0.0, fall_height_ = 0.0, speed_distance_ = 1.0;
   bool finished_ = false;
-  std::int64_t start_ns_ = -1, stamp_ns_ = 0;
-  std::uint64_t last_seq_ = 0;
-  bool has_seq_ = false;
+  AnsweredStates answered_;
   std::array<double, 12> signals_{};
   std::vector<std::size_t> live_;  // indices of the live gains and weights, at configure
 };

@@ -25,6 +25,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,12 @@ enum class Foot { left = 0, right = 1 };
 struct FootPose {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
   double yaw = 0.0;
+
+  // Of a sole frame's pose in the world (4×4): its origin, the heading of its x axis.
+  static FootPose of(const Eigen::Matrix4d& world_H_sole) {
+    return {world_H_sole.topRightCorner<3, 1>(),
+            std::atan2(world_H_sole(1, 0), world_H_sole(0, 0))};
+  }
 };
 
 struct Footstep {

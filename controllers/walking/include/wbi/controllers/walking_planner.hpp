@@ -8,10 +8,24 @@
 // one line on stdout).
 #pragma once
 
+#include "wbi/controllers/walking_plan.hpp"
+#include "wbi/whole_body_interface.hpp"
+
 namespace wbi::controllers {
 
 class ControllerRegistry;
 
 void register_walking_planner(ControllerRegistry& registry);
+
+namespace walking {
+
+// The sole `frame` of the robot in `state`, as the plan takes it (stand()).
+inline FootPose measured_sole(WholeBodyInterface& robot, const RobotState& state, int frame) {
+  Transform pose;
+  robot.frame_pose(state.q, state.world_H_base, frame, pose);
+  return FootPose::of(pose);
+}
+
+}  // namespace walking
 
 }  // namespace wbi::controllers
