@@ -5,8 +5,9 @@
 // only what the bridge advertises: the channels and their IDL, encoders
 // against ground truth, the frame transforms, the controller's parameters
 // (set, refused, a new target reached), and a stalled second client that
-// does not slow the first. Needs node, npm and the registry: when one is
-// missing the test is skipped with the reason, never failed.
+// does not slow the first. Needs node, npm and the packages in wbi's npm
+// cache (scripts/install-deps; the test stays offline): when one is missing
+// the test is skipped with the reason, never failed.
 #include <gtest/gtest.h>
 
 #include <chrono>

@@ -6,8 +6,9 @@
 // and payload bytes. fzstd and lz4js (pure JavaScript) decompress the chunks,
 // so the decompressors are independent of ours too.
 //
-// Needs node, npm and the registry: when one is missing the test is skipped
-// with the reason, never failed.
+// Needs node, npm and the packages in wbi's npm cache (scripts/install-deps
+// puts them there; the test itself stays offline): when one is missing the
+// test is skipped with the reason, never failed.
 #include <gtest/gtest.h>
 
 #include <chrono>

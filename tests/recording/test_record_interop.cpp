@@ -9,8 +9,9 @@
 // Two talker processes (interop_talker.cpp) publish a robot description, sensor
 // samples and state estimates each: strings, an enum, a boolean, nested
 // structs, sequences of doubles and of structs, fixed arrays, 32- and 64-bit
-// integers. Needs node, npm and the registry: when one is missing the test
-// is skipped with the reason, never failed.
+// integers. Needs node, npm and the packages in wbi's npm cache
+// (scripts/install-deps; the test stays offline): when one is missing the
+// test is skipped with the reason, never failed.
 #include <gtest/gtest.h>
 
 #include <chrono>
