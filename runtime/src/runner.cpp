@@ -150,6 +150,19 @@ void ComponentRunner::activate() {
   state_ = LifecycleState::active;
   if (options_.rate_hz > 0.0) {
     loop_stop_ = false;
+    period_ns_ = static_cast<std::int64_t>(std::llround(1e9 / options_.rate_hz));
+    last_start_ns_ = -1;
+    next_ns_ = context_.clock->now_ns();
+    period_mean_s_ = period_m2_ = 0.0;
+    periods_ = 0;
+    on_event_thread_ = component_->event_driven() && component_->cycles_on_event_thread();
+    if (on_event_thread_) {
+      {
+        std::lock_guard lock(cycle_mutex_);
+        cycling_ = true;
+      }
+      component_->set_event_cycle(this);
+    }
     loop_ = std::thread([this] { run_loop(); });
   }
   lifecycle_event(EventSeverity::info, "INACTIVE -> ACTIVE");
@@ -157,8 +170,20 @@ void ComponentRunner::activate() {
 }
 
 void ComponentRunner::stop_loop() {
+  if (on_event_thread_) {
+    {
+      std::lock_guard lock(cycle_mutex_);  // after a cycle in progress
+      cycling_ = false;
+    }
+    component_->set_event_cycle(nullptr);
+    on_event_thread_ = false;
+  }
   if (loop_.joinable()) {
-    loop_stop_ = true;
+    {
+      std::lock_guard lock(cycle_mutex_);
+      loop_stop_ = true;
+    }
+    watchdog_wake_.notify_all();
     context_.clock->wake();
     loop_.join();
   }
@@ -230,72 +255,115 @@ bool ComponentRunner::wait_for_event(std::int64_t period_ns) {
 // after its successor's tick is an overrun, and the missed ticks are skipped
 // (never run back to back to catch up). An event-driven component's cycle
 // starts at its event instead, and overruns when it takes longer than a period.
-// Statistics use Welford's running mean/variance: no allocation, no lock held
-// while the component runs.
 void ComponentRunner::run_loop() {
+  if (on_event_thread_) {
+    run_watchdog(period_ns_);
+    return;
+  }
   Clock& clock = *context_.clock;
-  const auto period_ns = static_cast<std::int64_t>(std::llround(1e9 / options_.rate_hz));
-  std::int64_t next_ns = clock.now_ns();
-  std::int64_t last_start_ns = -1;
-  double mean = 0.0;
-  double m2 = 0.0;
-  std::uint64_t periods = 0;
   const bool event_driven = component_->event_driven();
   while (!loop_stop_.load(std::memory_order_relaxed)) {
-    if (event_driven ? !wait_for_event(period_ns) : !clock.sleep_until(next_ns)) {
+    if (event_driven ? !wait_for_event(period_ns_) : !clock.sleep_until(next_ns_)) {
       continue;  // no event yet, or woken early: stop requested, or spurious
     }
-    const std::int64_t start_ns = clock.now_ns();
-    const auto started = std::chrono::steady_clock::now();
-    bool error = false;
-    std::string what;
-    try {
-      component_->read(start_ns, period_ns);
-      component_->update(start_ns, period_ns);
-      component_->write(start_ns, period_ns);
-    } catch (const std::exception& e) {
-      error = true;
-      what = e.what();  // allocation only on the error path
-    }
-    const std::int64_t end_ns = clock.now_ns();
-    const auto took = std::chrono::steady_clock::now() - started;
-    next_ns += period_ns;
-    bool overrun = false;
-    if (event_driven) {
-      overrun = end_ns - start_ns > period_ns;
-    } else if (end_ns > next_ns) {
-      overrun = true;
-      next_ns += ((end_ns - next_ns) / period_ns + 1) * period_ns;  // skip the missed ticks
-    }
-    if (error) {
-      component_->report().set_error(what);
-    }
-    std::lock_guard lock(mutex_);
-    LoopStats& s = stats_;
-    ++s.iterations;
-    s.overruns += overrun ? 1 : 0;
-    s.errors += error ? 1 : 0;
-    const double cycle_s = 1e-9 * static_cast<double>(end_ns - start_ns);
-    s.cycle_mean_s += (cycle_s - s.cycle_mean_s) / static_cast<double>(s.iterations);
-    s.cycle_max_s = std::max(s.cycle_max_s, cycle_s);
-    cycle_times_.add(took);
-    if (last_start_ns >= 0) {
-      const double period_s = 1e-9 * static_cast<double>(start_ns - last_start_ns);
-      ++periods;
-      const double delta = period_s - mean;
-      mean += delta / static_cast<double>(periods);
-      m2 += delta * (period_s - mean);
-      s.period_mean_s = mean;
-      s.period_jitter_s = periods > 1 ? std::sqrt(m2 / static_cast<double>(periods - 1)) : 0.0;
-      s.period_max_s = std::max(s.period_max_s, period_s);
-    }
-    last_start_ns = start_ns;
+    run_cycle(period_ns_, event_driven);
   }
 }
 
+// The events' threads run the cycles; this thread runs one only when none ran
+// for ten periods: at activation (an event that came before it, which no
+// arrival will announce again) and when an event's inputs are late (the
+// component's wait_for_event then waits for them, here, as the loop would).
+void ComponentRunner::run_watchdog(std::int64_t period_ns) {
+  std::unique_lock lock(cycle_mutex_);
+  std::uint64_t seen = cycles_run_;
+  if (component_->event_ready()) {
+    run_cycle(period_ns, true);
+  }
+  while (!loop_stop_.load(std::memory_order_relaxed)) {
+    watchdog_wake_.wait_for(lock, std::chrono::nanoseconds(10 * period_ns),
+                            [this] { return loop_stop_.load(std::memory_order_relaxed); });
+    if (loop_stop_.load(std::memory_order_relaxed)) {
+      break;
+    }
+    if (cycles_run_ == seen && wait_for_event(period_ns)) {
+      run_cycle(period_ns, true);
+    }
+    seen = cycles_run_;
+  }
+}
+
+bool ComponentRunner::run() {
+  std::lock_guard lock(cycle_mutex_);
+  try {
+    if (!cycling_ || !component_->event_ready()) {
+      return false;
+    }
+  } catch (const std::exception& e) {
+    component_->report().set_error(e.what());
+    return false;
+  }
+  run_cycle(period_ns_, true, true);
+  return true;
+}
+
+// Statistics use Welford's running mean/variance: no allocation, no lock held
+// while the component runs.
+void ComponentRunner::run_cycle(std::int64_t period_ns, bool event_driven, bool on_event_thread) {
+  Clock& clock = *context_.clock;
+  const std::int64_t start_ns = clock.now_ns();
+  const auto started = std::chrono::steady_clock::now();
+  bool error = false;
+  std::string what;
+  try {
+    component_->read(start_ns, period_ns);
+    component_->update(start_ns, period_ns);
+    component_->write(start_ns, period_ns);
+  } catch (const std::exception& e) {
+    error = true;
+    what = e.what();  // allocation only on the error path
+  }
+  const std::int64_t end_ns = clock.now_ns();
+  const auto took = std::chrono::steady_clock::now() - started;
+  next_ns_ += period_ns;
+  bool overrun = false;
+  if (event_driven) {
+    overrun = end_ns - start_ns > period_ns;
+  } else if (end_ns > next_ns_) {
+    overrun = true;
+    next_ns_ += ((end_ns - next_ns_) / period_ns + 1) * period_ns;  // skip the missed ticks
+  }
+  if (error) {
+    component_->report().set_error(what);
+  }
+  ++cycles_run_;
+  std::lock_guard lock(mutex_);
+  LoopStats& s = stats_;
+  ++s.iterations;
+  s.overruns += overrun ? 1 : 0;
+  s.errors += error ? 1 : 0;
+  s.on_event_thread += on_event_thread ? 1 : 0;
+  const double cycle_s = 1e-9 * static_cast<double>(end_ns - start_ns);
+  s.cycle_mean_s += (cycle_s - s.cycle_mean_s) / static_cast<double>(s.iterations);
+  s.cycle_max_s = std::max(s.cycle_max_s, cycle_s);
+  cycle_times_.add(took);
+  if (last_start_ns_ >= 0) {
+    const double period_s = 1e-9 * static_cast<double>(start_ns - last_start_ns_);
+    ++periods_;
+    const double delta = period_s - period_mean_s_;
+    period_mean_s_ += delta / static_cast<double>(periods_);
+    period_m2_ += delta * (period_s - period_mean_s_);
+    s.period_mean_s = period_mean_s_;
+    s.period_jitter_s =
+        periods_ > 1 ? std::sqrt(period_m2_ / static_cast<double>(periods_ - 1)) : 0.0;
+    s.period_max_s = std::max(s.period_max_s, period_s);
+  }
+  last_start_ns_ = start_ns;
+}
+
 // One line at the end of a periodic component's run, e.g. "balance: 21003
-// cycles, read + update + write mean 0.071 ms (p99 0.09 ms)": with the
-// robot's lockstep line, where a tick went.
+// cycles, read + update + write mean 0.071 ms (p99 0.09 ms); 21002 on their
+// event's thread": with the robot's lockstep line, where a tick went.
 void ComponentRunner::print_cycle_times() {
   std::string line;
   {
@@ -305,6 +373,9 @@ void ComponentRunner::print_cycle_times() {
     }
     line = context_.instance + ": " + std::to_string(cycle_times_.count()) +
            " cycles, read + update + write " + cycle_times_.mean_and_p99();
+    if (component_->event_driven() && component_->cycles_on_event_thread()) {
+      line += "; " + std::to_string(stats_.on_event_thread) + " on their event's thread";
+    }
   }
   print_line(stdout, line);
 }

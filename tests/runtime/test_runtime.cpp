@@ -51,6 +51,13 @@ struct Probe {
   std::condition_variable event_posted;
   int events = 0;
   std::atomic<int> event_waits_timed_out{0};  // the loop waited a whole timeout for none
+  // Cycles on the event's thread (cycles_on_event_thread): the runner's
+  // EventCycle while ACTIVE, events not yet answered, where each cycle ran.
+  bool on_event_thread = false;
+  std::atomic<wbi::runtime::EventCycle*> event_cycle{nullptr};
+  std::atomic<int> unanswered{0};
+  std::mutex threads_mutex;
+  std::vector<std::thread::id> cycle_threads;
   void post() {
     {
       std::lock_guard lock(event_mutex);
@@ -84,7 +91,15 @@ class ProbeComponent final : public wbi::runtime::Component {
     --probe_.events;
     return true;
   }
+  bool cycles_on_event_thread() const override { return probe_.on_event_thread; }
+  void set_event_cycle(wbi::runtime::EventCycle* cycle) override { probe_.event_cycle = cycle; }
+  bool event_ready() override { return probe_.unanswered > 0; }
   void update(std::int64_t, std::int64_t) override {
+    if (probe_.on_event_thread) {
+      --probe_.unanswered;
+      std::lock_guard lock(probe_.threads_mutex);
+      probe_.cycle_threads.push_back(std::this_thread::get_id());
+    }
     ++probe_.cycles;
     if (clock_ != nullptr && probe_.cycle_cost_ns != 0) {
       clock_->advance_ns(probe_.cycle_cost_ns);
@@ -362,6 +377,40 @@ TEST_F(Loop, EventDrivenCyclesRunOncePerEventWithTheirDeadlineFromTheEvent) {
   EXPECT_EQ(stats.iterations, 5u);
   EXPECT_EQ(stats.overruns, 2u);
   EXPECT_EQ(probe.cycles, 5);
+}
+
+// A component whose events come on threads it does not own has its cycle run
+// on the thread that delivers each event (no hand-off); the loop thread runs
+// only the event that came before activation, which no arrival announces again.
+TEST_F(Loop, EventThreadCyclesRunOnTheThreadThatDeliversTheEvent) {
+  probe.event_driven = true;
+  probe.on_event_thread = true;
+  auto r = runner(stepped, 100.0);
+  r->configure(Parameters::from_string("gain: 1"));
+  probe.unanswered = 1;  // came before activation
+  r->activate();
+  ASSERT_TRUE(eventually([&] { return r->stats().iterations == 1; }));
+  ASSERT_NE(probe.event_cycle.load(), nullptr);
+  std::vector<std::thread::id> deliverers;
+  for (int k = 0; k < 3; ++k) {
+    std::thread deliverer([&] {
+      ++probe.unanswered;
+      EXPECT_TRUE(probe.event_cycle.load()->run());
+      EXPECT_FALSE(probe.event_cycle.load()->run()) << "a second cycle for one event";
+    });
+    deliverers.push_back(deliverer.get_id());
+    deliverer.join();
+  }
+  r->deactivate();
+  EXPECT_EQ(probe.event_cycle.load(), nullptr) << "the runner's cycle outlived ACTIVE";
+  const auto stats = r->stats();
+  EXPECT_EQ(stats.iterations, 4u);
+  EXPECT_EQ(stats.on_event_thread, 3u);
+  ASSERT_EQ(probe.cycle_threads.size(), 4u);
+  EXPECT_NE(probe.cycle_threads[0], std::this_thread::get_id());  // the loop thread's
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(probe.cycle_threads[k + 1], deliverers[k]) << "event " << k;
+  }
 }
 
 // On the system clock the runner never runs faster than its rate: 50 cycles

@@ -14,7 +14,8 @@
 // shutdown (any → FINALIZED). A hook that throws leaves the state unchanged
 // (shutdown excepted) and becomes the component's last error.
 //
-// The cycle runs on the runner's loop thread, only while ACTIVE:
+// The cycle runs on the runner's loop thread (or on the thread that delivers
+// an event, cycles_on_event_thread()), only while ACTIVE:
 //   read(t, period) → update(t, period) → write(t, period)
 // update() must be real-time safe: no heap allocation, no blocking on DDS
 // (use Subscriber::latest_into, Publisher::publish, Client::send/poll), no
@@ -45,6 +46,19 @@ struct ComponentContext {
   std::string type;               // registered type, e.g. "model_service"
   dds::Participant* participant;  // the process's participant
   Clock* clock;                   // the time of the periodic cycle and of stamps
+};
+
+// What an event's delivering thread calls to run the component's cycle
+// (Component::cycles_on_event_thread).
+class EventCycle {
+ public:
+  // Runs read → update → write on the calling thread when the component is
+  // ACTIVE and event_ready(); returns whether it ran. Waits for a cycle in
+  // progress on another thread first. Never throws.
+  virtual bool run() = 0;
+
+ protected:
+  ~EventCycle() = default;
 };
 
 class Component {
@@ -78,6 +92,23 @@ class Component {
   virtual bool event_driven() const { return false; }
   // Blocks until the next event, at most timeout_ns; true when the event came.
   virtual bool wait_for_event(std::int64_t /*timeout_ns*/) { return true; }
+
+  // An event-driven component whose events arrive on threads it does not own
+  // (DDS listeners) can have its cycle run on the thread that delivers each
+  // event, with no hand-off to the loop thread: it returns true here, and,
+  // from the runner's set_event_cycle(cycle) on, calls cycle->run() on that
+  // thread after each arrival that may complete an event. run() then starts a
+  // cycle when event_ready() says one is due (never while another runs, nor
+  // outside ACTIVE). The loop thread stays as a watchdog: it runs the cycle
+  // the old way (wait_for_event, on its own thread) when no event was run for
+  // ten periods, e.g. one whose inputs never all came. Asked after configure.
+  virtual bool cycles_on_event_thread() const { return false; }
+  // cycle: the runner's, until set_event_cycle(nullptr), after which no
+  // arrival may call it (the component waits for a call in progress).
+  virtual void set_event_cycle(EventCycle* /*cycle*/) {}
+  // Without blocking: whether a cycle is due now (called under the runner's
+  // cycle lock, on any thread).
+  virtual bool event_ready() { return false; }
 
   // Named counters and the last error, published by the runner in the
   // component's status (status_report.hpp). The runner also records its own

@@ -51,9 +51,12 @@ struct LoopStats {
   double period_max_s = 0.0;
   double cycle_mean_s = 0.0;  // time spent in read + update + write
   double cycle_max_s = 0.0;
+  // Cycles run on the thread that delivered their event
+  // (Component::cycles_on_event_thread); the others ran on the loop thread.
+  std::uint64_t on_event_thread = 0;
 };
 
-class ComponentRunner {
+class ComponentRunner final : private EventCycle {
  public:
   // context.participant and context.clock must outlive the runner.
   ComponentRunner(std::unique_ptr<Component> component, ComponentContext context,
@@ -88,6 +91,11 @@ class ComponentRunner {
   void set_state(LifecycleState state);
   void lifecycle_event(EventSeverity severity, const std::string& text);
   void run_loop();
+  // A component that cycles on its events' threads: the loop thread's watch.
+  void run_watchdog(std::int64_t period_ns);
+  // One read → update → write now, on this thread, and its statistics.
+  void run_cycle(std::int64_t period_ns, bool event_driven, bool on_event_thread = false);
+  bool run() override;  // EventCycle: an event's delivering thread
   // An event-driven component's wait, bounded so that a stop request is seen.
   bool wait_for_event(std::int64_t period_ns);
   void stop_loop();
@@ -105,8 +113,24 @@ class ComponentRunner {
   // clock may be simulated), for the line deactivate() prints.
   DurationHistogram cycle_times_;
 
+  // The start-to-start period's running mean and variance (Welford), and
+  // the periodic loop's next tick: whichever thread runs the cycle.
+  std::int64_t last_start_ns_ = -1;
+  std::int64_t next_ns_ = 0;
+  double period_mean_s_ = 0.0, period_m2_ = 0.0;
+  std::uint64_t periods_ = 0;
+
   std::atomic<bool> loop_stop_{false};
   std::thread loop_;
+
+  // Cycles on events' threads (Component::cycles_on_event_thread): one at a
+  // time, only while cycling_; the watchdog sleeps on watchdog_wake_.
+  std::mutex cycle_mutex_;
+  std::condition_variable watchdog_wake_;
+  bool cycling_ = false;
+  bool on_event_thread_ = false;
+  std::uint64_t cycles_run_ = 0;
+  std::int64_t period_ns_ = 0;
 
   struct Status;
   std::unique_ptr<Status> status_;  // publisher and heartbeat thread
