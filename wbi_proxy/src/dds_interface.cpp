@@ -72,6 +72,16 @@ class DdsInterface final : public WholeBodyInterface {
 
   const IdList& joint_list() const override { return controlled_; }
 
+  void set_state_callback(std::function<void()> on_state) {
+    if (!on_state) {
+      robot_.state.subscriber.set_callback(nullptr);
+      return;
+    }
+    robot_.state.subscriber.set_callback(
+        [on_state = std::move(on_state)](const wbi::msg::StateEstimate&,
+                                         const dds::detail::SampleInfo&) { on_state(); });
+  }
+
   Actuators& actuators() override {
     robot_.require_init();
     return actuators_;
@@ -170,6 +180,14 @@ std::unique_ptr<WholeBodyInterface> make_dds_interface(const DdsInterfaceOptions
     throw Error("DdsInterfaceOptions.max_age_s must be > 0");
   }
   return std::make_unique<proxy::DdsInterface>(options);
+}
+
+void set_state_callback(WholeBodyInterface& interface, std::function<void()> on_state) {
+  auto* dds_interface = dynamic_cast<proxy::DdsInterface*>(&interface);
+  if (dds_interface == nullptr) {
+    throw Error("set_state_callback: not an interface from make_dds_interface");
+  }
+  dds_interface->set_state_callback(std::move(on_state));
 }
 
 }  // namespace wbi

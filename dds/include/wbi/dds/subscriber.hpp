@@ -109,6 +109,13 @@ class Subscriber : private detail::ReaderSink {
     return latest_.count;
   }
 
+  // Replaces the callback (nullptr: none). Waits for a call in progress, so
+  // that no call of the old one follows; never call it from the callback.
+  void set_callback(Callback callback) {
+    std::lock_guard lock(callback_mutex_);
+    callback_ = std::move(callback);
+  }
+
   int matched() const { return reader_.matched(); }
   detail::Guid guid() const { return reader_.guid(); }
   // With ProducerPolicy::one: the writer taken and what was dropped.
@@ -136,11 +143,16 @@ class Subscriber : private detail::ReaderSink {
       ++latest_.count;
     }
     arrived_.notify_all();
+    std::lock_guard lock(callback_mutex_);
     if (callback_) {
       callback_(incoming_, info);
     }
   }
 
+  // Held while the callback runs (set_callback). Recursive: in one process
+  // Fast DDS delivers on the writer's thread, so a callback's own writes can
+  // bring this reader a sample before it returns.
+  std::recursive_mutex callback_mutex_;
   Callback callback_;
   T incoming_;  // written only on the DDS thread that takes samples
   mutable std::mutex mutex_;
