@@ -97,6 +97,15 @@ TEST(BalanceLaunch, ThreeProcessesTrackTheSinusoidFor20Seconds) {
   EXPECT_GT(ticks, 20000) << out;
   EXPECT_LE(cycles, ticks) << "more balancer cycles than ticks\n" << out;
   EXPECT_GE(cycles, ticks - 3) << out;
+  // ... each on the DDS thread that delivered its state (controllers/README.md,
+  // "Which thread") but the first, which the runner's loop thread answers,
+  // and any state no arrival answered for ten periods (none in a normal run).
+  const auto line_at = out.find("[controller] balance: ");
+  const std::string line = out.substr(line_at, out.find('\n', line_at) - line_at);
+  const auto count_at = line.find("; ");
+  ASSERT_NE(count_at, std::string::npos) << line;
+  EXPECT_NE(line.find(" on their event's thread", count_at), std::string::npos) << line;
+  EXPECT_GE(std::stol(line.substr(count_at + 2)), cycles - 2) << line;
   const std::string marker = "\ncom tracking rms: ";
   const auto at = out.rfind(marker);
   ASSERT_NE(at, std::string::npos) << out;

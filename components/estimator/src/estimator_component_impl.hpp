@@ -88,7 +88,13 @@ class EstimatorComponent final : public runtime::Component {
   Eigen::Matrix4d base_pose_ = Eigen::Matrix4d::Identity();
 
   std::atomic<bool> active_{false};
-  std::mutex mutex_;  // between the sample and the parameter callbacks
+  // Between the sample, command, parameter and ground-truth callbacks and the
+  // deferred thread. Recursive: the state is published under it, and in one
+  // process Fast DDS delivers on the writer's thread, so a controller that
+  // answers the state on that thread (ControllerHostComponent) has its
+  // command arrive in on_command, nested in that publish. The estimate is
+  // complete by then (the publish is estimate()'s last step).
+  std::recursive_mutex mutex_;
   // Sample in to state ready (the DDS write not included), for the end-of-run
   // line (a lockstep run's breakdown): since the last activation.
   runtime::DurationHistogram estimate_times_;
@@ -158,7 +164,7 @@ class EstimatorComponent final : public runtime::Component {
   wbi::msg::SensorSample deferred_;
   bool has_deferred_ = false;
   std::chrono::steady_clock::time_point deferred_until_;
-  std::condition_variable deferred_changed_;
+  std::condition_variable_any deferred_changed_;
   bool stopping_ = false;
   std::thread deferred_thread_;
   runtime::StatusCounter* late_inputs_ = nullptr;  // samples estimated after inputs_timeout_

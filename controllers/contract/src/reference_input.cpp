@@ -76,6 +76,15 @@ bool ReferenceInput::wait_for(std::int64_t time_ns, std::int64_t timeout_ns) {
   return false;
 }
 
+bool ReferenceInput::ready_for(std::int64_t time_ns, bool first) const {
+  std::lock_guard lock(mutex_);
+  const bool point_in = received_ > 0 && newest_stamp_ns_ >= time_ns;
+  if (first) {
+    return point_in;
+  }
+  return wait_ns_ <= 0 || received_ == 0 || wait_timed_out_ || point_in;
+}
+
 void ReferenceInput::wait_if_fed(std::int64_t time_ns) {
   std::unique_lock lock(mutex_);
   if (received_ == 0 || wait_timed_out_) {

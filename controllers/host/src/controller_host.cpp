@@ -515,6 +515,20 @@ bool ControllerHost::wait_for_first_references(std::int64_t time_ns) {
   return all;
 }
 
+bool ControllerHost::references_ready(std::int64_t time_ns, bool first) const {
+  if (reference_wait_ns_ <= 0) {
+    return true;
+  }
+  for (const auto& hosted : hosted_) {
+    for (std::size_t i = 0; i < hosted->inputs.size(); ++i) {
+      if (!hosted->chained[i] && !hosted->inputs[i]->ready_for(time_ns, first)) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
 std::string ControllerHost::summary() const {
   std::lock_guard lock(switch_mutex_);
   std::string text;

@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdio>
 #include <memory>
+#include <mutex>
 #include <optional>
 
 #include <wbi/controllers/controller_host.hpp>
@@ -60,6 +61,11 @@ class ControllerHostComponent final : public runtime::Component {
                     const runtime::ComponentContext& context) override {
     DdsInterfaceOptions options = read_interface_options(parameters, context);
     wait_for_state_ = parameters.get<bool>("wait_for_state", false);
+    // The cycle on the DDS thread that delivers the state, not a thread of our
+    // own woken by it. Not with a remote model: its reply comes on that thread.
+    cycle_on_state_thread_ = wait_for_state_ &&
+                             options.model_source == DdsInterfaceOptions::ModelSource::local &&
+                             parameters.get<bool>("cycle_on_state_thread", true);
     options.blocking_read_timeout = std::chrono::milliseconds(
         static_cast<std::int64_t>(parameters.get<double>("state_timeout_s", 0.005) * 1000));
     const auto joints = parameters.require<std::vector<std::string>>("joints");
@@ -174,7 +180,6 @@ class ControllerHostComponent final : public runtime::Component {
       signals_.names().reserve(msg::MAX_SIGNALS);
       signals_.values().reserve(msg::MAX_SIGNALS);
     }
-    subscribe_references(*context.participant, options.robot);
     reference_wait_ns_ =
         static_cast<std::int64_t>(parameters.get<double>("reference_wait_s", 0.0) * 1e9);
     if (reference_wait_ns_ < 0) {
@@ -190,6 +195,10 @@ class ControllerHostComponent final : public runtime::Component {
                                     " s): a state waited for that long is too old to answer");
     }
     host_->set_reference_wait(reference_wait_ns_);
+    subscribe_references(*context.participant, options.robot);
+    if (cycle_on_state_thread_) {
+      set_state_callback(*robot_, [this] { run_event_cycle(); });
+    }
     service_.emplace(*context.participant, options.robot, context.instance, *host_);
     service_->publish_parameters();
   }
@@ -204,7 +213,10 @@ class ControllerHostComponent final : public runtime::Component {
   // init() saw, one that came during the last cycle): then at once, whatever
   // the controllers read meanwhile (a read of the same kind from configure or
   // activate would make a blocking read wait for the next estimate, which a
-  // lockstep robot sends only once this one is answered).
+  // lockstep robot sends only once this one is answered). With the cycle on
+  // the state's thread only the runner's watchdog calls it: a state no
+  // arrival answered for ten periods (its reference points are late: the
+  // tick waits for them, on the watchdog's thread).
   bool event_driven() const override { return wait_for_state_; }
   bool wait_for_event(std::int64_t /*timeout_ns*/) override {
     try {
@@ -217,6 +229,9 @@ class ControllerHostComponent final : public runtime::Component {
       } catch (const StaleDataError&) {
         // none fresh: wait for the next
       }
+      if (cycle_on_state_thread_) {
+        return false;  // the runner's watchdog: arrivals run the cycles, no waiting here
+      }
       robot_->read_estimates(EstimateKind::joint_position, newest_q_, ReadMode::blocking);
       return true;
     } catch (const TimeoutError&) {
@@ -225,6 +240,28 @@ class ControllerHostComponent final : public runtime::Component {
       ++event_timeouts_;
     }
     return false;
+  }
+
+  bool cycles_on_event_thread() const override { return cycle_on_state_thread_; }
+  void set_event_cycle(runtime::EventCycle* cycle) override {
+    std::lock_guard lock(event_cycle_mutex_);  // after a call in progress
+    event_cycle_ = cycle;
+  }
+  // A cycle is due for the newest state when no cycle answered it yet and,
+  // in lockstep with reference generators, their points for its time are in
+  // (else the tick would wait for them, on the thread that must bring them).
+  bool event_ready() override {
+    Stamp newest;
+    try {
+      newest = robot_->read_estimates(EstimateKind::joint_position, newest_q_, ReadMode::latest);
+    } catch (const StaleDataError&) {
+      return false;
+    }
+    if (has_answered_ && newest.seq == answered_seq_) {
+      return false;
+    }
+    return reference_wait_ns_ <= 0 ||
+           host_->references_ready(newest.source_ns, start_ns_ < 0 || !references_started_);
   }
 
   void update(std::int64_t /*time_ns*/, std::int64_t period_ns) override {
@@ -279,6 +316,9 @@ class ControllerHostComponent final : public runtime::Component {
   }
 
   void on_shutdown() override {
+    if (robot_ && cycle_on_state_thread_) {
+      set_state_callback(*robot_, nullptr);
+    }
     if (host_) {
       std::printf("stale cycles: %llu\n",
                   static_cast<unsigned long long>(stale_cycles() + event_timeouts_));
@@ -311,6 +351,25 @@ class ControllerHostComponent final : public runtime::Component {
       }
     }
     runtime::request_process_exit(code);
+  }
+
+  // A state, or a reference point, arrived (on its DDS thread): the runner's
+  // cycle, here, when it completes a tick's inputs. An arrival nested in a
+  // cycle on this thread (Fast DDS delivers in the writer's thread within a
+  // process) is left to the runner's watchdog.
+  void run_event_cycle() {
+    static thread_local bool in_cycle = false;
+    if (in_cycle) {
+      return;
+    }
+    in_cycle = true;
+    {
+      std::lock_guard lock(event_cycle_mutex_);
+      if (event_cycle_ != nullptr) {
+        event_cycle_->run();
+      }
+    }
+    in_cycle = false;
   }
 
   // The robot's time since the first tick: the newest state's source stamp
@@ -421,8 +480,11 @@ class ControllerHostComponent final : public runtime::Component {
         const std::string topic = dds::topics::reference(robot, info.name, input->spec().name);
         reference_readers_.push_back(std::make_unique<dds::Subscriber<msg::TrajectoryPoint>>(
             participant, topic, dds::qos::kCommand,
-            [input](const msg::TrajectoryPoint& sample, const dds::detail::SampleInfo&) {
+            [input, this](const msg::TrajectoryPoint& sample, const dds::detail::SampleInfo&) {
               input->push(to_point(sample));
+              if (cycle_on_state_thread_ && reference_wait_ns_ > 0) {
+                run_event_cycle();  // the point a tick waits for may be the last input
+              }
             }));
       }
     }
@@ -470,6 +532,9 @@ class ControllerHostComponent final : public runtime::Component {
   std::optional<HostService> service_;  // after host_: destroyed first
   double progress_period_s_ = 1.0;
   bool wait_for_state_ = false;
+  bool cycle_on_state_thread_ = false;  // runtime::Component::cycles_on_event_thread
+  std::mutex event_cycle_mutex_;        // guards event_cycle_; held while it runs
+  runtime::EventCycle* event_cycle_ = nullptr;
   Eigen::VectorXd newest_q_;    // wait_for_event's read (the tick reads the same sample again)
   std::int64_t start_ns_ = -1;  // source stamp of the first state
   double last_time_s_ = 0.0, next_progress_s_ = 0.0;

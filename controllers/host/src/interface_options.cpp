@@ -44,6 +44,9 @@ DdsInterfaceOptions read_interface_options(const runtime::Parameters& parameters
                                   "': expected claim, force or none");
   }
   options.max_age_s = parameters.get<double>("max_age_s", options.max_age_s);
+  // The raw sensor samples from the start (else from a controller's first
+  // read of them, which then waits for one: DdsInterfaceOptions::read_sensors).
+  options.read_sensors = parameters.get<bool>("read_sensors", false);
   // The host's participant: one secured participant per process (see
   // DdsInterfaceOptions::shared_participant).
   options.participant = context.participant->options();

@@ -109,6 +109,9 @@ class ReferenceInput {
   // has come; true when it has (the host's first tick: a generator's start).
   // A timeout is counted in late().
   bool wait_for(std::int64_t time_ns, std::int64_t timeout_ns);
+  // Any thread, without waiting: whether at(time_ns) would find what it waits
+  // for, so would not wait (first: whether wait_for(time_ns, …) would not).
+  bool ready_for(std::int64_t time_ns, bool first) const;
 
   // A new activation: the held point and the counts of this run are kept, the
   // stale episode is not.

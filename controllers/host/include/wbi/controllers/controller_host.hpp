@@ -203,6 +203,10 @@ class ControllerHost {
   // topic-fed inputs' first point for time_ns (the state's source stamp), so
   // that the generators start at the host's first state. False when one was late.
   bool wait_for_first_references(std::int64_t time_ns);
+  // Without waiting: whether a tick at time_ns would find every waited-for
+  // reference in (first: the host's first tick, which waits for each one's
+  // first point; ReferenceInput::ready_for). True when none is waited for.
+  bool references_ready(std::int64_t time_ns, bool first) const;
 
   // The summaries of every controller that ran, and its references' counts, for shutdown.
   std::string summary() const;
