@@ -163,7 +163,13 @@ void ComponentRunner::activate() {
       }
       component_->set_event_cycle(this);
     }
-    loop_ = std::thread([this] { run_loop(); });
+    loop_ = std::thread([this, watch = on_event_thread_] {
+      if (watch) {
+        run_watchdog(period_ns_);
+      } else {
+        run_loop();
+      }
+    });
   }
   lifecycle_event(EventSeverity::info, "INACTIVE -> ACTIVE");
   publish_status();
@@ -256,10 +262,6 @@ bool ComponentRunner::wait_for_event(std::int64_t period_ns) {
 // (never run back to back to catch up). An event-driven component's cycle
 // starts at its event instead, and overruns when it takes longer than a period.
 void ComponentRunner::run_loop() {
-  if (on_event_thread_) {
-    run_watchdog(period_ns_);
-    return;
-  }
   Clock& clock = *context_.clock;
   const bool event_driven = component_->event_driven();
   while (!loop_stop_.load(std::memory_order_relaxed)) {

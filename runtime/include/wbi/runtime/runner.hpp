@@ -128,7 +128,7 @@ class ComponentRunner final : private EventCycle {
   std::mutex cycle_mutex_;
   std::condition_variable watchdog_wake_;
   bool cycling_ = false;
-  bool on_event_thread_ = false;
+  bool on_event_thread_ = false;  // transitions' threads only (the loop is given its mode)
   std::uint64_t cycles_run_ = 0;
   std::int64_t period_ns_ = 0;
 
