@@ -175,6 +175,25 @@ TEST(Cli, RobotCheck) {
       << run.output;
 }
 
+// `wbi launch FILE --list`: what scripts take from a deploy file, through its
+// one reader (scripts/wbi-security-setup); a bad file is its usual error.
+TEST(Cli, LaunchListsTheProcessesOfADeployFile) {
+  const auto demo =
+      wbi_cli({"launch", (wbi::test::source_dir() / "deploy" / "demo.yaml").string(), "--list"});
+  EXPECT_EQ(demo.code, 0) << demo.output;
+  EXPECT_EQ(lines_of(demo.output),
+            (std::vector<std::string>{"robot\tsim_robot\tarm", "estimator\testimator\tarm",
+                                      "model_service\tmodel_service\tarm",
+                                      "controller\tpd_gravity\tarm"}))
+      << demo.output;
+  const auto bad = wbi::test::binary_dir() / "tests" / "cli_bad_deploy.yaml";
+  std::ofstream(bad) << "processes:\n  - {name: a, components: [{type: sim_robot}]}\n"
+                     << "  - {name: a, command: [true]}\n";
+  const auto run = wbi_cli({"launch", bad.string(), "--list"});
+  EXPECT_EQ(run.code, 1) << run.output;
+  EXPECT_TRUE(contains(run.output, "cli_bad_deploy.yaml:")) << run.output;
+}
+
 // `wbi events`: an unknown kind or severity is one line naming it, exit 1,
 // before any DDS.
 TEST(Cli, EventsNamesABadKindOrSeverity) {

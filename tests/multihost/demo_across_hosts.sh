@@ -35,7 +35,7 @@ case "$mode" in
     command -v fastdds >/dev/null || { echo "skipped: no fastdds tool (apt-get install fastdds-tools)"; exit 77; }
     overrides=(WBI_DDS_DISCOVERY=server "WBI_DDS_DISCOVERY_SERVER=$HOST_A_ADDRESS:11811") ;;
   secure)
-    "$2/scripts/wbi-security-setup" "$deploy" "$logs/keys" >/dev/null
+    WBI="$1/bin/wbi" "$2/scripts/wbi-security-setup" "$deploy" "$logs/keys" >/dev/null
     overrides=("WBI_DDS_SECURITY_DIRECTORY=$logs/keys") ;;
   *) echo "unknown mode '$mode' (multicast, peers, server, secure)"; exit 2 ;;
 esac

@@ -52,7 +52,7 @@ bin="$1/bin" deploy="$2/deploy/multihost_lockstep.yaml"
 netns_pair_create || exit $?
 logs=$(mktemp -d /tmp/wbi-secure-launch.XXXXXX)
 NETNS_TEMP_DIR=$logs
-"$2/scripts/wbi-security-setup" "$deploy" "$logs/keys" >/dev/null
+WBI="$1/bin/wbi" "$2/scripts/wbi-security-setup" "$deploy" "$logs/keys" >/dev/null
 
 launch() {  # launch a|b PROCESSES
   "on_host_$1" "$logs/$1.log" env "WBI_DOMAIN_ID=${WBI_DOMAIN_ID:-0}" \

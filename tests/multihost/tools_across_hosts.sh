@@ -51,7 +51,7 @@ case "$mode" in
     on_host_a "$logs/server.log" stdbuf -oL fastdds discovery -i 0 -l "$HOST_A_ADDRESS" -p 11811
     wait_for_text "$logs/server.log" "Server is running" 10 || { cat "$logs/server.log"; echo "FAIL: the discovery server did not start"; exit 1; } ;;
   secure)
-    "$2/scripts/wbi-security-setup" "$deploy" "$logs/keys" >/dev/null
+    WBI="$1/bin/wbi" "$2/scripts/wbi-security-setup" "$deploy" "$logs/keys" >/dev/null
     overrides=("WBI_DDS_SECURITY_DIRECTORY=$logs/keys")
     tool_flags=(--security "$logs/keys") ;;
   *) echo "unknown mode '$mode' (multicast, peers, server, record, secure)"; exit 2 ;;

@@ -39,7 +39,8 @@ class Security : public ::testing::Test {
     fs::remove_all(dir_);
     ChildProcess setup(wbi::test::source_dir() / "scripts" / "wbi-security-setup",
                        {(wbi::test::source_dir() / "deploy" / "secure_lockstep.yaml").string(),
-                        (dir_ / "keys").string()});
+                        (dir_ / "keys").string()},
+                       {"WBI=" + (wbi::test::binary_dir() / "bin" / "wbi").string()});
     const auto code = setup.wait(60s);
     ASSERT_TRUE(code.has_value() && *code == 0) << setup.output();
     // A real-time robot (not lockstep: it runs without a controller) with the robot's identity.

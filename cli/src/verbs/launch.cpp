@@ -1,5 +1,8 @@
 // `wbi launch FILE`: runs the processes of a deploy file (see deploy/README.md).
 #include <iostream>
+#include <ostream>
+#include <set>
+#include <string>
 
 #include <wbi/launch/launcher.hpp>
 #include <wbi/vocabulary/joined_names.hpp>
@@ -9,6 +12,35 @@
 #include "verbs.hpp"
 
 namespace wbi::cli {
+
+namespace {
+
+// `--list`: what scripts take from a deploy file (scripts/wbi-security-setup),
+// through this one reader instead of a YAML parser of their own.
+void print_processes(const wbi::deploy::DeployFile& deploy, std::ostream& out) {
+  const auto joined = [](const std::set<std::string>& names) {
+    std::string text;
+    for (const auto& name : names) {
+      text += (text.empty() ? "" : ",") + name;
+    }
+    return text.empty() ? std::string("-") : text;
+  };
+  for (const auto& process : deploy.processes) {
+    std::set<std::string> types;
+    std::set<std::string> robots;
+    for (const auto& component : process.component_nodes) {
+      if (const auto type = component["type"]; type && type.IsScalar()) {
+        types.insert(type.as<std::string>());
+      }
+      if (const auto robot = component["parameters"]["robot"]; robot && robot.IsScalar()) {
+        robots.insert(robot.as<std::string>());
+      }
+    }
+    out << process.name << '\t' << joined(types) << '\t' << joined(robots) << '\n';
+  }
+}
+
+}  // namespace
 
 int run_launch(Args args) {
   Options options("wbi launch FILE [options]",
@@ -30,6 +62,9 @@ int run_launch(Args args) {
   options.option("process", "NAME[,NAME...]",
                  "start only these processes (this host's part; the others run on other "
                  "hosts and are waited for by their topics as usual)");
+  options.flag("list",
+               "print the file's processes and exit, one line each: NAME, the component types "
+               "it hosts and the robots they name (comma-separated, '-' for none), tab-separated");
   // Above the file's blocks and the environment, for every process started.
   add_join_options(options, false);
   options.example("wbi launch deploy/demo.yaml --duration 8",
@@ -51,6 +86,10 @@ int run_launch(Args args) {
   auto deploy = wbi::deploy::read_deploy_file(options.get("FILE"));
   if (const auto processes = options.get_optional("process"); processes) {
     deploy = launch::only_processes(std::move(deploy), split_names(*processes, ','));
+  }
+  if (options.has("list")) {
+    print_processes(deploy, std::cout);
+    return kExitOk;
   }
   if (options.has("one-process")) {
     if (launch_options.join.security_directory) {
