@@ -272,6 +272,13 @@ void ComponentRunner::run_loop() {
   }
 }
 
+namespace {
+// The runner whose cycle this thread is running, if any: in one process Fast
+// DDS delivers in the writer's thread, so a cycle's own writes can bring an
+// event back to this thread before the cycle ends.
+thread_local const ComponentRunner* cycle_on_this_thread = nullptr;
+}  // namespace
+
 // The events' threads run the cycles; this thread runs one only when none ran
 // for ten periods: at activation (an event that came before it, which no
 // arrival will announce again) and when an event's inputs are late (the
@@ -279,9 +286,7 @@ void ComponentRunner::run_loop() {
 void ComponentRunner::run_watchdog(std::int64_t period_ns) {
   std::unique_lock lock(cycle_mutex_);
   std::uint64_t seen = cycles_run_;
-  if (component_->event_ready()) {
-    run_cycle(period_ns, true);
-  }
+  run_ready_cycles(false);
   while (!loop_stop_.load(std::memory_order_relaxed)) {
     watchdog_wake_.wait_for(lock, std::chrono::nanoseconds(10 * period_ns),
                             [this] { return loop_stop_.load(std::memory_order_relaxed); });
@@ -289,24 +294,46 @@ void ComponentRunner::run_watchdog(std::int64_t period_ns) {
       break;
     }
     if (cycles_run_ == seen && wait_for_event(period_ns)) {
-      run_cycle(period_ns, true);
+      run_guarded_cycle(false);
+      run_ready_cycles(false);
     }
     seen = cycles_run_;
   }
 }
 
 bool ComponentRunner::run() {
-  std::lock_guard lock(cycle_mutex_);
-  try {
-    if (!cycling_ || !component_->event_ready()) {
-      return false;
-    }
-  } catch (const std::exception& e) {
-    component_->report().set_error(e.what());
-    return false;
+  if (cycle_on_this_thread == this) {
+    return false;  // nested in our own cycle: answered when that cycle ends
   }
-  run_cycle(period_ns_, true, true);
+  std::lock_guard lock(cycle_mutex_);
+  return cycling_ && run_ready_cycles(true);
+}
+
+// Caller holds cycle_mutex_. Runs a cycle while one is due: an event that
+// arrived during a cycle (nested in it, or blocked on the lock) is answered
+// at once, not ten periods later by the watchdog. A few at most: a component
+// that stays ready after its cycle must not hold the thread.
+bool ComponentRunner::run_ready_cycles(bool on_event_thread) {
+  constexpr int kMostInARow = 4;
+  for (int ran = 0; ran < kMostInARow; ++ran) {
+    try {
+      if (!component_->event_ready()) {
+        return ran > 0;
+      }
+    } catch (const std::exception& e) {
+      component_->report().set_error(e.what());
+      return ran > 0;
+    }
+    run_guarded_cycle(on_event_thread);
+  }
   return true;
+}
+
+void ComponentRunner::run_guarded_cycle(bool on_event_thread) {
+  const ComponentRunner* outer = cycle_on_this_thread;
+  cycle_on_this_thread = this;
+  run_cycle(period_ns_, true, on_event_thread);
+  cycle_on_this_thread = outer;
 }
 
 // Statistics use Welford's running mean/variance: no allocation, no lock held

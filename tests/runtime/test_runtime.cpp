@@ -56,6 +56,10 @@ struct Probe {
   bool on_event_thread = false;
   std::atomic<wbi::runtime::EventCycle*> event_cycle{nullptr};
   std::atomic<int> unanswered{0};
+  // The next cycle brings an event of its own, nested in it (as Fast DDS
+  // delivers in the writer's thread within a process); what run() returned.
+  bool nest_an_event = false;
+  std::atomic<int> nested_run_returned{-1};
   std::mutex threads_mutex;
   std::vector<std::thread::id> cycle_threads;
   void post() {
@@ -97,8 +101,15 @@ class ProbeComponent final : public wbi::runtime::Component {
   void update(std::int64_t, std::int64_t) override {
     if (probe_.on_event_thread) {
       --probe_.unanswered;
-      std::lock_guard lock(probe_.threads_mutex);
-      probe_.cycle_threads.push_back(std::this_thread::get_id());
+      {
+        std::lock_guard lock(probe_.threads_mutex);
+        probe_.cycle_threads.push_back(std::this_thread::get_id());
+      }
+      if (probe_.nest_an_event) {
+        probe_.nest_an_event = false;
+        ++probe_.unanswered;
+        probe_.nested_run_returned = probe_.event_cycle.load()->run() ? 1 : 0;
+      }
     }
     ++probe_.cycles;
     if (clock_ != nullptr && probe_.cycle_cost_ns != 0) {
@@ -401,16 +412,31 @@ TEST_F(Loop, EventThreadCyclesRunOnTheThreadThatDeliversTheEvent) {
     deliverers.push_back(deliverer.get_id());
     deliverer.join();
   }
+  // An event nested in a cycle (its own write brought it back on this
+  // thread): run() returns at once, not deadlocked on the cycle in progress,
+  // and the event is answered as soon as that cycle ends, on the same thread.
+  probe.nest_an_event = true;
+  std::thread::id nesting_thread;
+  std::thread nesting([&] {
+    nesting_thread = std::this_thread::get_id();
+    ++probe.unanswered;
+    EXPECT_TRUE(probe.event_cycle.load()->run());
+  });
+  nesting.join();
+  EXPECT_EQ(probe.nested_run_returned, 0);
+  EXPECT_EQ(probe.unanswered, 0) << "the nested event was not answered";
   r->deactivate();
   EXPECT_EQ(probe.event_cycle.load(), nullptr) << "the runner's cycle outlived ACTIVE";
   const auto stats = r->stats();
-  EXPECT_EQ(stats.iterations, 4u);
-  EXPECT_EQ(stats.on_event_thread, 3u);
-  ASSERT_EQ(probe.cycle_threads.size(), 4u);
+  EXPECT_EQ(stats.iterations, 6u);
+  EXPECT_EQ(stats.on_event_thread, 5u);
+  ASSERT_EQ(probe.cycle_threads.size(), 6u);
   EXPECT_NE(probe.cycle_threads[0], std::this_thread::get_id());  // the loop thread's
   for (std::size_t k = 0; k < 3; ++k) {
     EXPECT_EQ(probe.cycle_threads[k + 1], deliverers[k]) << "event " << k;
   }
+  EXPECT_EQ(probe.cycle_threads[4], nesting_thread);
+  EXPECT_EQ(probe.cycle_threads[5], nesting_thread);
 }
 
 // On the system clock the runner never runs faster than its rate: 50 cycles

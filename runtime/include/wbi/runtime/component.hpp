@@ -53,8 +53,11 @@ struct ComponentContext {
 class EventCycle {
  public:
   // Runs read → update → write on the calling thread when the component is
-  // ACTIVE and event_ready(); returns whether it ran. Waits for a cycle in
-  // progress on another thread first. Never throws.
+  // ACTIVE and event_ready(), again while it stays so (a few at most);
+  // returns whether it ran. Waits for a cycle in progress on another thread
+  // first; called from within the component's own cycle (an arrival nested
+  // in its writes), returns false at once, and that cycle's end answers it.
+  // Never throws.
   virtual bool run() = 0;
 
  protected:

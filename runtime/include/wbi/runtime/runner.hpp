@@ -96,6 +96,10 @@ class ComponentRunner final : private EventCycle {
   // One read → update → write now, on this thread, and its statistics.
   void run_cycle(std::int64_t period_ns, bool event_driven, bool on_event_thread = false);
   bool run() override;  // EventCycle: an event's delivering thread
+  // While the component says a cycle is due, runs one (cycle_mutex_ held).
+  bool run_ready_cycles(bool on_event_thread);
+  // run_cycle, marked as this thread's: an event nested in it waits for its end.
+  void run_guarded_cycle(bool on_event_thread);
   // An event-driven component's wait, bounded so that a stop request is seen.
   bool wait_for_event(std::int64_t period_ns);
   void stop_loop();
