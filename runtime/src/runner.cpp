@@ -165,7 +165,7 @@ void ComponentRunner::activate() {
     }
     loop_ = std::thread([this, watch = on_event_thread_] {
       if (watch) {
-        run_watchdog(period_ns_);
+        run_watchdog();
       } else {
         run_loop();
       }
@@ -268,7 +268,7 @@ void ComponentRunner::run_loop() {
     if (event_driven ? !wait_for_event(period_ns_) : !clock.sleep_until(next_ns_)) {
       continue;  // no event yet, or woken early: stop requested, or spurious
     }
-    run_cycle(period_ns_, event_driven);
+    run_cycle(event_driven);
   }
 }
 
@@ -283,17 +283,17 @@ thread_local const ComponentRunner* cycle_on_this_thread = nullptr;
 // for ten periods: at activation (an event that came before it, which no
 // arrival will announce again) and when an event's inputs are late (the
 // component's wait_for_event then waits for them, here, as the loop would).
-void ComponentRunner::run_watchdog(std::int64_t period_ns) {
+void ComponentRunner::run_watchdog() {
   std::unique_lock lock(cycle_mutex_);
   std::uint64_t seen = cycles_run_;
   run_ready_cycles(false);
   while (!loop_stop_.load(std::memory_order_relaxed)) {
-    watchdog_wake_.wait_for(lock, std::chrono::nanoseconds(10 * period_ns),
+    watchdog_wake_.wait_for(lock, std::chrono::nanoseconds(10 * period_ns_),
                             [this] { return loop_stop_.load(std::memory_order_relaxed); });
     if (loop_stop_.load(std::memory_order_relaxed)) {
       break;
     }
-    if (cycles_run_ == seen && wait_for_event(period_ns)) {
+    if (cycles_run_ == seen && wait_for_event(period_ns_)) {
       run_guarded_cycle(false);
       run_ready_cycles(false);
     }
@@ -332,13 +332,14 @@ bool ComponentRunner::run_ready_cycles(bool on_event_thread) {
 void ComponentRunner::run_guarded_cycle(bool on_event_thread) {
   const ComponentRunner* outer = cycle_on_this_thread;
   cycle_on_this_thread = this;
-  run_cycle(period_ns_, true, on_event_thread);
+  run_cycle(true, on_event_thread);
   cycle_on_this_thread = outer;
 }
 
 // Statistics use Welford's running mean/variance: no allocation, no lock held
 // while the component runs.
-void ComponentRunner::run_cycle(std::int64_t period_ns, bool event_driven, bool on_event_thread) {
+void ComponentRunner::run_cycle(bool event_driven, bool on_event_thread) {
+  const std::int64_t period_ns = period_ns_;
   Clock& clock = *context_.clock;
   const std::int64_t start_ns = clock.now_ns();
   const auto started = std::chrono::steady_clock::now();

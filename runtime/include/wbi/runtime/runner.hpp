@@ -92,9 +92,9 @@ class ComponentRunner final : private EventCycle {
   void lifecycle_event(EventSeverity severity, const std::string& text);
   void run_loop();
   // A component that cycles on its events' threads: the loop thread's watch.
-  void run_watchdog(std::int64_t period_ns);
+  void run_watchdog();
   // One read → update → write now, on this thread, and its statistics.
-  void run_cycle(std::int64_t period_ns, bool event_driven, bool on_event_thread = false);
+  void run_cycle(bool event_driven, bool on_event_thread = false);
   bool run() override;  // EventCycle: an event's delivering thread
   // While the component says a cycle is due, runs one (cycle_mutex_ held).
   bool run_ready_cycles(bool on_event_thread);
