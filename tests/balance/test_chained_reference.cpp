@@ -20,9 +20,13 @@ namespace {
 using namespace std::chrono_literals;
 
 // One launch: its last "com tracking rms: X m" line, as printed ("none" if
-// it has none), and the wall-clock fallbacks it reached.
+// it has none), the balancer's count of reference points (the figures are
+// taken at exit_after_s: the ticks answered while the process shuts down,
+// as many as the machine's timing allows, do not count), and the
+// wall-clock fallbacks it reached.
 struct LaunchRun {
   std::string rms = "none";
+  std::string points = "none";
   std::vector<std::string> fallbacks;
 };
 
@@ -37,6 +41,9 @@ LaunchRun run_once(const std::string& deploy) {
   run.fallbacks = wbi::test::lockstep_fallbacks(out);
   if (const auto at = out.rfind("com tracking rms: "); at != std::string::npos) {
     run.rms = out.substr(at, out.find('\n', at) - at);
+  }
+  if (const auto at = out.rfind("reference balance/com: "); at != std::string::npos) {
+    run.points = out.substr(at, out.find(" points", at) - at);
   }
   std::printf("%s: %s%s\n", deploy.c_str(), run.rms.c_str(),
               run.fallbacks.empty() ? "" : " (reached a wall-clock fallback)");
@@ -63,12 +70,13 @@ TEST_P(ChainedReference, GivesTheFigureOfTheTopicRoute) {
     const LaunchRun topic = run_once(GetParam().topic);
     const LaunchRun chained = run_once(GetParam().chained);
     ASSERT_NE(topic.rms, "none");
-    if (chained.rms == topic.rms) {
+    ASSERT_NE(topic.points, "none");
+    if (chained.rms == topic.rms && chained.points == topic.points) {
       return;
     }
     ASSERT_FALSE(topic.fallbacks.empty() && chained.fallbacks.empty())
         << "the routes differ and neither run reached a wall-clock fallback: " << chained.rms
-        << " against " << topic.rms;
+        << ", " << chained.points << " against " << topic.rms << ", " << topic.points;
     std::printf("pair %d differs where a run reached a fallback: run again\n", pair);
   }
   ADD_FAILURE() << "three pairs differed, each with a run that reached a wall-clock fallback";

@@ -320,10 +320,12 @@ class ControllerHostComponent final : public runtime::Component {
       set_state_callback(*robot_, nullptr);
     }
     if (host_) {
-      std::printf("stale cycles: %llu\n",
-                  static_cast<unsigned long long>(stale_cycles() + event_timeouts_));
-      if (const std::string summary = host_->summary(); !summary.empty()) {
-        std::printf("%s\n", summary.c_str());
+      if (!exit_requested_) {
+        take_run_figures();
+      }
+      std::printf("stale cycles: %llu\n", static_cast<unsigned long long>(stale_at_end_));
+      if (!summary_at_end_.empty()) {
+        std::printf("%s\n", summary_at_end_.c_str());
       }
       std::fflush(stdout);
     }
@@ -342,6 +344,7 @@ class ControllerHostComponent final : public runtime::Component {
   // controller's figures are computed over nothing.
   void end_run() {
     exit_requested_ = true;
+    take_run_figures();
     int code = 0;
     for (Controller* running : host_->active_controllers()) {
       if (const std::string why = running->figures_missing(); !why.empty()) {
@@ -351,6 +354,15 @@ class ControllerHostComponent final : public runtime::Component {
       }
     }
     runtime::request_process_exit(code);
+  }
+
+  // The figures printed at shutdown, taken when the run ends: the ticks the
+  // controllers answer while the process shuts down (a lockstep robot steps
+  // on meanwhile) are as many as the machine's timing allows, and would reach
+  // them.
+  void take_run_figures() {
+    stale_at_end_ = stale_cycles() + event_timeouts_;
+    summary_at_end_ = host_->summary();
   }
 
   // A state, or a reference point, arrived (on its DDS thread): the runner's
@@ -546,7 +558,9 @@ class ControllerHostComponent final : public runtime::Component {
   std::uint64_t switches_settled_ = 0;
   std::uint64_t event_timeouts_ = 0;
   std::array<char, 160> progress_line_{};
-  bool exit_requested_ = false;  // by the host's exit_after_s or a finished controller
+  bool exit_requested_ = false;     // by the host's exit_after_s or a finished controller
+  std::uint64_t stale_at_end_ = 0;  // take_run_figures
+  std::string summary_at_end_;
   runtime::StatusCounter* new_estimators_ = nullptr;
   std::unique_ptr<dds::Publisher<msg::Signals>> signals_publisher_;
   std::vector<std::unique_ptr<dds::Subscriber<msg::TrajectoryPoint>>> reference_readers_;

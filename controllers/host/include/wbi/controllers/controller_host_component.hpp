@@ -41,7 +41,9 @@
 // Times are the robot's: the source stamps of the state (the simulation's
 // time in lockstep). Each switch is printed ("switch: pd → hold at t = …;
 // torque step …"). At shutdown the host prints "stale cycles: N" and the
-// active controller's summary (pd_gravity: "final max joint error: X rad").
+// active controller's summary (pd_gravity: "final max joint error: X rad"),
+// as they were when the run ended (exit_after_s, a finished controller):
+// not the ticks answered while the process shuts down.
 #pragma once
 
 #include <memory>
