@@ -136,6 +136,12 @@ inline void to_eigen(const std::vector<double>& values, Eigen::Ref<Eigen::Vector
   out = Eigen::Map<const Eigen::VectorXd>(values.data(), out.size());
 }
 
+// A sequence seen as an Eigen vector, not copied: valid while `values` lives
+// and keeps its size (a sample's joints read where the sample holds them).
+inline Eigen::Map<const Eigen::VectorXd> view(const std::vector<double>& values) {
+  return {values.data(), static_cast<Eigen::Index>(values.size())};
+}
+
 // Copies v into a sequence, resized to v's size (no allocation once it has it).
 inline void to_wire(const Eigen::Ref<const Eigen::VectorXd>& v, std::vector<double>& out) {
   out.resize(static_cast<std::size_t>(v.size()));

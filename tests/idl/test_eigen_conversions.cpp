@@ -149,6 +149,18 @@ TEST(EigenConversions, SequencesAndArrays) {
   EXPECT_EQ(wbi::msg::to_eigen(state.base_velocity()), velocity);
 }
 
+// view() reads a sequence where it is: the same memory, nothing copied.
+TEST(EigenConversions, AViewOfASequenceIsItsMemory) {
+  wbi::msg::StateEstimate state;
+  state.q() = {0.5, -0.25, 1.0};
+  const auto q = wbi::msg::view(state.q());
+  ASSERT_EQ(q.size(), 3);
+  EXPECT_EQ(q.data(), state.q().data());
+  state.q()[1] = 7.0;
+  EXPECT_EQ(q[1], 7.0);
+  EXPECT_EQ(wbi::msg::view(std::vector<double>{}).size(), 0);
+}
+
 TEST(EigenConversions, SizesThatDoNotMatchNameTheField) {
   const std::vector<double> three{1.0, 2.0, 3.0};
   Eigen::VectorXd four = Eigen::VectorXd::Constant(4, 9.0);

@@ -58,7 +58,8 @@ void AccelerationsFromModel::on_command(const wbi::msg::ActuatorCommand& command
   }
 }
 
-bool AccelerationsFromModel::compute(const Eigen::VectorXd& q, const Eigen::VectorXd& dq,
+bool AccelerationsFromModel::compute(const Eigen::Ref<const Eigen::VectorXd>& q,
+                                     const Eigen::VectorXd& dq,
                                      const wbi::msg::StateEstimate& state, Eigen::VectorXd& ddq) {
   const model::Model& m = accelerations_->model();
   if (known_ < m.n_joints) {

@@ -38,7 +38,7 @@ class AccelerationsFromModel {
   // The joints' accelerations at q, dq and the base of `state` (pose and
   // velocity written). False, ddq untouched, while a joint has no torque
   // command. Never allocates.
-  bool compute(const Eigen::VectorXd& q, const Eigen::VectorXd& dq,
+  bool compute(const Eigen::Ref<const Eigen::VectorXd>& q, const Eigen::VectorXd& dq,
                const wbi::msg::StateEstimate& state, Eigen::VectorXd& ddq);
 
   // The joints without a torque command, for the one message saying why

@@ -67,6 +67,7 @@ class EstimatorComponent final : public runtime::Component {
   void fill_state(const wbi::msg::SensorSample& sample);
   void write_base(const BaseState& base);
   bool has_legged_inputs(const wbi::msg::SensorSample& sample) const;
+  Eigen::Map<const Eigen::VectorXd> sample_q() const;  // the current sample's encoders
   ImuInput sample_imu() const;
   const Eigen::Matrix3Xd& foot_forces();
   void fill_base(const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq);
@@ -112,11 +113,13 @@ class EstimatorComponent final : public runtime::Component {
   std::vector<int> foot_sensor_index_;  // among the sample's F/T readings, the left foot's first
   Eigen::Matrix3Xd foot_forces_;        // their forces, one column each
   int needed_force_torques_ = 0;        // F/T readings a sample must have for them
-  const wbi::msg::SensorSample* current_sample_ = nullptr;  // while publishing its estimate
-  bool have_base_sample_ = false;                           // base: topic
+  // The sample being estimated, from its checks to its publish: its joint
+  // positions are read where it holds them (sample_q), not copied.
+  const wbi::msg::SensorSample* current_sample_ = nullptr;
+  bool have_base_sample_ = false;                  // base: topic
   bool failed_ = false;                            // the description did not fit the base estimator
   std::optional<wbi::msg::SensorSample> pending_;  // a sample that came before the description
-  Eigen::VectorXd q_;
+  std::size_t joints_ = 0;                         // the description's, once prepared
   Eigen::VectorXd tau_;
   // joint_torques: force_torque (absent: the sensed torques)
   std::optional<TorqueEstimationConfig> torque_config_;

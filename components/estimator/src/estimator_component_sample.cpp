@@ -205,7 +205,7 @@ void EstimatorComponent::on_new_producer(const dds::detail::Guid& writer) {  // 
 void EstimatorComponent::estimate(const wbi::msg::SensorSample& sample) {
   const auto start = std::chrono::steady_clock::now();
   const auto& positions = sample.encoder_position();
-  if (positions.size() != static_cast<std::size_t>(q_.size())) {
+  if (positions.size() != joints_) {
     ++ignored_;  // a sample of the wrong size is not this robot's: never applied
     wrong_size_->set(ignored_);
     return;
@@ -215,10 +215,11 @@ void EstimatorComponent::estimate(const wbi::msg::SensorSample& sample) {
     wrong_size_->set(ignored_);
     return;
   }
-  to_eigen(positions, q_, "encoder positions");
-  estimator_->update(sample.header().stamp_ns(), q_);
+  current_sample_ = &sample;
+  const auto q = sample_q();
+  estimator_->update(sample.header().stamp_ns(), q);
   if (model_ddq_) {
-    sample_used_ = estimation::used(model_ddq_->update(sample.header().stamp_ns(), q_));
+    sample_used_ = estimation::used(model_ddq_->update(sample.header().stamp_ns(), q));
   }
   // Joint torques: none when the array is empty (tau stays 0); a joint without
   // a sensor (NaN on the wire, idl/sensors.idl) enters as 0.
@@ -233,6 +234,7 @@ void EstimatorComponent::estimate(const wbi::msg::SensorSample& sample) {
   }
   filter_force_torque(sample);
   fill_state(sample);
+  current_sample_ = nullptr;
   estimate_times_.add(std::chrono::steady_clock::now() - start);
   state_publisher_->publish(state_);
 }
@@ -261,14 +263,12 @@ void EstimatorComponent::fill_state(const wbi::msg::SensorSample& sample) {
   state.header().seq(sample.header().seq());
   const auto& dq = estimator_->velocity();
   const auto& ddq = estimator_->acceleration();
-  to_wire(q_, state.q());
+  state.q() = sample.encoder_position();  // sized alike: copied in place, no allocation
   to_wire(dq, state.dq());
   to_wire(ddq, state.ddq());
-  current_sample_ = &sample;
   fill_base(dq, ddq);
   estimate_torques(dq, ddq);
   feed_model_acceleration();
-  current_sample_ = nullptr;
   to_wire(tau_, state.tau());
   auto counters = earlier_counts_;
   counters += estimator_->stamp_counters();
@@ -286,7 +286,7 @@ void EstimatorComponent::estimate_torques(const Eigen::VectorXd& dq, const Eigen
   if (!torque_estimation_) {
     return;
   }
-  if (!torque_estimation_->update(*current_sample_, q_, dq, ddq, state_)) {
+  if (!torque_estimation_->update(*current_sample_, sample_q(), dq, ddq, state_)) {
     if (missing_force_torque_->value() == 0) {  // the first one: allocates, once
       const std::string text = "estimator of robot '" + robot_ +
                                "': " + torque_estimation_->missing_readings(*current_sample_);
@@ -315,7 +315,7 @@ void EstimatorComponent::feed_model_acceleration() {
   if (!model_ddq_ || !sample_used_) {
     return;
   }
-  if (!model_acceleration_->compute(q_, model_ddq_->velocity(), state_, ddq_model_)) {
+  if (!model_acceleration_->compute(sample_q(), model_ddq_->velocity(), state_, ddq_model_)) {
     if (without_model_acceleration_->value() == 0) {  // the first one: allocates, once
       const std::string text = "estimator of robot '" + robot_ +
                                "': accelerations: model: no torque command for " +
@@ -344,6 +344,10 @@ bool EstimatorComponent::has_legged_inputs(const wbi::msg::SensorSample& sample)
          static_cast<int>(sample.force_torque().size()) >= needed_force_torques_;
 }
 
+Eigen::Map<const Eigen::VectorXd> EstimatorComponent::sample_q() const {
+  return wbi::msg::view(current_sample_->encoder_position());
+}
+
 ImuInput EstimatorComponent::sample_imu() const {
   const auto& imu = current_sample_->imus()[static_cast<std::size_t>(imu_index_)];
   ImuInput input;
@@ -370,11 +374,11 @@ void EstimatorComponent::fill_base(const Eigen::VectorXd& dq, const Eigen::Vecto
       to_wire(base_pose_, state.base_pose());
       break;
     case BaseSource::fixed_link:
-      write_base(base_estimator_->update(q_, dq, ddq));
+      write_base(base_estimator_->update(sample_q(), dq, ddq));
       break;
     case BaseSource::legged:
-      write_base(legged_estimator_->update(current_sample_->header().stamp_ns(), q_, dq, ddq,
-                                           sample_imu(), foot_forces()));
+      write_base(legged_estimator_->update(current_sample_->header().stamp_ns(), sample_q(), dq,
+                                           ddq, sample_imu(), foot_forces()));
       break;
     case BaseSource::topic:
       if (ground_truth_->latest_into(ground_truth_rx_)) {

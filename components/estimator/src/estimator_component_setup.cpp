@@ -92,7 +92,7 @@ bool EstimatorComponent::prepare_sized(std::size_t joints) {
   const auto n = static_cast<Eigen::Index>(joints);
   estimator_ = estimation::make_estimator(method_, n, method_parameters_);
   torque_filter_.emplace(n, cutoff_hz_);
-  q_.setZero(n);
+  joints_ = joints;
   tau_.setZero(n);
   tau_in_.setZero(n);
   torque_sensor_ = wbi::msg::joint_torque_sensors(description->sample);

@@ -112,7 +112,8 @@ TorquesFromForceTorque::TorquesFromForceTorque(const TorqueEstimationConfig& con
   accelerations_ = config.accelerations;
 }
 
-bool TorquesFromForceTorque::update(const wbi::msg::SensorSample& sample, const Eigen::VectorXd& q,
+bool TorquesFromForceTorque::update(const wbi::msg::SensorSample& sample,
+                                    const Eigen::Ref<const Eigen::VectorXd>& q,
                                     const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq,
                                     const wbi::msg::StateEstimate& state) {
   if (sample.force_torque().size() != readings_.size() ||

@@ -62,7 +62,7 @@ class TorquesFromForceTorque {
   // velocity, acceleration already written). False, with the sample left
   // unused, when it lacks F/T readings or, with accelerations: imu, the IMU's
   // (counted by the caller). Never allocates.
-  bool update(const wbi::msg::SensorSample& sample, const Eigen::VectorXd& q,
+  bool update(const wbi::msg::SensorSample& sample, const Eigen::Ref<const Eigen::VectorXd>& q,
               const Eigen::VectorXd& dq, const Eigen::VectorXd& ddq,
               const wbi::msg::StateEstimate& state);
 
