@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include <wbi/msg/eigen.hpp>
 #include <wbi/msg/wire_vocabulary.hpp>
 
 #include "size_check.hpp"
@@ -43,7 +44,6 @@ void DdsActuators::prepare() {
   const auto n = robot_.controlled.size();
   const auto& options = robot_.options;
   modes_.assign(n, ControlMode::idle);
-  references_ = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
   command_.header().robot(options.robot);
   command_.controller(options.controller);
   command_.joints(robot_.robot_index);
@@ -89,14 +89,14 @@ void DdsActuators::set_control_mode(ControlMode mode, int joint) {
 void DdsActuators::set_control_reference(const ConstVectorRef& reference) {
   robot_.require_init();
   check_size("control reference", reference.size(), dofs());
-  references_ = reference;
+  msg::to_wire(reference, command_.references());  // held in the message: the one copy
   publish_command(true);
 }
 
 void DdsActuators::set_control_reference(double reference, int joint) {
   robot_.require_init();
   check_index("joint", joint, dofs());
-  references_[joint] = reference;
+  command_.references()[static_cast<std::size_t>(joint)] = reference;
   publish_command(true);
 }
 
@@ -124,13 +124,14 @@ void DdsActuators::set_control_parameter(ControlParameter parameter, double valu
 void DdsActuators::switch_mode(int joint, ControlMode mode) {
   modes_[static_cast<std::size_t>(joint)] = mode;
   if (mode == ControlMode::position || mode == ControlMode::position_direct) {
-    robot_.state.read(
-        kModeSwitchRead, ReadMode::latest, robot_.options.max_age_s,
-        robot_.options.blocking_read_timeout, [&](const wbi::msg::StateEstimate& state) {
-          references_[joint] = state.q().at(robot_.robot_index[static_cast<std::size_t>(joint)]);
-        });
+    robot_.state.read(kModeSwitchRead, ReadMode::latest, robot_.options.max_age_s,
+                      robot_.options.blocking_read_timeout,
+                      [&](const wbi::msg::StateEstimate& state) {
+                        command_.references()[static_cast<std::size_t>(joint)] =
+                            state.q().at(robot_.robot_index[static_cast<std::size_t>(joint)]);
+                      });
   } else {
-    references_[joint] = 0.0;
+    command_.references()[static_cast<std::size_t>(joint)] = 0.0;
   }
 }
 
@@ -169,7 +170,6 @@ void DdsActuators::publish_command(bool answers) {
   command_.source_stamp_ns(answered_stamp_ns_);
   for (std::size_t k = 0; k < modes_.size(); ++k) {
     command_.modes()[k] = msg::to_wire(modes_[k]);
-    command_.references()[k] = references_[static_cast<Eigen::Index>(k)];
   }
   if (!commands_.publish(command_)) {
     throw Error("command to robot '" + robot_.options.robot + "' not sent");

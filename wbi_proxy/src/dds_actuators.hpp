@@ -53,9 +53,8 @@ class DdsActuators final : public wbi::Actuators {
   RobotConnection& robot_;
   dds::Publisher<wbi::msg::ActuatorCommand> commands_;
   dds::Publisher<wbi::msg::ControlParameters> parameters_;
-  std::vector<ControlMode> modes_;  // [dofs] current mode per controlled joint
-  Eigen::VectorXd references_;      // [dofs] current reference per controlled joint
-  wbi::msg::ActuatorCommand command_;
+  std::vector<ControlMode> modes_;     // [dofs] current mode per controlled joint
+  wbi::msg::ActuatorCommand command_;  // as it goes on the wire; its references the only copy
   wbi::msg::ControlParameters parameters_msg_;
   std::uint64_t command_seq_ = 0;
   // The tick the last reference answered and the stamp of its sample

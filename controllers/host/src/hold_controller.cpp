@@ -40,7 +40,6 @@ void HoldController::configure(WholeBodyInterface& robot, const ParameterTable& 
   const int n = robot.dofs();
   law_.emplace(robot);
   mass_matrix_.setZero(n + 6, n + 6);
-  gains_.resize(n);
   held_.setZero(n);
   command_.setZero(n);
   bandwidth_index_ = parameters.index("bandwidth_hz");
@@ -79,11 +78,6 @@ void HoldController::configure(WholeBodyInterface& robot, const ParameterTable& 
   gravity_.setZero(n + 6);
   wrenches_.setZero(6 * k);
   offset_.setZero(n);
-}
-
-void HoldController::apply_gain_scale(double scale) {
-  gain_scale_ = scale;
-  gains_.apply(scale, *law_);
 }
 
 void HoldController::weight_on_contacts(const RobotState& measured) {
@@ -167,17 +161,18 @@ void HoldController::gains_on_contacts(double bandwidth_hz) {
   }
   standing_.noalias() += locked_ * m_jj * locked_;
   const double omega = 2.0 * M_PI * bandwidth_hz;
-  gains_.unscaled_kp = omega * omega * standing_;
-  gains_.unscaled_kd.setZero();
+  auto& gains = law_->gains();
+  gains.kp = omega * omega * standing_;
+  gains.kd.setZero();
   for (int i = 0; i < n; ++i) {
-    gains_.unscaled_kd(i, i) = std::min(2.0 * omega * standing_(i, i), m_jj(i, i) / loop_delay_s_);
+    gains.kd(i, i) = std::min(2.0 * omega * standing_(i, i), m_jj(i, i) / loop_delay_s_);
   }
 }
 
 void HoldController::parameters_changed(const ParameterTable& parameters) {
   bandwidth_hz_ = parameters.value(bandwidth_index_);  // used at the next activation
   loop_delay_s_ = parameters.value(delay_index_);      // likewise
-  apply_gain_scale(parameters.value(scale_index_));
+  law_->set_gain_scale(parameters.value(scale_index_));
 }
 
 // Gains from the inertia at the held posture (activate may allocate).
@@ -185,13 +180,9 @@ void HoldController::activate(const RobotState& measured) {
   robot_->set_control_mode(ControlMode::torque);
   const int n = robot_->dofs();
   robot_->mass_matrix(measured.q, measured.world_H_base, mass_matrix_);
-  PdGravityGains gains =
-      PdGravityGains::from_inertia(mass_matrix_.bottomRightCorner(n, n), bandwidth_hz_);
-  gains_.unscaled_kp = std::move(gains.kp);
-  gains_.unscaled_kd = std::move(gains.kd);
+  law_->gains() = PdGravityGains::from_inertia(mass_matrix_.bottomRightCorner(n, n), bandwidth_hz_);
   weight_on_contacts(measured);
   gains_on_contacts(bandwidth_hz_);
-  apply_gain_scale(gain_scale_);
   held_ = measured.q;
   law_->set_reference(held_);
 }

@@ -42,12 +42,10 @@ class HoldController final : public Controller {
   void progress(char* line, std::size_t size) const override;
 
  private:
-  // K = gain_scale × the unscaled gains (no allocation).
-  void apply_gain_scale(double scale);
   // The joint torques that carry the weight on the contacts at `measured`
   // (offset_); at activation and at every tick, without allocating.
   void weight_on_contacts(const RobotState& measured);
-  // With contacts, the unscaled gains: K_p from the inertia the joints see
+  // With contacts, the law's gains: K_p from the inertia the joints see
   // with the contacts held, K_d per joint within what the loop's delay allows.
   // Needs mass_matrix_ and contact_jacobian_ at the held posture.
   void gains_on_contacts(double bandwidth_hz);
@@ -55,9 +53,8 @@ class HoldController final : public Controller {
   WholeBodyInterface* robot_ = nullptr;
   std::optional<PdGravity> law_;
   std::size_t bandwidth_index_ = 0, scale_index_ = 0, delay_index_ = 0;
-  double bandwidth_hz_ = 2.0, loop_delay_s_ = 0.004, gain_scale_ = 1.0;
+  double bandwidth_hz_ = 2.0, loop_delay_s_ = 0.004;
   Eigen::MatrixXd mass_matrix_;
-  ScaledPdGains gains_;
   Eigen::VectorXd held_, command_;
   std::array<double, 2> signals_{};  // max joint error, 0 (pd_gravity's pair: one plot for both)
   std::vector<int> contacts_;        // frame indices

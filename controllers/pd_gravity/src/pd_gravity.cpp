@@ -1,7 +1,5 @@
 #include "wbi/controllers/pd_gravity.hpp"
 
-#include <algorithm>
-
 #include <cmath>
 #include <string>
 
@@ -48,7 +46,9 @@ PdGravity::PdGravity(WholeBodyInterface& robot, PdGravityGains gains, Eigen::Vec
   require_square("kd", gains_.kd, n);
   require_size("q_desired", q_desired_.size(), n);
   state_ = RobotState(n);
+  own_.setOnes(n);
   error_.setZero(n);
+  velocity_.setZero(n);
   tau_.setZero(n);
   g_.setZero(n + 6);
 }
@@ -58,27 +58,6 @@ PdGravity::PdGravity(WholeBodyInterface& robot)
                 PdGravityGains{Eigen::MatrixXd::Zero(robot.dofs(), robot.dofs()),
                                Eigen::MatrixXd::Zero(robot.dofs(), robot.dofs())},
                 Eigen::VectorXd::Zero(robot.dofs())) {}
-
-void ScaledPdGains::resize(int n) {
-  unscaled_kp.setZero(n, n);
-  unscaled_kd.setZero(n, n);
-  kp.setZero(n, n);
-  kd.setZero(n, n);
-}
-
-void ScaledPdGains::apply(double scale, PdGravity& law, std::span<const int> own) {
-  kp.noalias() = scale * unscaled_kp;
-  kd.noalias() = scale * unscaled_kd;
-  if (!own.empty()) {
-    for (int j = 0; j < kp.cols(); ++j) {
-      if (std::find(own.begin(), own.end(), j) == own.end()) {
-        kp.col(j).setZero();
-        kd.col(j).setZero();
-      }
-    }
-  }
-  law.set_gains(kp, kd);
-}
 
 void PdGravity::start() { robot_.set_control_mode(ControlMode::torque); }
 
@@ -94,6 +73,20 @@ void PdGravity::set_gains(const Eigen::MatrixXd& kp, const Eigen::MatrixXd& kd) 
   gains_.kd = kd;
 }
 
+void PdGravity::set_own_joints(std::span<const int> own) {
+  for (const int j : own) {
+    if (j < 0 || j >= own_.size()) {
+      throw Error("PD + gravity: own joint " + std::to_string(j) + " is not one of its " +
+                  std::to_string(own_.size()));
+    }
+  }
+  own_.setConstant(own.empty() ? 1.0 : 0.0);
+  for (const int j : own) {
+    own_[j] = 1.0;
+  }
+  all_own_ = own_.minCoeff() == 1.0;
+}
+
 // The paper's loop: read the state, compute the gravity bias forces, send torques.
 void PdGravity::update(ReadMode mode) {
   compute(mode);
@@ -104,10 +97,16 @@ void PdGravity::compute(ReadMode mode) {
   robot_.state().read_robot_state(state_, mode);
   robot_.model().gravity_forces(state_.q, state_.world_H_base, gravity_, g_);
   error_ = state_.q - q_desired_;
-  tau_ = g_.tail(robot_.dofs());
-  tau_.noalias() -= gains_.kp * error_;
-  tau_.noalias() -= gains_.kd * state_.dq;
   max_error_ = error_.cwiseAbs().maxCoeff();
+  const Eigen::VectorXd* velocity = &state_.dq;
+  if (!all_own_) {
+    error_.array() *= own_.array();
+    velocity_ = state_.dq.cwiseProduct(own_);
+    velocity = &velocity_;
+  }
+  tau_ = g_.tail(robot_.dofs());
+  tau_.noalias() -= gain_scale_ * (gains_.kp * error_);
+  tau_.noalias() -= gain_scale_ * (gains_.kd * *velocity);
 }
 
 }  // namespace wbi::controllers

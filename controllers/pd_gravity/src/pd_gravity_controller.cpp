@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <utility>
 
 namespace wbi::controllers {
 
@@ -62,28 +61,23 @@ void PdGravityController::size_for(WholeBodyInterface& robot) {
   robot_ = &robot;
   const int n = robot.dofs();
   law_.emplace(robot);
+  // Commanding some of the host's joints, it follows its own targets only.
+  law_->set_own_joints(joints_);
   mass_matrix_.setZero(n + 6, n + 6);
-  gains_.resize(n);
   from_.setZero(n);
   goal_.setZero(n);
   reference_.setZero(n);
-  command_.setZero(n);
+}
+
+void PdGravityController::bind_joints(std::span<const int> joints) {
+  joints_.assign(joints.begin(), joints.end());  // before configure (the contract)
 }
 
 void PdGravityController::gains_from_inertia(const Eigen::VectorXd& posture,
                                              const Transform& world_H_base, double bandwidth_hz) {
   const int n = robot_->dofs();
   robot_->mass_matrix(posture, world_H_base, mass_matrix_);
-  PdGravityGains gains =
-      PdGravityGains::from_inertia(mass_matrix_.bottomRightCorner(n, n), bandwidth_hz);
-  gains_.unscaled_kp = std::move(gains.kp);
-  gains_.unscaled_kd = std::move(gains.kd);
-}
-
-void PdGravityController::apply_gain_scale(double scale) {
-  gain_scale_ = scale;
-  // Commanding some of the host's joints, it follows its own targets only.
-  gains_.apply(scale, *law_, joints_);
+  law_->gains() = PdGravityGains::from_inertia(mass_matrix_.bottomRightCorner(n, n), bandwidth_hz);
 }
 
 void PdGravityController::configure(WholeBodyInterface& robot, const ParameterTable& parameters) {
@@ -97,9 +91,10 @@ void PdGravityController::configure(WholeBodyInterface& robot, const ParameterTa
   goal_ = Eigen::Map<const Eigen::VectorXd>(parameters.values(index_.target).data(), robot.dofs());
   if (parameters.is_set(index_.kp)) {
     const auto n = robot.dofs();
-    gains_.unscaled_kp =
+    auto& gains = law_->gains();
+    gains.kp =
         Eigen::Map<const Eigen::VectorXd>(parameters.values(index_.kp).data(), n).asDiagonal();
-    gains_.unscaled_kd =
+    gains.kd =
         Eigen::Map<const Eigen::VectorXd>(parameters.values(index_.kd).data(), n).asDiagonal();
   } else {
     // Every mode critically damped at the bandwidth, from the inertia at the target.
@@ -110,7 +105,7 @@ void PdGravityController::configure(WholeBodyInterface& robot, const ParameterTa
 }
 
 void PdGravityController::parameters_changed(const ParameterTable& parameters) {
-  apply_gain_scale(parameters.value(index_.scale));
+  law_->set_gain_scale(parameters.value(index_.scale));
   transition_s_ = parameters.value(index_.transition);
   const auto target = parameters.values(index_.target);
   if (!std::equal(target.begin(), target.end(), goal_.data())) {
@@ -141,7 +136,6 @@ bool PdGravityController::update(double time_s, double /*period_s*/) {
   }
   law_->set_reference(reference_);
   law_->compute(ReadMode::latest);
-  command_ = law_->torques();
   signals_[0] = law_->max_error();
   if (!joints_.empty()) {  // on its own joints (a host may give the others to another)
     signals_[0] = 0.0;

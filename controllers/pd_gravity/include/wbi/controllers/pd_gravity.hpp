@@ -30,20 +30,6 @@ struct PdGravityGains {
   static PdGravityGains from_inertia(const Eigen::MatrixXd& joint_inertia, double bandwidth_hz);
 };
 
-class PdGravity;
-
-// K_p and K_d as a controller holds them (pd_gravity, and the host's hold):
-// unscaled (from the inertia, or given) and times a live gain_scale, set on
-// the law without allocating.
-struct ScaledPdGains {
-  Eigen::MatrixXd unscaled_kp, unscaled_kd, kp, kd;
-
-  void resize(int n);  // all zero
-  // K = scale × unscaled; with `own` (the joints a controller commands, of
-  // the host's), the other joints' columns zero: their errors couple in nothing.
-  void apply(double scale, PdGravity& law, std::span<const int> own = {});
-};
-
 class PdGravity {
  public:
   // robot: initialized, with the controlled joints of this controller.
@@ -63,7 +49,17 @@ class PdGravity {
   void set_reference(const ConstVectorRef& q_desired);
   // New gains of the same size (no allocation). Throws wbi::Error naming a wrong size.
   void set_gains(const Eigen::MatrixXd& kp, const Eigen::MatrixXd& kd);
+  // The gains where the law holds them, the one copy: a controller computes
+  // them in place (from the inertia, given ones), keeping their sizes.
+  PdGravityGains& gains() { return gains_; }
   const PdGravityGains& gains() const { return gains_; }
+  // The PD terms times `scale` (a live gain_scale); the gains stay as they are.
+  void set_gain_scale(double scale) { gain_scale_ = scale; }
+  double gain_scale() const { return gain_scale_; }
+  // Only these joints' errors and velocities enter the PD terms (a controller
+  // commanding some of a host's joints: the others couple in nothing); empty:
+  // every joint. No allocation.
+  void set_own_joints(std::span<const int> own);
   const RobotState& state() const { return state_; }  // of the last update
   const Eigen::VectorXd& torques() const { return tau_; }
   // max |q − q_d| at the last update [rad]
@@ -72,10 +68,13 @@ class PdGravity {
  private:
   WholeBodyInterface& robot_;
   PdGravityGains gains_;
+  double gain_scale_ = 1.0;
+  Eigen::VectorXd own_;  // 1 for a joint whose error enters, 0 for one that does not
+  bool all_own_ = true;  // every joint's: the products skip the mask
   Eigen::VectorXd q_desired_;
   Eigen::Vector3d gravity_;
   RobotState state_;  // read whole each tick
-  Eigen::VectorXd error_, g_, tau_;
+  Eigen::VectorXd error_, velocity_, g_, tau_;
   double max_error_ = 0.0;
 };
 

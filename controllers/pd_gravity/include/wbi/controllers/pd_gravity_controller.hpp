@@ -31,32 +31,27 @@ class PdGravityController final : public Controller {
   void activate(const RobotState& measured) override;
   bool update(double time_s, double period_s) override;
   void parameters_changed(const ParameterTable& parameters) override;
-  void bind_joints(std::span<const int> joints) override {
-    joints_.assign(joints.begin(), joints.end());
-  }
-  const Eigen::VectorXd& command() const override { return command_; }
+  void bind_joints(std::span<const int> joints) override;
+  // The law's torques, where it computed them: no copy.
+  const Eigen::VectorXd& command() const override { return law_->torques(); }
   std::span<const double> signals() const override { return signals_; }
   std::int64_t signals_stamp_ns() const override { return law_->state().stamp.source_ns; }
   void progress(char* line, std::size_t size) const override;
   std::string summary() const override;
 
  private:
-  // Unscaled gains K_p = ω² M_jj, K_d = 2ω M_jj from the inertia at `posture`
+  // The law's gains K_p = ω² M_jj, K_d = 2ω M_jj from the inertia at `posture`
   // (PdGravityGains::from_inertia; configure only: it allocates).
   void gains_from_inertia(const Eigen::VectorXd& posture, const Transform& world_H_base,
                           double bandwidth_hz);
 
   // Sizes the law and the buffers for robot.dofs().
   void size_for(WholeBodyInterface& robot);
-  // K = gain_scale × the unscaled gains (no allocation).
-  void apply_gain_scale(double scale);
 
   WholeBodyInterface* robot_ = nullptr;
   std::optional<PdGravity> law_;
   Eigen::MatrixXd mass_matrix_;
-  ScaledPdGains gains_;
-  Eigen::VectorXd from_, goal_, reference_, command_;
-  double gain_scale_ = 1.0;
+  Eigen::VectorXd from_, goal_, reference_;
   double transition_s_ = 0.0;
   double transition_start_s_ = -1.0;  // < 0: at the next update
   std::array<double, 2> signals_{};   // max joint error, reference's distance to the target
