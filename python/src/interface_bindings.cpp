@@ -132,8 +132,7 @@ PythonInterface make_interface(
     const std::optional<std::vector<std::string>>& peers,
     const std::optional<std::vector<std::string>>& interfaces,
     const std::optional<std::string>& discovery_server, const std::optional<std::string>& security,
-    const std::optional<std::string>& identity, const std::string& claim,
-    double model_reply_spin_us) {
+    const std::optional<std::string>& identity, const std::string& claim) {
   DdsInterfaceOptions options;
   options.robot = robot;
   options.urdf = urdf;
@@ -149,12 +148,6 @@ PythonInterface make_interface(
   options.max_age_s = max_age_s;
   options.blocking_read_timeout = milliseconds(blocking_read_timeout_s);
   options.model_timeout = milliseconds(model_timeout_s);
-  if (!(model_reply_spin_us >= 0.0 && model_reply_spin_us <= 1000.0)) {
-    throw py::value_error("model_reply_spin_us must be in [0, 1000], got " +
-                          std::to_string(model_reply_spin_us));
-  }
-  options.model_reply_spin =
-      std::chrono::microseconds(static_cast<std::int64_t>(model_reply_spin_us));
   options.participant =
       join_from_keywords(participant_name, deploy, domain_id, discovery, peers, interfaces,
                          discovery_server, qos_file, security, identity);
@@ -439,8 +432,7 @@ void bind_interface(py::module_& module) {
            arg("armature") = std::map<std::string, double>{}, arg("deploy") = py::none(),
            arg("peers") = py::none(), arg("interfaces") = py::none(),
            arg("discovery_server") = py::none(), arg("security") = py::none(),
-           arg("identity") = py::none(), arg("claim") = "claim",
-           arg("model_reply_spin_us") = 0.0)
+           arg("identity") = py::none(), arg("claim") = "claim")
       .def(
           "add_joints",
           [](PythonInterface& self, const IdList& joints) { self.robot().add_joints(joints); },

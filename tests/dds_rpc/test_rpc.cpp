@@ -213,50 +213,6 @@ TEST(Rpc, SlowReplyIsATimeoutAndTheLateReplyIsDropped) {
   EXPECT_EQ(wbi::test::toy_mismatch(request, reply), "");
 }
 
-// A client that polls for its replies (ClientOptions::spin_for_reply) gets
-// the same replies; a reply that comes after the poll is still taken (the
-// call then sleeps on it), and a call without a reply ends at its deadline.
-TEST(Rpc, PollingForTheReplyGetsTheSameRepliesAndKeepsTheDeadline) {
-  Participant server_side("server");
-  Participant client_side("client");
-  Gate gate, never;
-  Server server(
-      server_side, kService,
-      [&](const Request& request, Reply& reply) {
-        if (request.seq() == 51) {
-          gate.pass();  // held until the call is waiting for it
-        } else if (request.seq() == 52) {
-          never.pass();  // answered only after the call's deadline
-        }
-        wbi::test::toy_reply(request, reply);
-      },
-      worker_thread());
-  wbi::dds::ClientOptions options;
-  options.spin_for_reply = 300us;
-  Client client(client_side, kService, options);
-  std::mt19937_64 rng(9);
-  Request request;
-  Reply reply;
-  for (int i = 0; i < 50; ++i) {
-    wbi::test::random_request(rng, 1 + i, request);
-    ASSERT_EQ(client.try_call(request, reply, 5s), CallStatus::ok);
-    EXPECT_EQ(wbi::test::toy_mismatch(request, reply), "");
-  }
-  auto late = std::async(std::launch::async, [&] {
-    ASSERT_TRUE(gate.wait_waiting(1));
-    gate.open();
-  });
-  wbi::test::random_request(rng, 7, request);
-  EXPECT_EQ(client.try_call(request, reply, 5s), CallStatus::ok);
-  EXPECT_EQ(wbi::test::toy_mismatch(request, reply), "");
-  late.get();
-  const auto start = Clock::now();
-  EXPECT_EQ(client.try_call(request, reply, 200ms), CallStatus::no_reply);
-  EXPECT_GE(Clock::now() - start, 200ms);
-  never.open();
-  ASSERT_TRUE(eventually([&] { return client.dropped_replies() >= 1; }));  // late: dropped
-}
-
 TEST(Rpc, HandlerErrorsComeBackAsErrorReplies) {
   Participant server_side("server");
   Participant client_side("client");

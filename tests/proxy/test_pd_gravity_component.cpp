@@ -53,26 +53,12 @@ TEST(PdGravityComponent, AnUnknownModelSourceIsNamed) {
   }
 }
 
-TEST(PdGravityComponent, AReplySpinBeyondAPeriodIsNamed) {
-  Host host;
-  try {
-    host.runner->configure(wbi::runtime::Parameters::from_string(
-        parameters("arm_none", "model: remote\nmodel_reply_spin_us: 5000\n")));
-    FAIL() << "model_reply_spin_us: 5000 accepted";
-  } catch (const wbi::runtime::TransitionError& e) {
-    EXPECT_NE(std::string(e.what()).find("model_reply_spin_us must be in [0, 1000], got 5000"),
-              std::string::npos)
-        << e.what();
-  }
-}
-
-// With the reply polled for (model_reply_spin_us), as deploy/demo.yaml runs it.
 TEST(PdGravityComponent, RunsWithTheRemoteModelAndStampsItsCommands) {
   ArmPeer peer("arm_pd_remote");
   const auto service = start_model_service("arm_pd_remote");
   Host host;
-  host.runner->configure(wbi::runtime::Parameters::from_string(
-      parameters("arm_pd_remote", "model: remote\nmodel_reply_spin_us: 200\n")));
+  host.runner->configure(
+      wbi::runtime::Parameters::from_string(parameters("arm_pd_remote", "model: remote\n")));
   host.runner->activate();
   wbi::dds::Received<wbi::msg::ActuatorCommand> command;
   ASSERT_TRUE(peer.commands().wait_newer(command, 5, 10s));

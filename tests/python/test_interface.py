@@ -18,8 +18,6 @@ class DdsInterfaceTest(unittest.TestCase):
             wbi.DdsInterface(robot="nobody")
         with self.assertRaisesRegex(ValueError, "model is 'cloud'; expected local or remote"):
             wbi.DdsInterface(robot="nobody", urdf=ARM, model="cloud")
-        with self.assertRaisesRegex(ValueError, r"model_reply_spin_us must be in \[0, 1000\]"):
-            wbi.DdsInterface(robot="nobody", urdf=ARM, model="remote", model_reply_spin_us=5000)
         with self.assertRaisesRegex(wbi.Error, "joint 'joint_1' added twice"):
             wbi.DdsInterface(robot="nobody", urdf=ARM, joints=["joint_1", "joint_1"])
 

@@ -22,10 +22,9 @@ IdList frames_of(const std::string& urdf, const msg::RobotDescription& descripti
 }
 
 // The replies of one model service: a second service of the same robot is dropped.
-dds::ClientOptions client_options(const DdsInterfaceOptions& interface) {
+dds::ClientOptions one_server(std::function<void(const dds::ProducerEvent&)> on_event) {
   dds::ClientOptions options;
-  options.producers = dds::ProducerPolicy::one(interface.on_producer_event);
-  options.spin_for_reply = interface.model_reply_spin;
+  options.producers = dds::ProducerPolicy::one(std::move(on_event));
   return options;
 }
 
@@ -37,7 +36,8 @@ RemoteModel::RemoteModel(dds::Participant& participant, const DdsInterfaceOption
       urdf_(options.urdf),
       description_(participant, dds::topics::model_description(options.robot), dds::qos::kLatched,
                    nullptr, dds::ProducerPolicy::one(options.on_producer_event)),
-      client_(participant, dds::topics::model_service(options.robot), client_options(options)) {}
+      client_(participant, dds::topics::model_service(options.robot),
+              one_server(options.on_producer_event)) {}
 
 std::string RemoteModel::wait_ready(std::chrono::steady_clock::time_point deadline) {
   const auto left = [&] {

@@ -1,6 +1,5 @@
 #include "wbi/controllers/interface_options.hpp"
 
-#include <cstdio>
 #include <filesystem>
 
 #include <wbi/dds/participant.hpp>
@@ -36,15 +35,6 @@ DdsInterfaceOptions read_interface_options(const runtime::Parameters& parameters
       parameters.get<std::string>("model_backend", options.local_model_backend);
   options.model_timeout = milliseconds(parameters.get<double>(
       "model_timeout_s", std::chrono::duration<double>(options.model_timeout).count()));
-  // A remote model's reply polled for, up to this long (DdsInterfaceOptions::model_reply_spin);
-  // more than a 1 kHz loop's period would only burn its core.
-  const double spin_us = parameters.get<double>("model_reply_spin_us", 0.0);
-  if (!(spin_us >= 0.0 && spin_us <= 1000.0)) {
-    char text[96];
-    std::snprintf(text, sizeof text, ": model_reply_spin_us must be in [0, 1000], got %g", spin_us);
-    throw runtime::ParameterError(parameters.where("model_reply_spin_us") + text);
-  }
-  options.model_reply_spin = std::chrono::microseconds(static_cast<std::int64_t>(spin_us));
   options.controller = parameters.get<std::string>("controller", context.instance);
   const auto claim = parameters.get<std::string>("claim", "claim");
   if (const auto parsed = claim_from_text(claim)) {

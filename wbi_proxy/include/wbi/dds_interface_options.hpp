@@ -56,10 +56,6 @@ struct DdsInterfaceOptions {
   std::chrono::milliseconds blocking_read_timeout{1000};
   // Deadline of a remote model call (the model service at wbi/<robot>/model).
   std::chrono::milliseconds model_timeout{200};
-  // How long a remote model call polls for its reply before the calling thread
-  // sleeps on it (dds::ClientOptions::spin_for_reply): a reply that comes
-  // within it wakes no thread, for the core's time meanwhile. 0: sleep at once.
-  std::chrono::microseconds model_reply_spin{0};
 
   dds::ParticipantOptions participant{};  // domain, discovery, QoS file
   // When set, the interface's endpoints join this participant (a host's, which

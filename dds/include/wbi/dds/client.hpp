@@ -28,14 +28,12 @@
 #pragma once
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <cstring>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <utility>
 
 #include "detail/endpoints.hpp"
@@ -58,12 +56,6 @@ struct ClientOptions {
   // ProducerPolicy::one(): take the replies of the first server heard only (a
   // second server of the same service is dropped, see producers.hpp).
   ProducerPolicy producers;
-  // How long a blocking call (call(), try_call()) polls for its reply before
-  // it sleeps on it. A reply within that time costs the calling thread no
-  // sleep and wake-up (a cross-core wake is about 13 us here, more when the
-  // core had gone idle), at the price of the core meanwhile; the poll yields
-  // to any other thread that is ready to run. 0: sleep at once.
-  std::chrono::nanoseconds spin_for_reply{0};
 };
 
 template <class Req, class Rep>
@@ -73,7 +65,6 @@ class Client : private detail::ReaderSink {
   // service: the service name, e.g. topics::model_service("icub").
   Client(Participant& participant, std::string service, const ClientOptions& options = {})
       : service_(std::move(service)),
-        spin_for_reply_(options.spin_for_reply),
         resend_(options.resend_period, options.resend_period_max),
         send_probes_(kProbeFirst, kProbeMax),
         request_writer_(participant, topics::service_request(service_),
@@ -126,13 +117,6 @@ class Client : private detail::ReaderSink {
     const CallStatus sent = start(request, deadline);
     if (sent != CallStatus::ok) {
       return sent;
-    }
-    if (spin_for_reply_.count() > 0) {
-      const auto until = std::min(deadline, std::chrono::steady_clock::now() + spin_for_reply_);
-      while (!replied_flag_.load(std::memory_order_acquire) &&
-             std::chrono::steady_clock::now() < until) {
-        std::this_thread::yield();
-      }
     }
     std::unique_lock lock(mutex_);
     while (!replied_.wait_until(lock, std::min(deadline, resend_.next()), [&] { return ready_; })) {
@@ -302,7 +286,6 @@ class Client : private detail::ReaderSink {
       std::lock_guard lock(mutex_);
       awaited_ = seq;
       ready_ = false;
-      replied_flag_.store(false, std::memory_order_relaxed);
       call_deadline_ = deadline;
     }
     const auto now = std::chrono::steady_clock::now();
@@ -327,7 +310,6 @@ class Client : private detail::ReaderSink {
     using std::swap;
     swap(reply, slot_);  // buffers circulate: no allocation once all have grown
     ready_ = false;
-    replied_flag_.store(false, std::memory_order_relaxed);
   }
 
   void* storage() override { return &incoming_; }
@@ -349,7 +331,6 @@ class Client : private detail::ReaderSink {
         swap(slot_, incoming_);
         awaited_ = 0;
         ready_ = true;
-        replied_flag_.store(true, std::memory_order_release);
         confirmed_ = true;
       }
     }
@@ -357,7 +338,6 @@ class Client : private detail::ReaderSink {
   }
 
   std::string service_;
-  std::chrono::nanoseconds spin_for_reply_;
   std::mutex call_mutex_;  // one call in flight; guards what follows up to mutex_
   std::uint64_t next_seq_ = 0;
   std::uint64_t last_seq_ = 0;
@@ -369,10 +349,9 @@ class Client : private detail::ReaderSink {
   mutable std::mutex mutex_;  // guards what follows, shared with the DDS thread
   std::condition_variable replied_;
   char client_id_[33] = {};
-  std::uint64_t awaited_ = 0;              // seq of the call in flight, 0 when none
-  bool ready_ = false;                     // slot_ holds its reply
-  std::atomic<bool> replied_flag_{false};  // ready_, for try_call's poll without the lock
-  bool confirmed_ = false;  // a server answered a probe or a request (see connected())
+  std::uint64_t awaited_ = 0;  // seq of the call in flight, 0 when none
+  bool ready_ = false;         // slot_ holds its reply
+  bool confirmed_ = false;     // a server answered a probe or a request (see connected())
   std::chrono::steady_clock::time_point call_deadline_{};
   std::uint64_t dropped_ = 0;
   std::uint64_t resent_ = 0;
