@@ -96,7 +96,7 @@ void DdsActuators::set_control_reference(const ConstVectorRef& reference) {
 void DdsActuators::set_control_reference(double reference, int joint) {
   robot_.require_init();
   check_index("joint", joint, dofs());
-  command_.references()[static_cast<std::size_t>(joint)] = reference;
+  reference_of(joint) = reference;
   publish_command(true);
 }
 
@@ -124,14 +124,13 @@ void DdsActuators::set_control_parameter(ControlParameter parameter, double valu
 void DdsActuators::switch_mode(int joint, ControlMode mode) {
   modes_[static_cast<std::size_t>(joint)] = mode;
   if (mode == ControlMode::position || mode == ControlMode::position_direct) {
-    robot_.state.read(kModeSwitchRead, ReadMode::latest, robot_.options.max_age_s,
-                      robot_.options.blocking_read_timeout,
-                      [&](const wbi::msg::StateEstimate& state) {
-                        command_.references()[static_cast<std::size_t>(joint)] =
-                            state.q().at(robot_.robot_index[static_cast<std::size_t>(joint)]);
-                      });
+    robot_.state.read(
+        kModeSwitchRead, ReadMode::latest, robot_.options.max_age_s,
+        robot_.options.blocking_read_timeout, [&](const wbi::msg::StateEstimate& state) {
+          reference_of(joint) = state.q().at(robot_.robot_index[static_cast<std::size_t>(joint)]);
+        });
   } else {
-    command_.references()[static_cast<std::size_t>(joint)] = 0.0;
+    reference_of(joint) = 0.0;
   }
 }
 

@@ -44,6 +44,8 @@ class DdsActuators final : public wbi::Actuators {
  private:
   int dofs() const { return static_cast<int>(modes_.size()); }
   void switch_mode(int joint, ControlMode mode);
+  // A joint's reference, where the command message holds it.
+  double& reference_of(int joint) { return command_.references()[static_cast<std::size_t>(joint)]; }
   // answers: the command is a reference computed from the samples read (it
   // answers their tick), not a mode switch (it carries the last answer's tick).
   void publish_command(bool answers);

@@ -55,7 +55,6 @@ class PdGravity {
   const PdGravityGains& gains() const { return gains_; }
   // The PD terms times `scale` (a live gain_scale); the gains stay as they are.
   void set_gain_scale(double scale) { gain_scale_ = scale; }
-  double gain_scale() const { return gain_scale_; }
   // Only these joints' errors and velocities enter the PD terms (a controller
   // commanding some of a host's joints: the others couple in nothing); empty:
   // every joint. No allocation.
