@@ -17,6 +17,7 @@
 
 #include "participant_impl.hpp"
 #include "producer_binding.hpp"
+#include "sequence_gaps.hpp"
 
 namespace wbi::dds::detail {
 
@@ -304,10 +305,18 @@ struct ReaderImpl : fdds::DataReaderListener {
 
   std::atomic<int> incompatible_writers{0};
   std::atomic<bool> incompatible_said{false};
+  // Samples this reader will never get: sent while it could not take them in
+  // (a full socket buffer, a lossy link) and no longer in the writer's history
+  // when it asked again (a stream's writer keeps only its newest sample).
+  SequenceGaps gaps;
 
   void on_data_available(fdds::DataReader* data_reader) override {
     fdds::SampleInfo info;
     while (data_reader->take_next_sample(sink.storage(), &info) == ReturnCode_t::RETCODE_OK) {
+      const auto& sequence = info.sample_identity.sequence_number();
+      if (sequence != eprosima::fastrtps::rtps::SequenceNumber_t::unknown()) {
+        gaps.observe(to_guid(info.sample_identity.writer_guid()), sequence.to64long());
+      }
       if (!info.valid_data) {
         continue;  // a dispose or unregister notice, not a sample
       }
@@ -360,6 +369,8 @@ ProducerCounts Reader::producers() const {
 }
 
 int Reader::incompatible_writers() const { return impl_->incompatible_writers.load(); }
+
+std::int64_t Reader::samples_lost() const { return static_cast<std::int64_t>(impl_->gaps.lost()); }
 
 bool Reader::wait_matched(int count, std::chrono::nanoseconds timeout) const {
   return impl_->matches.wait_for(count, timeout);

@@ -14,6 +14,7 @@
 
 #include <unistd.h>
 
+#include <fastdds/rtps/transport/UDPTransportDescriptor.h>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
@@ -118,6 +119,14 @@ fdds::DomainParticipantQos participant_qos(const ParticipantOptions& options,
                                     detail::local_transport_from_environment());
   } else {
     detail::use_network_transports(qos, options.discovery, options.network);
+  }
+  if (options.udp_receive_buffer_bytes > 0) {
+    for (auto& transport : qos.transport().user_transports) {
+      if (auto udp = std::dynamic_pointer_cast<eprosima::fastdds::rtps::UDPTransportDescriptor>(
+              transport)) {
+        udp->receiveBufferSize = static_cast<std::uint32_t>(options.udp_receive_buffer_bytes);
+      }
+    }
   }
   detail::use_security(qos, options.security);
   return qos;

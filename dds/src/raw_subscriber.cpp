@@ -40,6 +40,8 @@ RawSubscriber::RawSubscriber(Participant& participant, const TopicInfo& topic, C
 
 ProducerCounts RawSubscriber::producers() const { return impl_->reader->producers(); }
 
+std::int64_t RawSubscriber::samples_lost() const { return impl_->reader->samples_lost(); }
+
 RawSubscriber::~RawSubscriber() = default;
 
 }  // namespace wbi::dds

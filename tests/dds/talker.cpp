@@ -3,13 +3,20 @@
 // is lost to the writer's bounded history), and exits 0. With COUNT = 0 it
 // publishes at 100 Hz on the wbi.stream profile until SIGTERM, and has a
 // writer of commands too (wbi.command), so that a test can see which QoS
-// each profile got (WBI_QOS_FILE).
-// usage: wbi_test_talker ROBOT COUNT
+// each profile got (WBI_QOS_FILE). With `burst`, it publishes COUNT samples on
+// wbi.stream once a subscriber matched: the first one acknowledged (the reader
+// then knows the writer: a sample sent before is not its to lose), the rest
+// back to back (the writer keeps only the newest: a reader that falls behind
+// loses some); then it says "talker: done" and
+// stays until SIGTERM, so that its writer can still tell the reader what it lost.
+// It says how many writes DDS refused.
+// usage: wbi_test_talker ROBOT COUNT [burst]
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <iostream>
+#include <string>
 #include <thread>
 
 #include <optional>
@@ -26,8 +33,9 @@ extern "C" void on_signal(int /*signal*/) { stop_requested = true; }
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 3) {
-    std::cerr << "usage: wbi_test_talker ROBOT COUNT\n";
+  const bool burst = argc == 4 && std::string(argv[3]) == "burst";
+  if (argc != 3 && !burst) {
+    std::cerr << "usage: wbi_test_talker ROBOT COUNT [burst]\n";
     return 2;
   }
   std::signal(SIGTERM, on_signal);
@@ -46,13 +54,29 @@ int main(int argc, char** argv) {
       participant, wbi::dds::topics::sensors(robot),
       // Counted: transient local, so that a reader whose side of the match comes
       // after the first write still gets that sample (a volatile one would not).
-      count > 0 ? wbi::dds::qos::kLatched : wbi::dds::qos::kStream);
+      count > 0 && !burst ? wbi::dds::qos::kLatched : wbi::dds::qos::kStream);
   std::cout << "talker: ready" << std::endl;
   wbi::msg::SensorSample sample;
   if (count > 0) {
     if (!publisher.wait_for_subscribers(1, std::chrono::seconds(20))) {
       std::cerr << "talker: no subscriber within 20 s\n";
       return 1;
+    }
+    if (burst) {
+      long refused = 0;
+      for (long seq = 0; seq < count; ++seq) {
+        wbi::test::fill_pattern(sample, robot, static_cast<std::uint64_t>(seq));
+        refused += publisher.publish(sample) ? 0 : 1;
+        if (seq == 0 && !publisher.wait_acknowledged(std::chrono::seconds(15))) {
+          std::cerr << "talker: the first sample was not acknowledged\n";
+          return 1;
+        }
+      }
+      std::cout << "talker: done, " << refused << " writes refused" << std::endl;
+      while (!stop_requested) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));  // polls the signal flag
+      }
+      return 0;
     }
     for (long seq = 0; seq < count && !stop_requested; ++seq) {
       wbi::test::fill_pattern(sample, robot, static_cast<std::uint64_t>(seq));

@@ -1,13 +1,18 @@
 // A sensor sample crosses between two real processes on loopback: the talker
 // process publishes pattern samples, this process checks every one. And a QoS
 // file (WBI_QOS_FILE, a deploy file's qos_file) overrides only the profiles it
-// names: seen from here, on the talker's writers.
+// names: seen from here, on the talker's writers. A reader that falls behind a
+// stream's writer is told how many samples it lost.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
+#include <iostream>
 #include <optional>
 #include <string>
 
+#include <wbi/dds/join_options.hpp>
+#include <wbi/dds/raw_subscriber.hpp>
 #include <wbi/dds/subscriber.hpp>
 #include <wbi/dds/topics.hpp>
 
@@ -50,6 +55,43 @@ TEST(DdsTwoProcesses, EverySampleArrivesIntact) {
   for (std::uint64_t i = 0; i < kCount; ++i) {
     ASSERT_EQ(seen[i], i);
   }
+}
+
+// A stream's writer keeps its newest sample only: a reader whose thread is held
+// while a burst arrives loses what overflows its socket's receive buffer, and
+// must be told so (a recorder reports it: tools/recording/README.md).
+TEST(DdsTwoProcesses, AReaderThatFallsBehindAStreamIsToldWhatItLost) {
+  constexpr std::int64_t kCount = 2000;
+  wbi::dds::ParticipantOptions options;
+  options.name = "late reader";
+  wbi::dds::apply_environment(options);
+  options.udp_receive_buffer_bytes = 65536;  // a few dozen samples: the burst overflows it
+  wbi::dds::Participant participant(options);
+  std::atomic<std::int64_t> received{0};
+  std::atomic<bool> burst_sent{false};
+  const wbi::dds::TopicInfo topic{
+      wbi::dds::topics::sensors("burst"), "wbi::msg::SensorSample", 1, 0, true, true};
+  wbi::dds::RawSubscriber reader(participant, topic, [&](const wbi::dds::RawSample&) {
+    if (received.fetch_add(1) == 1) {
+      // The burst's first sample holds the receive thread until the whole
+      // burst is sent: every datagram behind it waits in the socket's buffer.
+      wbi::test::eventually([&] { return burst_sent.load(); }, 20s);
+    }
+  });
+  wbi::test::ChildProcess talker(wbi::test::binary_dir() / "tests" / "wbi_test_talker",
+                                 {"burst", std::to_string(kCount), "burst"});
+  const bool sent = talker.wait_for_output("talker: done", 20s);
+  burst_sent = true;
+  ASSERT_TRUE(sent) << talker.output();
+  // Every sample is received or reported lost, none goes missing in silence.
+  EXPECT_TRUE(
+      wbi::test::eventually([&] { return received.load() + reader.samples_lost() == kCount; }, 20s))
+      << "received " << received.load() << ", reported lost " << reader.samples_lost() << " of "
+      << kCount << "; " << talker.output();
+  EXPECT_GT(reader.samples_lost(), 0) << "the held thread lost nothing: the buffer did not fill";
+  std::cout << "burst of " << kCount << ": received " << received.load() << ", reported lost "
+            << reader.samples_lost() << std::endl;
+  talker.stop();
 }
 
 // The QoS of the writers of the talker started with env (e.g. WBI_QOS_FILE=...).

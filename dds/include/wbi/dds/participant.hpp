@@ -59,6 +59,11 @@ struct ParticipantOptions {
   NetworkOptions network;
   // DDS Security; off by default.
   SecurityOptions security;
+  // Size asked for the UDP sockets' receive buffers; 0: the OS default
+  // (net.core.rmem_default, 208 KiB on Debian 12). The kernel grants at most
+  // net.core.rmem_max. A reader whose process stalls longer than its buffer
+  // lasts loses the datagrams that overflow it: a recorder asks for more.
+  int udp_receive_buffer_bytes = 0;
 };
 
 // A topic seen on the domain through discovery (remote endpoints only).

@@ -33,6 +33,9 @@ class RawSubscriber {
   RawSubscriber& operator=(const RawSubscriber&) = delete;
 
   ProducerCounts producers() const;
+  // Samples of the topic that never reached this reader and never will: it
+  // fell behind and the writer's history no longer held them.
+  std::int64_t samples_lost() const;
 
  private:
   struct Impl;

@@ -100,6 +100,9 @@ class Reader {
   bool wait_matched(int count, std::chrono::nanoseconds timeout) const;
   // Writers found on the topic whose QoS cannot serve this reader (said once on stderr).
   int incompatible_writers() const;
+  // Samples of its writers that this reader never received and can no longer
+  // get (gaps in their sequence numbers): a reader that fell behind a stream.
+  std::int64_t samples_lost() const;
   // Bound to one producer (ProducerPolicy::one): which, and what it dropped.
   ProducerCounts producers() const;
   const std::string& topic() const;
