@@ -17,6 +17,7 @@
 #include "../options.hpp"
 #include "../terminal.hpp"
 #include "record_window.hpp"
+#include "recorder_participant.hpp"
 #include "verbs.hpp"
 
 namespace wbi::cli {
@@ -49,6 +50,9 @@ std::string progress_text(const recording::RecorderProgress& now,
       << now.topics;
   if (now.dropped > 0) {
     out << "  DROPPED " << now.dropped;
+  }
+  if (now.lost > 0) {
+    out << "  LOST " << now.lost;
   }
   if (now.foreign > 0) {
     out << "  FOREIGN " << now.foreign;
@@ -145,8 +149,7 @@ int run_record(Args args) {
   recorder_options.log = [](const std::string& line) { std::cerr << line << std::endl; };
 
   // On a secured deployment the recorder joins as the observer (subscribe only).
-  const dds::ParticipantOptions participant_options =
-      join_options(options, "wbi record", "observer");
+  const dds::ParticipantOptions participant_options = recorder_participant_options(options);
   std::signal(SIGINT, on_record_signal);
   std::signal(SIGTERM, on_record_signal);
   dds::Participant participant(participant_options);
@@ -180,7 +183,9 @@ int run_record(Args args) {
   const auto done = recorder.progress();
   std::cout << "recorded " << done.messages << " messages on " << done.topics << " topics, "
             << human_bytes(static_cast<double>(done.file_bytes)) << " in " << done.files
-            << (done.files == 1 ? " file" : " files") << ", dropped " << done.dropped << std::endl;
+            << (done.files == 1 ? " file" : " files") << ", dropped " << done.dropped
+            << ", lost before the recorder " << done.lost << std::endl;
+  warn_if_lost(recorder.losses());
   if (done.dropped > 0) {
     std::cerr << "warning: " << done.dropped
               << " samples were dropped (the writer could not keep up; try --queue or "

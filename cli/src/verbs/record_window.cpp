@@ -18,6 +18,7 @@
 
 #include "../join_options.hpp"
 #include "../terminal.hpp"
+#include "recorder_participant.hpp"
 
 namespace wbi::cli {
 
@@ -196,7 +197,7 @@ int run_window_record(const Options& options, mcap::Compression compression,
     }
   }();
 
-  dds::Participant participant(join_options(options, "wbi record", "observer"));
+  dds::Participant participant(recorder_participant_options(options));
   recording::WindowRecorder recorder(participant, window);
   std::cerr << "window: " << seconds(std::chrono::duration<double>(window.before).count())
             << " before and " << seconds(std::chrono::duration<double>(window.after).count())
@@ -249,7 +250,8 @@ int run_window_record(const Options& options, mcap::Compression compression,
             << done.files_deleted << " deleted; " << done.received << " samples on " << done.topics
             << " topics, evicted inside the window " << done.evicted_in_window
             << ", lost to a file " << done.lost_to_file << ", too large " << done.too_large
-            << std::endl;
+            << ", lost before the recorder " << done.lost << std::endl;
+  warn_if_lost(recorder.losses());
   return kExitOk;
 }
 

@@ -7,9 +7,9 @@
 
 #include <wbi/mcap/writer.hpp>
 
+#include <wbi/recording/topic_subscriptions.hpp>
 #include "sample_queue.hpp"
 #include "topic_filter.hpp"
-#include <wbi/recording/topic_subscriptions.hpp>
 
 namespace wbi::recording {
 
@@ -112,6 +112,7 @@ struct Recorder::Impl {
     progress.file_bytes = closed_files_bytes + stats.file_bytes;
     progress.dropped = queue.dropped();
     progress.foreign = subscriptions.foreign();
+    progress.lost = subscriptions.lost();
     progress.queue_high_water = queue.high_water();
   }
 
@@ -207,6 +208,8 @@ RecorderProgress Recorder::progress() const {
   std::lock_guard lock(impl_->progress_mutex);
   return impl_->progress;
 }
+
+std::vector<TopicLoss> Recorder::losses() const { return impl_->subscriptions.losses(); }
 
 std::vector<std::filesystem::path> Recorder::files() const {
   std::lock_guard lock(impl_->progress_mutex);

@@ -48,7 +48,7 @@ std::size_t TopicSubscriptions::discover() {
 void TopicSubscriptions::unsubscribe_all() {
   std::lock_guard lock(mutex_);
   for (auto& entry : entries_) {
-    entry.subscriber.reset();  // no callback runs after this
+    stop_reader(entry);        // no callback runs after this
     entry.opens = -1'000'000;  // and no open() starts one again
   }
 }
@@ -75,8 +75,40 @@ void TopicSubscriptions::close(std::size_t index) {
   std::lock_guard lock(mutex_);
   Entry& entry = entries_.at(index);
   if (--entry.opens == 0 && readers_ == Readers::on_demand) {
-    entry.subscriber.reset();  // waits for a running callback, which never takes mutex_
+    stop_reader(entry);  // waits for a running callback, which never takes mutex_
   }
+}
+
+void TopicSubscriptions::stop_reader(Entry& entry) {
+  if (entry.subscriber) {
+    entry.lost_by_earlier_readers += static_cast<std::uint64_t>(entry.subscriber->samples_lost());
+    entry.subscriber.reset();
+  }
+}
+
+std::uint64_t TopicSubscriptions::Entry::lost() const {
+  return lost_by_earlier_readers +
+         (subscriber ? static_cast<std::uint64_t>(subscriber->samples_lost()) : 0);
+}
+
+std::uint64_t TopicSubscriptions::lost() const {
+  std::lock_guard lock(mutex_);
+  std::uint64_t lost = 0;
+  for (const auto& entry : entries_) {
+    lost += entry.lost();
+  }
+  return lost;
+}
+
+std::vector<TopicLoss> TopicSubscriptions::losses() const {
+  std::lock_guard lock(mutex_);
+  std::vector<TopicLoss> losses;
+  for (const auto& entry : entries_) {
+    if (const std::uint64_t lost = entry.lost(); lost > 0) {
+      losses.push_back({entry.recorded.topic.name, lost});
+    }
+  }
+  return losses;
 }
 
 void TopicSubscriptions::add(const dds::TopicInfo& topic) {

@@ -20,9 +20,9 @@
 #include <wbi/mcap/writer.hpp>
 #include <wbi/msg/wire_vocabulary.hpp>
 
+#include <wbi/recording/topic_subscriptions.hpp>
 #include "event_cdr.hpp"
 #include "topic_filter.hpp"
-#include <wbi/recording/topic_subscriptions.hpp>
 #include "window_files.hpp"
 #include "window_ring.hpp"
 
@@ -383,6 +383,7 @@ struct WindowRecorder::Impl {
     now.file_open = file.has_value();
     now.topics = subscriptions.size();
     now.foreign = subscriptions.foreign();
+    now.lost = subscriptions.lost();
     std::lock_guard lock(progress_mutex);
     progress = now;
     kept_files.assign(files.kept().begin(), files.kept().end());
@@ -468,6 +469,8 @@ WindowProgress WindowRecorder::progress() const {
 }
 
 const WindowMemory& WindowRecorder::memory() const { return impl_->memory; }
+
+std::vector<TopicLoss> WindowRecorder::losses() const { return impl_->subscriptions.losses(); }
 
 std::vector<std::filesystem::path> WindowRecorder::files() const {
   std::lock_guard lock(impl_->progress_mutex);

@@ -26,6 +26,7 @@
 
 #include <wbi/dds/participant.hpp>
 #include <wbi/mcap/format.hpp>
+#include <wbi/recording/topic_subscriptions.hpp>
 
 namespace wbi::recording {
 
@@ -56,6 +57,10 @@ struct RecorderProgress {
   // Samples of a second writer of a robot's stream, not recorded: a robot
   // stream is recorded from one producer (wbi/dds/producers.hpp).
   std::uint64_t foreign = 0;
+  // Samples that never reached the recorder (gaps in the writers' sequence numbers): sent
+  // while it could not take them in, and gone from the writer's history (a
+  // stream keeps only its newest sample) when it asked again.
+  std::uint64_t lost = 0;
   std::size_t queue_high_water = 0;
   std::size_t topics = 0;
   std::size_t files = 0;
@@ -77,6 +82,8 @@ class Recorder {
   void stop();
 
   RecorderProgress progress() const;
+  // The topics that lost samples before the recorder (RecorderProgress::lost).
+  std::vector<TopicLoss> losses() const;
   // The files written so far (more than one with splitting).
   std::vector<std::filesystem::path> files() const;
 

@@ -22,12 +22,19 @@
 #include <set>
 #include <span>
 #include <string>
+#include <vector>
 
 #include <wbi/dds/participant.hpp>
 #include <wbi/dds/raw_subscriber.hpp>
 #include <wbi/mcap/format.hpp>
 
 namespace wbi::recording {
+
+// Samples of one topic that never reached its reader (TopicSubscriptions::lost).
+struct TopicLoss {
+  std::string topic;
+  std::uint64_t samples = 0;
+};
 
 // One subscribed topic, and what its MCAP channel needs.
 struct RecordedTopic {
@@ -69,13 +76,22 @@ class TopicSubscriptions {
   std::size_t size() const;
   const RecordedTopic& operator[](std::size_t index) const;
   std::uint64_t foreign() const { return foreign_.load(std::memory_order_relaxed); }
+  // Samples that never reached a reader of this set and never will (gaps in
+  // their writers' sequence numbers, summed over topics): published while a reader could
+  // not take them in, gone from the writer's history when it asked again.
+  std::uint64_t lost() const;
+  // The same by topic, for the topics that lost any, in the order they were added.
+  std::vector<TopicLoss> losses() const;
 
  private:
   struct Entry {
     RecordedTopic recorded;
     std::unique_ptr<dds::RawSubscriber> subscriber;
     int opens = 0;
+    std::uint64_t lost_by_earlier_readers = 0;  // on_demand: readers closed since
+    std::uint64_t lost() const;
   };
+  void stop_reader(Entry& entry);
   void add(const dds::TopicInfo& topic);
   void start_reader(Entry& entry, std::uint32_t index);
   dds::ProducerPolicy producer_policy(const std::string& topic);

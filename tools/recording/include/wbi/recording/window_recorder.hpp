@@ -29,6 +29,7 @@
 
 #include <wbi/dds/participant.hpp>
 #include <wbi/mcap/format.hpp>
+#include <wbi/recording/topic_subscriptions.hpp>
 #include <wbi/vocabulary/event.hpp>
 
 namespace wbi::recording {
@@ -91,6 +92,7 @@ struct WindowProgress {
   bool file_open = false;
   std::size_t topics = 0;
   std::uint64_t foreign = 0;  // samples of a second writer of a robot stream, not kept
+  std::uint64_t lost = 0;     // samples that never reached the recorder (RecorderProgress::lost)
   bool failed = false;        // the writer thread stopped on an error: stop() throws it
 };
 
@@ -110,6 +112,8 @@ class WindowRecorder {
 
   WindowProgress progress() const;
   const WindowMemory& memory() const;
+  // The topics that lost samples before the recorder (WindowProgress::lost).
+  std::vector<TopicLoss> losses() const;
   // The files written and still on disk (max_files deletes the oldest), oldest first.
   std::vector<std::filesystem::path> files() const;
 
