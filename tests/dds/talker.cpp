@@ -7,9 +7,8 @@
 // wbi.stream once a subscriber matched: the first one acknowledged (the reader
 // then knows the writer: a sample sent before is not its to lose), the rest
 // back to back (the writer keeps only the newest: a reader that falls behind
-// loses some); then it says "talker: done" and
+// loses some). It then says "talker: done" with the writes DDS refused, and
 // stays until SIGTERM, so that its writer can still tell the reader what it lost.
-// It says how many writes DDS refused.
 // usage: wbi_test_talker ROBOT COUNT [burst]
 #include <atomic>
 #include <chrono>

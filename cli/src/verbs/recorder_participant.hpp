@@ -6,7 +6,7 @@
 #include <vector>
 
 #include <wbi/dds/participant.hpp>
-#include <wbi/recording/topic_subscriptions.hpp>
+#include <wbi/recording/topic_loss.hpp>
 
 #include "../options.hpp"
 

@@ -26,7 +26,7 @@
 
 #include <wbi/dds/participant.hpp>
 #include <wbi/mcap/format.hpp>
-#include <wbi/recording/topic_subscriptions.hpp>
+#include <wbi/recording/topic_loss.hpp>
 
 namespace wbi::recording {
 

@@ -27,14 +27,9 @@
 #include <wbi/dds/participant.hpp>
 #include <wbi/dds/raw_subscriber.hpp>
 #include <wbi/mcap/format.hpp>
+#include <wbi/recording/topic_loss.hpp>
 
 namespace wbi::recording {
-
-// Samples of one topic that never reached its reader (TopicSubscriptions::lost).
-struct TopicLoss {
-  std::string topic;
-  std::uint64_t samples = 0;
-};
 
 // One subscribed topic, and what its MCAP channel needs.
 struct RecordedTopic {

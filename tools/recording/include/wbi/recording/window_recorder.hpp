@@ -29,7 +29,7 @@
 
 #include <wbi/dds/participant.hpp>
 #include <wbi/mcap/format.hpp>
-#include <wbi/recording/topic_subscriptions.hpp>
+#include <wbi/recording/topic_loss.hpp>
 #include <wbi/vocabulary/event.hpp>
 
 namespace wbi::recording {
