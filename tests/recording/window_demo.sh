@@ -9,7 +9,7 @@
 # another kind, e.g. LIFECYCLE: the respawned controller's runner).
 # Passes when each fault gave one file, and each covers at least 5 s before
 # its first trigger and 2 s after its last with no gap in the Header.seq of
-# wbi/arm/sensors (wbi_test_window_check, to within 5 ms: the first and last
+# wbi/arm/sensors (wbi_test_window_check, to within 20 ms: the first and last
 # samples lie inside the window).
 #   window_demo.sh BINARY_DIR SOURCE_DIR
 # Exit 0 pass, 1 fail.

@@ -27,14 +27,21 @@
 
 namespace wbi::test {
 
+// One sample of the stream: its Header.seq and the time the recorder logged it.
+struct StreamSample {
+  std::uint64_t seq = 0;
+  std::uint64_t log_time = 0;
+};
+
 struct WindowFileReport {
   std::size_t events = 0;
   std::vector<std::string> trigger_sources;  // one per trigger event, in log-time order
   std::int64_t first_trigger_ns = 0;         // their stamps
   std::int64_t last_trigger_ns = 0;
   std::size_t stream_samples = 0;
-  double before_s = 0;  // first trigger − first sample of the stream (log times)
-  double after_s = 0;   // last sample of the stream − last trigger
+  std::vector<StreamSample> stream;  // in log-time order (a named stream only, not "*")
+  double before_s = 0;               // first trigger − first sample of the stream (log times)
+  double after_s = 0;                // last sample of the stream − last trigger
   // Header.seq steps other than +1 within one writer's run (a step back is a
   // new incarnation, not a gap), and the samples they skip.
   std::size_t gaps = 0;
@@ -130,6 +137,9 @@ inline WindowFileReport check_window_file(const std::filesystem::path& file,
         }
         previous_seq[topic] = *seq;
         stream_log_times.push_back(message->log_time);
+        if (!every_topic) {
+          report.stream.push_back({*seq, message->log_time});
+        }
       }
     }
   } catch (const std::exception& e) {
@@ -150,6 +160,16 @@ inline WindowFileReport check_window_file(const std::filesystem::path& file,
     report.after_s = 1e-9 * static_cast<double>(last - report.last_trigger_ns);
   }
   return report;
+}
+
+// The log time of the stream's sample `seq` in a file, if the file holds it.
+inline std::optional<std::uint64_t> log_time_of(const WindowFileReport& report, std::uint64_t seq) {
+  for (const auto& sample : report.stream) {
+    if (sample.seq == seq) {
+      return sample.log_time;
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace wbi::test
