@@ -134,23 +134,26 @@ const std::vector<EventKind> kTriggers = {EventKind::lifecycle, EventKind::watch
 // run met 15 ms). Where two files overlap they hold the same ring records, and
 // each edge is checked to the sample against the other file.
 constexpr double kUnseenEdgeS = 0.1;
-constexpr std::uint64_t kBeforeNs = 2'000'000'000;
-constexpr std::uint64_t kAfterNs = 1'000'000'000;
+constexpr int kBeforeS = 2;  // the window of the overlapping triggers' test
+constexpr int kAfterS = 1;
+constexpr std::uint64_t kNsPerS = 1'000'000'000;
 
 TEST_F(WindowRecord, OverlappingTriggersMakeOneFileSpacedOnesAnotherOldEventsNone) {
   Stream stream(participant_, {"win"});
   emit(EventKind::lifecycle, "before_start");  // transient-local: the recorder gets it, late
-  auto recorder = start_recorder(
-      {"--window", "2:1", "--trigger", "LIFECYCLE,WATCHDOG_TRIP", "wbi/win/sensors"});
+  auto recorder =
+      start_recorder({"--window", std::to_string(kBeforeS) + ":" + std::to_string(kAfterS),
+                      "--trigger", "LIFECYCLE,WATCHDOG_TRIP", "wbi/win/sensors"});
   ASSERT_TRUE(recorder->wait_for_output("recording wbi/win/sensors", 20s)) << recorder->output();
-  std::this_thread::sleep_for(2500ms);  // the window fills: 2 s before the first trigger
+  std::this_thread::sleep_for(kBeforeS * 1s + 500ms);  // the window fills before the first trigger
 
   emit(EventKind::lifecycle, "first");
   std::this_thread::sleep_for(400ms);
   emit(EventKind::watchdog_trip, "second");  // while the first file is open: extends it
   emit(EventKind::parameter_changed, "no_trigger");
   ASSERT_TRUE(wait_for_files(*recorder, 1)) << recorder->output();
-  // The second window starts 2 s before this, inside the first file (it ended 1 s after "second").
+  // The second window starts kBeforeS before this, inside the first file (it
+  // ended kAfterS after "second").
   emit(EventKind::lifecycle, "third");
   ASSERT_TRUE(wait_for_files(*recorder, 2)) << recorder->output();
   EXPECT_EQ(recorder->stop(SIGINT), 0) << recorder->output();
@@ -167,8 +170,8 @@ TEST_F(WindowRecord, OverlappingTriggersMakeOneFileSpacedOnesAnotherOldEventsNon
   ASSERT_EQ(first.problem, "");
   EXPECT_EQ(first.trigger_sources, (std::vector<std::string>{"first", "second"}));
   EXPECT_EQ(first.events, 3u);  // and the PARAMETER_CHANGED, not the one before the start
-  EXPECT_GE(first.before_s, 2.0 - kUnseenEdgeS);
-  EXPECT_LE(first.before_s, 2.001);
+  EXPECT_GE(first.before_s, kBeforeS - kUnseenEdgeS);
+  EXPECT_LE(first.before_s, kBeforeS + 0.001);
   EXPECT_EQ(first.gaps, 0u);
   // `wbi bag info` lists the file's events: time, severity, source, kind, text.
   const auto info = wbi::test::run_wbi({"bag", "info", files[0].string()});
@@ -183,13 +186,13 @@ TEST_F(WindowRecord, OverlappingTriggersMakeOneFileSpacedOnesAnotherOldEventsNon
   const auto second = wbi::test::check_window_file(files[1], "wbi/win/sensors", kTriggers);
   ASSERT_EQ(second.problem, "");
   EXPECT_EQ(second.trigger_sources, (std::vector<std::string>{"third"}));
-  EXPECT_GE(second.after_s, 1.0 - kUnseenEdgeS);
+  EXPECT_GE(second.after_s, kAfterS - kUnseenEdgeS);
   EXPECT_EQ(second.gaps, 0u);
 
   // The second file begins with the first sample logged at or after its
-  // trigger − 2 s; the first holds the sample before it, logged earlier.
+  // trigger − kBeforeS; the first holds the sample before it, logged earlier.
   const std::uint64_t second_start =
-      static_cast<std::uint64_t>(second.first_trigger_ns) - kBeforeNs;
+      static_cast<std::uint64_t>(second.first_trigger_ns) - kBeforeS * kNsPerS;
   const wbi::test::StreamSample head = second.stream.front();
   EXPECT_GE(head.log_time, second_start);
   EXPECT_EQ(wbi::test::log_time_of(first, head.seq), head.log_time) << "the same ring record";
@@ -197,8 +200,9 @@ TEST_F(WindowRecord, OverlappingTriggersMakeOneFileSpacedOnesAnotherOldEventsNon
   ASSERT_TRUE(before_head) << "the files do not overlap: the test was held for seconds";
   EXPECT_LT(*before_head, second_start);
   // The first file ends with the last sample logged at or before its last
-  // trigger + 1 s; the second holds the sample after it, logged later.
-  const std::uint64_t first_end = static_cast<std::uint64_t>(first.last_trigger_ns) + kAfterNs;
+  // trigger + kAfterS; the second holds the sample after it, logged later.
+  const std::uint64_t first_end =
+      static_cast<std::uint64_t>(first.last_trigger_ns) + kAfterS * kNsPerS;
   const wbi::test::StreamSample tail = first.stream.back();
   EXPECT_LE(tail.log_time, first_end);
   const auto after_tail = wbi::test::log_time_of(second, tail.seq + 1);

@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
       "%s: %zu trigger events (first from %s), %zu events; %s: %zu samples, %.3f s before "
       "the first trigger, %.3f s after the last, %zu gaps (%llu missing)\n",
       file.c_str(), report.trigger_sources.size(), report.trigger_sources.front().c_str(),
-      report.events, argv[2], report.stream_samples, report.before_s, report.after_s, report.gaps,
+      report.events, argv[2], report.stream.size(), report.before_s, report.after_s, report.gaps,
       static_cast<unsigned long long>(report.missing));
   for (const auto& [topic, missing] : report.missing_by_topic) {
     std::printf("  %s: %llu missing\n", topic.c_str(), static_cast<unsigned long long>(missing));

@@ -38,8 +38,7 @@ struct WindowFileReport {
   std::vector<std::string> trigger_sources;  // one per trigger event, in log-time order
   std::int64_t first_trigger_ns = 0;         // their stamps
   std::int64_t last_trigger_ns = 0;
-  std::size_t stream_samples = 0;
-  std::vector<StreamSample> stream;  // in log-time order (a named stream only, not "*")
+  std::vector<StreamSample> stream;  // in log-time order ("*": every such topic's, interleaved)
   double before_s = 0;               // first trigger − first sample of the stream (log times)
   double after_s = 0;                // last sample of the stream − last trigger
   // Header.seq steps other than +1 within one writer's run (a step back is a
@@ -74,7 +73,6 @@ inline WindowFileReport check_window_file(const std::filesystem::path& file,
                                           const std::vector<wbi::EventKind>& triggers) {
   const std::int64_t first_trigger_floor = window_file_time_ns(file);
   WindowFileReport report;
-  std::vector<std::uint64_t> stream_log_times;
   std::map<std::string, std::uint64_t> previous_seq;  // per topic
   std::map<std::string, bool> has_header;
   const bool every_topic = stream == "*";
@@ -136,33 +134,28 @@ inline WindowFileReport check_window_file(const std::filesystem::path& file,
           report.missing_by_topic[topic] += *seq - previous->second - 1;
         }
         previous_seq[topic] = *seq;
-        stream_log_times.push_back(message->log_time);
-        if (!every_topic) {
-          report.stream.push_back({*seq, message->log_time});
-        }
+        report.stream.push_back({*seq, message->log_time});
       }
     }
   } catch (const std::exception& e) {
     report.problem = e.what();
     return report;
   }
-  report.stream_samples = stream_log_times.size();
   if (report.trigger_sources.empty()) {
     report.problem = "no trigger event in the file";
-  } else if (stream_log_times.empty()) {
+  } else if (report.stream.empty()) {
     report.problem = "no sample of " + stream + " in the file";
   } else {
-    const auto first = static_cast<std::int64_t>(
-        *std::min_element(stream_log_times.begin(), stream_log_times.end()));
-    const auto last = static_cast<std::int64_t>(
-        *std::max_element(stream_log_times.begin(), stream_log_times.end()));
+    const auto first = static_cast<std::int64_t>(report.stream.front().log_time);
+    const auto last = static_cast<std::int64_t>(report.stream.back().log_time);
     report.before_s = 1e-9 * static_cast<double>(report.first_trigger_ns - first);
     report.after_s = 1e-9 * static_cast<double>(last - report.last_trigger_ns);
   }
   return report;
 }
 
-// The log time of the stream's sample `seq` in a file, if the file holds it.
+// The log time of the stream's sample `seq` in a file, if the file holds it
+// (a named stream: under "*" the topics' sequences overlap).
 inline std::optional<std::uint64_t> log_time_of(const WindowFileReport& report, std::uint64_t seq) {
   for (const auto& sample : report.stream) {
     if (sample.seq == seq) {
