@@ -339,6 +339,11 @@ TEST(Rpc, ExpiredRequestsAreNotComputed) {
   ASSERT_TRUE(gate.wait_waiting(1));
   Reply reply;
   EXPECT_EQ(second.try_call(request, reply, 200ms), CallStatus::no_reply);
+  // The client gave up at its deadline on the steady clock; the server judges
+  // the request's deadline_ns on the system clock, which may lag by some
+  // microseconds (a flake-run met one computed). Await it there as well.
+  ASSERT_TRUE(
+      eventually([&] { return wbi::dds::detail::system_now_ns() > request.deadline_ns(); }));
   gate.open();
   ASSERT_TRUE(eventually([&] { return first.poll(reply) == CallStatus::ok; }));
   // The expired request (and its resent copy) are dropped unseen by the handler.
