@@ -348,7 +348,8 @@ TEST(Rpc, ExpiredRequestsAreNotComputed) {
   ASSERT_TRUE(eventually([&] { return first.poll(reply) == CallStatus::ok; }));
   // The expired request (and its resent copy) are dropped unseen by the handler.
   ASSERT_TRUE(eventually([&] { return server.stats().dropped_expired >= 1; }));
-  EXPECT_EQ(computed, 1);
+  // poll() may have resent `first` while its reply was on the way: answered again.
+  EXPECT_EQ(computed - static_cast<int>(server.stats().answered_again), 1);
 }
 
 // A server that "loses" the first copy of every request and answers the second
