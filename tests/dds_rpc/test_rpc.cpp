@@ -341,7 +341,7 @@ TEST(Rpc, ExpiredRequestsAreNotComputed) {
   EXPECT_EQ(second.try_call(request, reply, 200ms), CallStatus::no_reply);
   // The client gave up at its deadline on the steady clock; the server judges
   // the request's deadline_ns on the system clock, which may lag by some
-  // microseconds (a flake-run met one computed). Await it there as well.
+  // microseconds. Await it there as well.
   ASSERT_TRUE(
       eventually([&] { return wbi::dds::detail::system_now_ns() > request.deadline_ns(); }));
   gate.open();
