@@ -82,6 +82,11 @@ class DdsInterface final : public WholeBodyInterface {
                                          const dds::detail::SampleInfo&) { on_state(); });
   }
 
+  bool lockstep() const {
+    robot_.require_init();
+    return robot_.lockstep();
+  }
+
   Actuators& actuators() override {
     robot_.require_init();
     return actuators_;
@@ -188,6 +193,14 @@ void set_state_callback(WholeBodyInterface& interface, std::function<void()> on_
     throw Error("set_state_callback: not an interface from make_dds_interface");
   }
   dds_interface->set_state_callback(std::move(on_state));
+}
+
+bool robot_in_lockstep(const WholeBodyInterface& interface) {
+  const auto* dds_interface = dynamic_cast<const proxy::DdsInterface*>(&interface);
+  if (dds_interface == nullptr) {
+    throw Error("robot_in_lockstep: not an interface from make_dds_interface");
+  }
+  return dds_interface->lockstep();
 }
 
 }  // namespace wbi

@@ -74,11 +74,10 @@ void RobotConnection::wait(std::chrono::steady_clock::time_point deadline,
   // holds tick 0 until a command computed from tick 0's sample answers it (a
   // mode switch does not: docs/conventions.md), so that read must not wait
   // for tick 1.
-  const bool lockstep = description_rx.count > 0 && description_rx.sample.lockstep();
   if (sensors) {
-    sensors->mark_init_sample(lockstep);
+    sensors->mark_init_sample(lockstep());
   }
-  state.mark_init_sample(lockstep);
+  state.mark_init_sample(lockstep());
 }
 
 void RobotConnection::resolve(const IdList& joints) {

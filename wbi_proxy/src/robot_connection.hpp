@@ -62,6 +62,8 @@ class RobotConnection {
   void require_torque_sensors(const std::vector<double>& torques, int first, int count) const;
 
   void require_init() const;
+  // The robot steps only once its controllers answered each tick (its description says so).
+  bool lockstep() const { return description_rx.count > 0 && description_rx.sample.lockstep(); }
 
   const DdsInterfaceOptions options;
   std::optional<dds::Participant> own_participant;  // unless options.shared_participant

@@ -124,6 +124,12 @@ class ControllerHostComponent final : public runtime::Component {
     robot_ = make_dds_interface(options);
     robot_->add_joints(joints);
     robot_->init(std::chrono::milliseconds(static_cast<std::int64_t>(init_timeout_s * 1000)));
+    // On the clock in lockstep, a cycle whose newest state a cycle answered
+    // already is skipped. The robot sends the next state only once it has
+    // this one's commands, so a cycle that answers a state reads that one
+    // throughout: its time's read and its controllers'. Else the next state
+    // could come between them, and a tick would mix two, run to run.
+    skip_answered_states_ = !wait_for_state_ && robot_in_lockstep(*robot_);
     host_.emplace(*robot_, report(), events(), host_options);
 
     std::vector<std::string> active{kHoldController};
@@ -220,15 +226,9 @@ class ControllerHostComponent final : public runtime::Component {
   bool event_driven() const override { return wait_for_state_; }
   bool wait_for_event(std::int64_t /*timeout_ns*/) override {
     try {
-      try {
-        const Stamp newest =
-            robot_->read_estimates(EstimateKind::joint_position, newest_q_, ReadMode::latest);
-        if (!has_answered_ || newest.seq != answered_seq_) {
-          return true;
-        }
-      } catch (const StaleDataError&) {
-        // none fresh: wait for the next
-      }
+      if (const auto newest = newest_state(); newest && !answered(*newest)) {
+        return true;
+      }  // none fresh, or answered: wait for the next
       if (cycle_on_state_thread_) {
         return false;  // the runner's watchdog: arrivals run the cycles, no waiting here
       }
@@ -251,20 +251,20 @@ class ControllerHostComponent final : public runtime::Component {
   // in lockstep with reference generators, their points for its time are in
   // (else the tick would wait for them, on the thread that must bring them).
   bool event_ready() override {
-    Stamp newest;
-    try {
-      newest = robot_->read_estimates(EstimateKind::joint_position, newest_q_, ReadMode::latest);
-    } catch (const StaleDataError&) {
-      return false;
-    }
-    if (has_answered_ && newest.seq == answered_seq_) {
+    const auto newest = newest_state();
+    if (!newest || answered(*newest)) {
       return false;
     }
     return reference_wait_ns_ <= 0 ||
-           host_->references_ready(newest.source_ns, start_ns_ < 0 || !references_started_);
+           host_->references_ready(newest->source_ns, start_ns_ < 0 || !references_started_);
   }
 
   void update(std::int64_t /*time_ns*/, std::int64_t period_ns) override {
+    if (skip_answered_states_) {
+      if (const auto newest = newest_state(); newest && answered(*newest)) {
+        return;
+      }
+    }
     const double period_s = 1e-9 * static_cast<double>(period_ns);
     const double t = robot_time(period_s);
     if (next_switch_ < switch_at_s_.size() && t >= switch_at_s_[next_switch_]) {
@@ -383,6 +383,16 @@ class ControllerHostComponent final : public runtime::Component {
     }
     in_cycle = false;
   }
+
+  // The newest state estimate's stamp; nullopt when none is fresh.
+  std::optional<Stamp> newest_state() {
+    try {
+      return robot_->read_estimates(EstimateKind::joint_position, newest_q_, ReadMode::latest);
+    } catch (const StaleDataError&) {
+      return std::nullopt;
+    }
+  }
+  bool answered(const Stamp& state) const { return has_answered_ && state.seq == answered_seq_; }
 
   // The robot's time since the first tick: the newest state's source stamp
   // (the simulation's time in lockstep), so that times in the deploy file
@@ -545,9 +555,10 @@ class ControllerHostComponent final : public runtime::Component {
   double progress_period_s_ = 1.0;
   bool wait_for_state_ = false;
   bool cycle_on_state_thread_ = false;  // runtime::Component::cycles_on_event_thread
+  bool skip_answered_states_ = false;   // on the clock, in lockstep
   std::mutex event_cycle_mutex_;        // guards event_cycle_; held while it runs
   runtime::EventCycle* event_cycle_ = nullptr;
-  Eigen::VectorXd newest_q_;    // wait_for_event's read (the tick reads the same sample again)
+  Eigen::VectorXd newest_q_;    // newest_state's read (the tick reads the same sample again)
   std::int64_t start_ns_ = -1;  // source stamp of the first state
   double last_time_s_ = 0.0, next_progress_s_ = 0.0;
   Transform base_pose_ = Transform::Identity();

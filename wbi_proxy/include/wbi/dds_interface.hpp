@@ -30,4 +30,9 @@ std::unique_ptr<WholeBodyInterface> make_dds_interface(const DdsInterfaceOptions
 // a call in progress is waited for. Throws Error for another interface.
 void set_state_callback(WholeBodyInterface& interface, std::function<void()> on_state);
 
+// Whether the robot of `interface` (one from make_dds_interface, after init())
+// steps in lockstep: each tick only once its controllers answered the last.
+// Throws Error for another interface or before init().
+bool robot_in_lockstep(const WholeBodyInterface& interface);
+
 }  // namespace wbi

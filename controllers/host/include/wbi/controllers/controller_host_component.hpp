@@ -30,10 +30,9 @@
 //                      the newest estimate; true: a cycle starts when a new
 //                      estimate arrives (waiting at most state_timeout_s,
 //                      default 0.005 s) and answers it at once. In lockstep,
-//                      true: on the clock a tick answers whichever state is
-//                      newest when it reads, and one may come between its
-//                      time's read and its controllers' (a scheduled switch a
-//                      tick late, run to run)
+//                      on the clock, a cycle for a state answered already is
+//                      skipped: each state is answered once, by one cycle
+//                      that reads it throughout, as with true
 //   init_timeout_s     wait for the robot's components (default 30 s)
 //   progress_period_s  a progress line every so often (default 1 s; 0: none)
 // type pd_gravity (and every other controller type): the same host with one
