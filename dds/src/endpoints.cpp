@@ -344,6 +344,11 @@ Reader::Reader(Participant& participant, const std::string& topic, fdds::TopicDa
     qos.history().kind = fdds::KEEP_LAST_HISTORY_QOS;
     qos.history().depth = overrides.history_depth;
   }
+  if (overrides.own_receive_thread) {
+    // Fast DDS (2.7+) gives such a reader unicast locators of its own, on a
+    // port outside the participant's, and a receive thread per locator.
+    qos.properties().properties().emplace_back("fastdds.unique_network_flows", "");
+  }
   fdds::Topic& dds_topic = impl_->participant.acquire_topic(topic, type);
   const auto mask = fdds::StatusMask::subscription_matched()
                     << fdds::StatusMask::data_available()

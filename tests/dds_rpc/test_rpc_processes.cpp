@@ -1,14 +1,17 @@
 // Request/reply between real processes on loopback: many clients without
-// cross-talk, a client started before its server, and a server killed mid-run
-// (timeouts within the deadline, then recovery with a new server).
+// cross-talk, a client started before its server, a server killed mid-run
+// (timeouts within the deadline, then recovery with a new server), and a call
+// made on the thread that receives (its reply on a thread of its own).
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include <wbi/dds/client.hpp>
+#include <wbi/dds/server.hpp>
 
 #include "child_process.hpp"
 #include "rpc_fixture.hpp"
@@ -124,6 +127,60 @@ TEST(RpcProcesses, ServerKilledMidRunGivesTimeoutsThenANewServerAnswers) {
         << "call " << i << " after recovery";
     ASSERT_EQ(wbi::test::toy_mismatch(request, reply), "");
   }
+}
+
+// A client process calls a relay in this process, whose handler runs on the
+// participant's receive thread and calls the server process in its turn (as
+// a controller's cycle in its state's callback calls a remote model). The
+// statuses of the relay's onward calls, once `calls` were relayed.
+std::vector<CallStatus> relay_on_the_receive_thread(bool reply_thread_of_its_own, int calls) {
+  ChildProcess server(peer(), {"server", kService});
+  EXPECT_TRUE(server.wait_for_output("server: ready", 20s)) << server.output();
+  wbi::dds::Participant participant("relay");
+  wbi::dds::ClientOptions onward_options;
+  onward_options.reply_thread_of_its_own = reply_thread_of_its_own;
+  wbi::dds::Client<Request, Reply> onward(participant, kService, onward_options);
+  EXPECT_TRUE(onward.wait_connected(20s));
+  std::mutex mutex;
+  std::vector<CallStatus> statuses;
+  wbi::dds::ServerOptions on_receive_thread;
+  on_receive_thread.handle_on_dds_thread = true;
+  wbi::dds::Server<Request, Reply> relay(
+      participant, kService + "/relay",
+      [&](const Request& request, Reply& reply) {
+        Request forwarded = request;
+        const CallStatus status = onward.try_call(forwarded, reply, 300ms);
+        std::lock_guard lock(mutex);
+        statuses.push_back(status);
+      },
+      on_receive_thread);
+  ChildProcess client(peer(), {"client", kService + "/relay", std::to_string(calls), "11", "2000"});
+  EXPECT_TRUE(wbi::test::eventually(
+      [&] {
+        std::lock_guard lock(mutex);
+        return statuses.size() >= static_cast<std::size_t>(calls);
+      },
+      60s))
+      << client.output();
+  client.stop();
+  std::lock_guard lock(mutex);
+  return statuses;
+}
+
+TEST(RpcProcesses, ACallOnTheReceiveThreadGetsItsReplyOnAThreadOfItsOwn) {
+  const auto statuses = relay_on_the_receive_thread(true, 50);
+  ASSERT_GE(statuses.size(), 50u);
+  for (std::size_t i = 0; i < statuses.size(); ++i) {
+    EXPECT_EQ(statuses[i], CallStatus::ok) << "onward call " << i;
+  }
+}
+
+// The same without a thread of its own: the reply waits for the thread the
+// call blocks, and the call times out (what the option is for).
+TEST(RpcProcesses, ACallOnTheReceiveThreadWithoutOneTimesOut) {
+  const auto statuses = relay_on_the_receive_thread(false, 1);
+  ASSERT_GE(statuses.size(), 1u);
+  EXPECT_EQ(statuses[0], CallStatus::no_reply);
 }
 
 }  // namespace

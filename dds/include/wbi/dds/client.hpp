@@ -56,6 +56,11 @@ struct ClientOptions {
   // ProducerPolicy::one(): take the replies of the first server heard only (a
   // second server of the same service is dropped, see producers.hpp).
   ProducerPolicy producers;
+  // The replies come on a receive thread of their own: a call may then block
+  // on the thread that delivers the participant's other samples (a
+  // controller's cycle in its state's callback), which would else never
+  // deliver the reply. One thread (per transport) more for each such client.
+  bool reply_thread_of_its_own = false;
 };
 
 template <class Req, class Rep>
@@ -71,7 +76,7 @@ class Client : private detail::ReaderSink {
                         new typename MessageTraits<Req>::TypeSupport(), options.qos_profile),
         reply_reader_(participant, topics::service_reply(service_),
                       new typename MessageTraits<Rep>::TypeSupport(), options.qos_profile, *this,
-                      {}, options.producers) {
+                      {.own_receive_thread = options.reply_thread_of_its_own}, options.producers) {
     std::lock_guard lock(mutex_);
     const std::string id = detail::guid_hex(reply_reader_.guid());
     std::memcpy(client_id_, id.c_str(), id.size() + 1);

@@ -59,6 +59,10 @@ struct ReaderOverrides {
   // > 0: KEEP_LAST of this depth instead of the profile's (a recorder wants
   // every sample, also when its thread lags a burst behind).
   int history_depth = 0;
+  // Samples arrive on a receive thread of this reader's own (its own port,
+  // announced in discovery), not on the participant's shared one: a callback
+  // on the shared thread may block until this reader has a sample (a reply).
+  bool own_receive_thread = false;
 };
 
 class Writer {
