@@ -21,13 +21,10 @@ IdList frames_of(const std::string& urdf, const msg::RobotDescription& descripti
   }
 }
 
-// The replies of one model service (a second service of the same robot is
-// dropped), on a thread of their own: a controller may call the model in its
-// state's callback, on the participant's receive thread.
+// The replies of one model service: a second service of the same robot is dropped.
 dds::ClientOptions one_server(std::function<void(const dds::ProducerEvent&)> on_event) {
   dds::ClientOptions options;
   options.producers = dds::ProducerPolicy::one(std::move(on_event));
-  options.reply_thread_of_its_own = true;
   return options;
 }
 

@@ -62,8 +62,10 @@ class ControllerHostComponent final : public runtime::Component {
     DdsInterfaceOptions options = read_interface_options(parameters, context);
     wait_for_state_ = parameters.get<bool>("wait_for_state", false);
     // The cycle on the DDS thread that delivers the state, not a thread of our
-    // own woken by it. A remote model's replies come on a thread of their own.
-    cycle_on_state_thread_ = wait_for_state_ && parameters.get<bool>("cycle_on_state_thread", true);
+    // own woken by it. Not with a remote model: its reply comes on that thread.
+    cycle_on_state_thread_ = wait_for_state_ &&
+                             options.model_source == DdsInterfaceOptions::ModelSource::local &&
+                             parameters.get<bool>("cycle_on_state_thread", true);
     options.blocking_read_timeout = std::chrono::milliseconds(
         static_cast<std::int64_t>(parameters.get<double>("state_timeout_s", 0.005) * 1000));
     const auto joints = parameters.require<std::vector<std::string>>("joints");

@@ -26,8 +26,7 @@ std::unique_ptr<WholeBodyInterface> make_dds_interface(const DdsInterfaceOptions
 // returns it: an event-driven controller can run its cycle there, with no
 // hand-off to a thread of its own. Keep it bounded: the thread delivers the
 // participant's other samples too, so a call must never wait for one of
-// them (a reference point; a remote model's replies come on a thread of
-// their own, so its calls may block there). nullptr: no more calls;
+// them (a remote model's reply, a reference point). nullptr: no more calls;
 // a call in progress is waited for. Throws Error for another interface.
 void set_state_callback(WholeBodyInterface& interface, std::function<void()> on_state);
 
