@@ -104,6 +104,23 @@ wait_for_robot() {
     sleep 0.5
   done
 }
+# wait_for_recorder_idle: until two of the recorder's progress lines (1 s
+# apart) printed after the robot's end show the same count. The robot's last
+# samples are still on their way when it says it stopped: a secured recorder
+# under load ran ~190 ms (63 ticks) behind, and stopped at once it missed them
+# with no later sample to reveal the gap (2937 of 3000, 0 lost; flake-run,
+# 2026-12-03). After the end nothing new is published (lockstep), so a count
+# that holds for a second is all that was sent. 15 s at most.
+wait_for_recorder_idle() {
+  local start=$SECONDS before counts
+  before=$(grep -cE "messages [0-9]+" "$logs/record.log" || true)
+  while :; do
+    counts=$(grep -oE "messages [0-9]+" "$logs/record.log" | tail -n +"$((before + 1))" | tail -2 || true)
+    [[ $(wc -l <<<"$counts") -eq 2 && $(uniq <<<"$counts" | wc -l) -eq 1 ]] && return 0
+    ((SECONDS - start < 15)) || return 1
+    sleep 0.2
+  done
+}
 # stop PID: SIGTERM, then wait (bounded: netns_stop_processes kills later ones).
 stop() {
   kill -TERM "$1" 2>/dev/null || true
@@ -182,6 +199,7 @@ case "$mode" in
 esac
 
 wait_for_robot || fail "the robot did not finish its simulated run"
+wait_for_recorder_idle || fail "wbi record still took in samples 15 s after the robot's end"
 stop "$recorder" || fail "wbi record did not stop on SIGTERM"
 recorded=$(messages_in "$logs/run.mcap" wbi/arm/sensors) || fail "wbi bag info failed on the recording"
 # Samples DDS lost before the recorder, as it reports them ("warning: N samples
