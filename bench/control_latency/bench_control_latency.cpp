@@ -144,13 +144,22 @@ TickResult run_ticks(wbi::DdsInterfaceOptions::ModelSource source, int ticks) {
   return result;
 }
 
+// A figure over no measurement is null in the JSON, never 0 (which would read
+// as a perfect result).
+nlohmann::json quantile_or_null(const std::vector<double>& values, double p) {
+  return values.empty() ? nlohmann::json() : nlohmann::json(percentile(values, p));
+}
+nlohmann::json max_or_null(const std::vector<double>& values) {
+  return values.empty() ? nlohmann::json()
+                        : nlohmann::json(*std::max_element(values.begin(), values.end()));
+}
+
 nlohmann::json tick_summary(const TickResult& r) {
-  return {
-      {"p50_us", percentile(r.tick_us, 0.5)},
-      {"p99_us", percentile(r.tick_us, 0.99)},
-      {"max_us", r.tick_us.empty() ? 0.0 : *std::max_element(r.tick_us.begin(), r.tick_us.end())},
-      {"ticks", r.tick_us.size()},
-      {"stale", r.stale}};
+  return {{"p50_us", quantile_or_null(r.tick_us, 0.5)},
+          {"p99_us", quantile_or_null(r.tick_us, 0.99)},
+          {"max_us", max_or_null(r.tick_us)},
+          {"ticks", r.tick_us.size()},
+          {"stale", r.stale}};
 }
 
 std::string last_line_with(const std::string& text, const std::string& marker) {
@@ -164,17 +173,15 @@ std::string last_line_with(const std::string& text, const std::string& marker) {
 // Sensor-to-command latency and its three parts, as keys PREFIXlatency_p50_us, ...
 void put_latencies(const wbi::bench::LatencyObserver::Result& r, const std::string& prefix,
                    nlohmann::json& out) {
-  out[prefix + "latency_p50_us"] = percentile(r.latencies_us, 0.5);
-  out[prefix + "latency_p99_us"] = percentile(r.latencies_us, 0.99);
-  out[prefix + "latency_max_us"] =
-      r.latencies_us.empty() ? 0.0
-                             : *std::max_element(r.latencies_us.begin(), r.latencies_us.end());
+  out[prefix + "latency_p50_us"] = quantile_or_null(r.latencies_us, 0.5);
+  out[prefix + "latency_p99_us"] = quantile_or_null(r.latencies_us, 0.99);
+  out[prefix + "latency_max_us"] = max_or_null(r.latencies_us);
   out[prefix + "latency_samples"] = r.latencies_us.size();
   for (const auto& [key, values] : {std::pair{"sensor_to_state", &r.to_state_us},
                                     std::pair{"state_to_command", &r.to_command_us},
                                     std::pair{"command_delivery", &r.delivery_us}}) {
-    out[prefix + key + "_p50_us"] = percentile(*values, 0.5);
-    out[prefix + key + "_p99_us"] = percentile(*values, 0.99);
+    out[prefix + key + "_p50_us"] = quantile_or_null(*values, 0.5);
+    out[prefix + key + "_p99_us"] = quantile_or_null(*values, 0.99);
   }
 }
 
@@ -208,6 +215,9 @@ int main(int argc, char** argv) {
     }
     const auto logs = std::filesystem::temp_directory_path();
     nlohmann::json out;
+    // The parts that measured nothing (a chain or demo that delivered no
+    // command, a tick loop that never got a state): the run fails, exit 1.
+    std::vector<std::string> measured_nothing;
 
     if (options.run_ticks) {
       std::cerr << "(a) control ticks against robot, estimator, model service processes...\n";
@@ -224,6 +234,12 @@ int main(int argc, char** argv) {
       out["tick_local_p99_us"] = out["tick_local"]["p99_us"];
       out["tick_remote_p50_us"] = out["tick_remote"]["p50_us"];
       out["tick_remote_p99_us"] = out["tick_remote"]["p99_us"];
+      for (const auto& [name, run] :
+           {std::pair{"(a) local ticks", &local}, std::pair{"(a) remote ticks", &remote}}) {
+        if (run->tick_us.empty()) {
+          measured_nothing.emplace_back(name);
+        }
+      }
       std::cerr << "  tick local  " << out["tick_local"].dump() << "\n  tick remote "
                 << out["tick_remote"].dump() << "\n";
     }
@@ -238,6 +254,7 @@ int main(int argc, char** argv) {
       if (chain.latencies_us.empty()) {
         std::cerr << "no command came through the chain: see "
                   << (logs / "wbi_bench_control_latency_chain_*.log").string() << "\n";
+        measured_nothing.emplace_back("(c) the chain");
       }
     }
 
@@ -279,9 +296,20 @@ int main(int argc, char** argv) {
                 << last_line_with(log, "final max joint error:") << "\n";
       if (r.latencies_us.empty() || r.ticks == 0) {
         std::cerr << "no latency or status seen; the demo's output:\n" << log;
+        measured_nothing.emplace_back("(b) the demo");
       }
     }
+    out["measured_nothing"] = measured_nothing;
     std::cout << out.dump() << std::endl;
+    if (!measured_nothing.empty()) {
+      std::cerr << "wbi_bench_control_latency: measured nothing in";
+      for (const auto& part : measured_nothing) {
+        std::cerr << " " << part << (&part == &measured_nothing.back() ? "" : ",");
+      }
+      std::cerr << " on domain " << std::getenv("WBI_DOMAIN_ID") << " (the processes' logs are in "
+                << logs.string() << ")\n";
+      return 1;
+    }
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "wbi_bench_control_latency: " << e.what() << "\n";
