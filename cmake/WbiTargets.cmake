@@ -86,7 +86,7 @@ function(wbi_sanitize_also)
 endfunction()
 
 # Each test gets its own DDS domain id in WBI_DOMAIN_ID (WBI_TEST_DOMAIN_FIRST,
-# +1, ... up to 232), so that tests running in parallel never discover each
+# +1, ... up to 231, dds::kMaxDomainId), so that tests running in parallel never discover each
 # other. Two build trees whose tests run at the same time on one machine need
 # different WBI_TEST_DOMAIN_FIRST values (discovery is loopback-wide).
 set(WBI_TEST_DOMAIN_FIRST 1 CACHE STRING "DDS domain id of the first test (the others follow)")
@@ -95,8 +95,8 @@ set_property(GLOBAL PROPERTY WBI_NEXT_TEST_DOMAIN ${WBI_TEST_DOMAIN_FIRST})
 # wbi_next_test_domain(<out-var>): takes the next free test domain id.
 function(wbi_next_test_domain out)
   get_property(domain GLOBAL PROPERTY WBI_NEXT_TEST_DOMAIN)
-  if(domain GREATER 232)
-    message(FATAL_ERROR "DDS domain ids for tests are used up (the last is 232): "
+  if(domain GREATER 231)
+    message(FATAL_ERROR "DDS domain ids for tests are used up (the last is 231): "
       "lower WBI_TEST_DOMAIN_FIRST (${WBI_TEST_DOMAIN_FIRST})")
   endif()
   math(EXPR next "${domain} + 1")

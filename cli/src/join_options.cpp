@@ -12,7 +12,7 @@ void add_join_options(Options& options, bool with_deploy, const std::string& ide
                    "join the deployment FILE describes: its domain_id, qos_file, network and "
                    "security blocks");
   }
-  options.option("domain", "ID", "DDS domain id [0, 232] (else WBI_DOMAIN_ID, else 0)");
+  options.option("domain", "ID", "DDS domain id [0, 231] (else WBI_DOMAIN_ID, else 0)");
   options.option("discovery", "MODE", "localhost | multicast | peers | server (WBI_DDS_DISCOVERY)");
   options.option("peers", "A,B", "initial peers, address[:port] (WBI_DDS_PEERS; implies peers)");
   options.option("interfaces", "A,B",

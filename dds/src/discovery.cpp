@@ -1,5 +1,7 @@
 #include "discovery.hpp"
 
+#include "wbi/dds/domain_id.hpp"
+
 #include <arpa/inet.h>
 
 #include <cstdint>
@@ -17,8 +19,6 @@ using eprosima::fastrtps::rtps::IPLocator;
 using eprosima::fastrtps::rtps::Locator_t;
 
 namespace {
-
-constexpr std::uint32_t kParticipantsPerHost = 64;  // initial peers: ports tried per address
 
 // "a.b.c.d" or "a.b.c.d:port" as a UDPv4 locator; port 0 when none is given
 // (Fast DDS then uses the domain's well-known discovery ports).
@@ -54,7 +54,7 @@ void use_network_transports(eprosima::fastdds::dds::DomainParticipantQos& qos, D
   auto& transports = qos.transport();
   transports.use_builtin_transports = false;
   auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
-  udp->maxInitialPeersRange = kParticipantsPerHost;
+  udp->maxInitialPeersRange = kInitialPeersPerAddress;
   for (const auto& address : network.interfaces) {
     (void)udp_locator(address, "network interfaces");  // validates
     udp->interfaceWhiteList.push_back(address);

@@ -1,5 +1,7 @@
 #include "wbi/dds/join_options.hpp"
 
+#include "wbi/dds/domain_id.hpp"
+
 #include <cstdlib>
 #include <stdexcept>
 
@@ -56,8 +58,9 @@ std::vector<std::string> comma_list(const std::string& text) {
 int domain_id_named(const std::string& text, const std::string& where) {
   char* end = nullptr;
   const long id = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || id < 0 || id > 232) {
-    throw std::invalid_argument(where + ": must be an integer in [0, 232], got '" + text + "'");
+  if (text.empty() || *end != '\0' || id < 0 || id > kMaxDomainId) {
+    throw std::invalid_argument(where + ": must be an integer in [0, " +
+                                std::to_string(kMaxDomainId) + "], got '" + text + "'");
   }
   return static_cast<int>(id);
 }

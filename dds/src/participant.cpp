@@ -1,6 +1,8 @@
 // wbi::dds::Participant: creating the Fast DDS participant (QoS profiles, its
 // identity, transports, security), its shared topics, and the public API.
 #include "wbi/dds/participant.hpp"
+
+#include "wbi/dds/domain_id.hpp"
 #include "wbi/dds/join_options.hpp"
 
 #include <algorithm>
@@ -141,9 +143,9 @@ ParticipantImpl::ParticipantImpl(const ParticipantOptions& options)
   secured_ = options.security.enabled();
   const char* trace = std::getenv("WBI_DDS_TRACE_HANDSHAKES");
   trace_handshakes_ = secured_ && trace != nullptr && std::string(trace) == "1";
-  if (domain_id < 0 || domain_id > 232) {
-    throw std::invalid_argument("DDS domain id must be in [0, 232], got " +
-                                std::to_string(domain_id));
+  if (domain_id < 0 || domain_id > kMaxDomainId) {
+    throw std::invalid_argument("DDS domain id must be in [0, " + std::to_string(kMaxDomainId) +
+                                "], got " + std::to_string(domain_id));
   }
   load_qos_profiles(options.qos_file);
   auto* factory = fdds::DomainParticipantFactory::get_instance();

@@ -1,5 +1,7 @@
 #include "transports.hpp"
 
+#include "wbi/dds/domain_id.hpp"
+
 #include <cstdint>
 #include <cstdlib>
 #include <memory>
@@ -31,7 +33,6 @@ LocalTransport local_transport_from_environment() {
 
 namespace {
 
-constexpr int kParticipantsPerHost = 64;  // per domain: the range of the initial peers
 constexpr std::uint32_t kSharedMemorySegmentBytes = 4u << 20;
 
 // Fast DDS 2.9 names a participant's shared-memory port by its user-data port
@@ -47,7 +48,7 @@ constexpr std::uint32_t kSharedMemorySegmentBytes = 4u << 20;
 void use_random_user_port(eprosima::fastdds::dds::DomainParticipantQos& qos, int domain_id) {
   auto& port = qos.wire_protocol().port;
   const int first = port.portBase + port.domainIDGain * domain_id + port.offsetd3;
-  const int last = 65535 - port.participantIDGain * kParticipantsPerHost;
+  const int last = 65535 - port.participantIDGain * kInitialPeersPerAddress;
   const int slots = (last - first) / 2;
   if (slots <= 1) {
     return;  // no room above this domain's ports: keep the default
@@ -79,7 +80,7 @@ void use_loopback_transports(eprosima::fastdds::dds::DomainParticipantQos& qos, 
   // /dev/shm behind every killed process.
   auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
   udp->interfaceWhiteList.emplace_back("127.0.0.1");
-  udp->maxInitialPeersRange = kParticipantsPerHost;
+  udp->maxInitialPeersRange = kInitialPeersPerAddress;
   transports.user_transports.push_back(udp);
 
   // Discovery: unicast to 127.0.0.1 only. With a unicast metatraffic locator

@@ -6,6 +6,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <wbi/dds/domain_id.hpp>
 #include <wbi/dds/join_options.hpp>
 #include <wbi/dds/participant.hpp>
 
@@ -105,11 +106,13 @@ void Host::build(const YAML::Node& root, const std::string& file, const std::str
   check_keys(file, root, known, context);
 
   dds::ParticipantOptions options;
+  const std::string domain_range = "[0, " + std::to_string(dds::kMaxDomainId) + "]";
+  const std::string domain_kind = "an integer in " + domain_range;
   options.domain_id =
-      scalar<int>(file, root, "domain_id", options.domain_id, context, "an integer in [0, 232]");
-  if (options.domain_id < 0 || options.domain_id > 232) {
-    throw ParameterError(at(file, root["domain_id"]) +
-                         ": host file: 'domain_id' must be in [0, 232]");
+      scalar<int>(file, root, "domain_id", options.domain_id, context, domain_kind.c_str());
+  if (options.domain_id < 0 || options.domain_id > dds::kMaxDomainId) {
+    throw ParameterError(at(file, root["domain_id"]) + ": host file: 'domain_id' must be in " +
+                         domain_range);
   }
   // The deploy file's QoS file (relative to it), as `wbi launch` passes it in
   // WBI_QOS_FILE: a process started by hand on another host gets the same QoS.

@@ -12,6 +12,7 @@
 
 #include <unistd.h>
 
+#include <wbi/dds/domain_id.hpp>
 #include <wbi/dds/publisher.hpp>
 #include <wbi/dds/subscriber.hpp>
 #include <wbi/dds/topics.hpp>
@@ -228,6 +229,23 @@ TEST(DdsPubSub, BadDomainIdIsRefused) {
   setenv("WBI_DOMAIN_ID", "seven", 1);
   EXPECT_THROW(wbi::dds::domain_id_from_environment(), std::invalid_argument);
   setenv("WBI_DOMAIN_ID", restore.c_str(), 1);
+}
+
+// The highest domain id accepted is one Fast DDS can open: on 232 it ended the
+// process while creating the participant (its ports past 65535), after wbi had
+// accepted the id. Created here with the default (localhost) discovery; no
+// test takes 231 as its own domain (they count up from 1).
+TEST(DdsPubSub, TheHighestDomainIdOpensAndTheNextIsRefused) {
+  wbi::dds::ParticipantOptions options;
+  options.domain_id = wbi::dds::kMaxDomainId;
+  Participant highest(options);
+  options.domain_id = wbi::dds::kMaxDomainId + 1;
+  try {
+    Participant{options};
+    ADD_FAILURE() << "domain " << options.domain_id << " was accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_STREQ(error.what(), "DDS domain id must be in [0, 231], got 232");
+  }
 }
 
 }  // namespace

@@ -135,7 +135,7 @@ TEST_F(DeployFileTest, MistakesNameFileLineAndField) {
                      "processes:\n  - {name: a, command: [x]}\n"),
             ":3: summary[1].process: no process named 'c'");
   EXPECT_EQ(error_of("domain_id: 900\nprocesses:\n  - {name: a, command: [x]}\n"),
-            ":1: domain_id: must be an integer in [0, 232], got '900'");
+            ":1: domain_id: must be an integer in [0, 231], got '900'");
   EXPECT_EQ(error_of("processes:\n  - {name: a, command: [x], wait_for: {timeout: -1}}\n"),
             ":2: processes[0].wait_for.timeout: must be > 0");
   const std::string syntax = error_of("processes:\n  - name: [unclosed\n");

@@ -135,11 +135,11 @@ TEST_F(JoinOptions, MistakesNameTheFlagTheVariableOrTheFileLine) {
     }
     return "(no error)";
   };
-  EXPECT_EQ(error_of({"--domain", "300"}), "--domain: must be an integer in [0, 232], got '300'");
+  EXPECT_EQ(error_of({"--domain", "300"}), "--domain: must be an integer in [0, 231], got '300'");
   EXPECT_EQ(error_of({"--discovery", "broadcast"}),
             "--discovery: must be localhost, multicast, peers or server, got 'broadcast'");
   setenv("WBI_DOMAIN_ID", "x", 1);
-  EXPECT_EQ(error_of({}), "WBI_DOMAIN_ID: must be an integer in [0, 232], got 'x'");
+  EXPECT_EQ(error_of({}), "WBI_DOMAIN_ID: must be an integer in [0, 231], got 'x'");
   unsetenv("WBI_DOMAIN_ID");
   std::ofstream(deploy_) << "network: {discovery: broadcast}\n";
   EXPECT_EQ(error_of({"--deploy", deploy_}),

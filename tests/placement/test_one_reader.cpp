@@ -62,11 +62,11 @@ TEST_F(OneReader, TheDomainIdIsCheckedOnceWithTheFileAndTheLine) {
   const std::string message = errors_of(
       "processes:\n  - {name: robot, components: [{name: i, type: idle}]}\n"
       "domain_id: 900\n");
-  EXPECT_EQ(message, file_ + ":3: domain_id: must be an integer in [0, 232], got '900'");
+  EXPECT_EQ(message, file_ + ":3: domain_id: must be an integer in [0, 231], got '900'");
   // Said once: no reader wraps it in another's words.
   EXPECT_EQ(message.find("domain_id", message.find("domain_id") + 1), std::string::npos);
   EXPECT_EQ(errors_of("domain_id: seven\nprocesses: [{name: robot, command: [x]}]\n"),
-            file_ + ":1: domain_id: must be an integer in [0, 232], got 'seven'");
+            file_ + ":1: domain_id: must be an integer in [0, 231], got 'seven'");
 }
 
 TEST_F(OneReader, EveryCheckIsEveryReaders) {

@@ -598,7 +598,7 @@ TEST(HostFile, BadFilesGetErrorsNamingFileLineAndKey) {
   EXPECT_EQ(host_error("components:\n  - {name: a, type: idle}\n  - {name: a, type: idle}\n"),
             "robot.yaml:3: component 'a': the name is used twice");
   EXPECT_EQ(host_error("domain_id: 999\ncomponents: []\n"),
-            "robot.yaml:1: host file: 'domain_id' must be in [0, 232]");
+            "robot.yaml:1: host file: 'domain_id' must be in [0, 231]");
   EXPECT_EQ(host_error("clock: sundial\ncomponents: []\n"),
             "robot.yaml:1: host file: 'clock' must be system or simulation, got 'sundial'");
   EXPECT_EQ(host_error("components: {a: 1}\n"),

@@ -46,7 +46,7 @@ inline constexpr const char* kEvents = "wbi.events";               // wbi/events
 }  // namespace qos
 
 // WBI_DOMAIN_ID from the environment, 0 when unset. Throws std::invalid_argument
-// when it is not an integer in [0, 232].
+// when it is not an integer in [0, kMaxDomainId] (domain_id.hpp).
 int domain_id_from_environment();
 
 struct ParticipantOptions {

@@ -79,7 +79,7 @@ struct SummarySpec {
 
 struct DeployFile {
   std::filesystem::path path;
-  // domain_id (checked in [0, 232]), qos_file (made absolute; it exists),
+  // domain_id (checked in [0, 231]), qos_file (made absolute; it exists),
   // the network and security blocks.
   JoinKeys join;
   std::map<std::string, std::string> environment;
