@@ -86,8 +86,8 @@ function(wbi_sanitize_also)
 endfunction()
 
 # Each test gets its own DDS domain id in WBI_DOMAIN_ID (WBI_TEST_DOMAIN_FIRST,
-# +1, ... up to 231, dds::kMaxDomainId), so that tests running in parallel never discover each
-# other. Two build trees whose tests run at the same time on one machine need
+# +1, ... up to 231, dds::kMaxDomainId), so that tests running in parallel
+# never discover each other. Two build trees whose tests run at the same time on one machine need
 # different WBI_TEST_DOMAIN_FIRST values (discovery is loopback-wide).
 set(WBI_TEST_DOMAIN_FIRST 1 CACHE STRING "DDS domain id of the first test (the others follow)")
 set_property(GLOBAL PROPERTY WBI_NEXT_TEST_DOMAIN ${WBI_TEST_DOMAIN_FIRST})

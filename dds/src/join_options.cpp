@@ -59,8 +59,8 @@ int domain_id_named(const std::string& text, const std::string& where) {
   char* end = nullptr;
   const long id = std::strtol(text.c_str(), &end, 10);
   if (text.empty() || *end != '\0' || id < 0 || id > kMaxDomainId) {
-    throw std::invalid_argument(where + ": must be an integer in [0, " +
-                                std::to_string(kMaxDomainId) + "], got '" + text + "'");
+    throw std::invalid_argument(where + ": must be an integer in " + domain_id_range() + ", got '" +
+                                text + "'");
   }
   return static_cast<int>(id);
 }

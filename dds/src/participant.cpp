@@ -144,8 +144,8 @@ ParticipantImpl::ParticipantImpl(const ParticipantOptions& options)
   const char* trace = std::getenv("WBI_DDS_TRACE_HANDSHAKES");
   trace_handshakes_ = secured_ && trace != nullptr && std::string(trace) == "1";
   if (domain_id < 0 || domain_id > kMaxDomainId) {
-    throw std::invalid_argument("DDS domain id must be in [0, " + std::to_string(kMaxDomainId) +
-                                "], got " + std::to_string(domain_id));
+    throw std::invalid_argument("DDS domain id must be in " + domain_id_range() + ", got " +
+                                std::to_string(domain_id));
   }
   load_qos_profiles(options.qos_file);
   auto* factory = fdds::DomainParticipantFactory::get_instance();

@@ -106,13 +106,12 @@ void Host::build(const YAML::Node& root, const std::string& file, const std::str
   check_keys(file, root, known, context);
 
   dds::ParticipantOptions options;
-  const std::string domain_range = "[0, " + std::to_string(dds::kMaxDomainId) + "]";
-  const std::string domain_kind = "an integer in " + domain_range;
+  const std::string domain_kind = "an integer in " + dds::domain_id_range();
   options.domain_id =
       scalar<int>(file, root, "domain_id", options.domain_id, context, domain_kind.c_str());
   if (options.domain_id < 0 || options.domain_id > dds::kMaxDomainId) {
     throw ParameterError(at(file, root["domain_id"]) + ": host file: 'domain_id' must be in " +
-                         domain_range);
+                         dds::domain_id_range());
   }
   // The deploy file's QoS file (relative to it), as `wbi launch` passes it in
   // WBI_QOS_FILE: a process started by hand on another host gets the same QoS.

@@ -2,6 +2,8 @@
 // participant's options, WBI_DOMAIN_ID, --domain, a deploy or host file).
 #pragma once
 
+#include <string>
+
 namespace wbi::dds {
 
 // Participant numbers a participant tries at each initial peer's address
@@ -14,5 +16,8 @@ inline constexpr int kInitialPeersPerAddress = 64;
 // process (exit 1) while creating the participant: on domain 232 it did.
 inline constexpr int kMaxDomainId = (65535 - 7400 - 11 - 2 * (kInitialPeersPerAddress - 1)) / 250;
 static_assert(kMaxDomainId == 231);
+
+// "[0, 231]", as error messages name the range.
+inline std::string domain_id_range() { return "[0, " + std::to_string(kMaxDomainId) + "]"; }
 
 }  // namespace wbi::dds

@@ -48,7 +48,7 @@ const char* discovery_name(Discovery discovery);
 // "a,b,,c" -> {a, b, c}.
 std::vector<std::string> comma_list(const std::string& text);
 
-// A domain id in [0, kMaxDomainId] (participant.hpp); throws std::invalid_argument "WHERE: ...".
+// A domain id in [0, kMaxDomainId] (domain_id.hpp); throws std::invalid_argument "WHERE: ...".
 int domain_id_named(const std::string& text, const std::string& where);
 
 }  // namespace wbi::dds
