@@ -150,7 +150,7 @@ std::vector<CallStatus> relay_on_the_receive_thread(bool reply_thread_of_its_own
       participant, kService + "/relay",
       [&](const Request& request, Reply& reply) {
         Request forwarded = request;
-        // Well above a round trip on a loaded machine (a 300 ms bound once
+        // Well above a round trip on a loaded machine (a 300 ms bound likely
         // ran out there), below the client's 2 s.
         const CallStatus status = onward.try_call(forwarded, reply, 1500ms);
         {
