@@ -7,8 +7,10 @@
 #include <chrono>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <wbi/dds/client.hpp>
@@ -132,9 +134,18 @@ TEST(RpcProcesses, ServerKilledMidRunGivesTimeoutsThenANewServerAnswers) {
 
 // A client process calls a relay in this process, whose handler runs on the
 // participant's receive thread and calls the server process in its turn (as
-// a controller's cycle in its state's callback calls a remote model). The
-// statuses of the relay's onward calls, once `calls` were relayed.
-std::vector<CallStatus> relay_on_the_receive_thread(bool reply_thread_of_its_own, int calls) {
+// a controller's cycle in its state's callback calls a remote model).
+struct RelayRun {
+  std::vector<CallStatus> statuses;  // of the relay's onward calls
+  std::optional<int> client_exit;    // empty: the client was still running after 60 s
+  std::string client_output;
+  wbi::dds::ServerStats relay_stats;
+};
+
+// Runs the client's `calls` through the relay until the client ends; the
+// relay's handler takes at least `handler_time` (standing for a slow handler).
+RelayRun relay_on_the_receive_thread(bool reply_thread_of_its_own, int calls,
+                                     std::chrono::milliseconds handler_time = 0ms) {
   ChildProcess server(peer(), {"server", kService});
   EXPECT_TRUE(server.wait_for_output("server: ready", 20s)) << server.output();
   wbi::dds::Participant participant("relay");
@@ -143,52 +154,72 @@ std::vector<CallStatus> relay_on_the_receive_thread(bool reply_thread_of_its_own
   wbi::dds::Client<Request, Reply> onward(participant, kService, onward_options);
   EXPECT_TRUE(onward.wait_connected(20s));
   std::mutex mutex;
-  std::vector<CallStatus> statuses;
+  RelayRun run;
   wbi::dds::ServerOptions on_receive_thread;
   on_receive_thread.handle_on_dds_thread = true;
   wbi::dds::Server<Request, Reply> relay(
       participant, kService + "/relay",
       [&](const Request& request, Reply& reply) {
+        std::this_thread::sleep_for(handler_time);
         Request forwarded = request;
-        // Well above a round trip on a loaded machine (a 300 ms bound likely
-        // ran out there), below the client's 2 s.
+        // Generous on a loaded machine, below the client's 2 s.
         const CallStatus status = onward.try_call(forwarded, reply, 1500ms);
         {
           std::lock_guard lock(mutex);
-          statuses.push_back(status);
+          run.statuses.push_back(status);
         }
-        // An error reply, not `reply`'s stale contents (which the client
-        // took for a wrong answer when an onward call timed out).
+        // An error reply, not `reply`'s stale contents.
         if (status != CallStatus::ok) throw std::runtime_error("relay: onward call failed");
+        // The toy answer carries the seq of the request it answered: the
+        // onward call's, which runs ahead of the caller's once a resent copy
+        // is answered again (handlers must be idempotent, server.hpp). The
+        // relay answers its caller's request, so its answer carries that seq.
+        reply.results()[1].data()[0] = static_cast<double>(request.seq());
       },
       on_receive_thread);
   ChildProcess client(peer(), {"client", kService + "/relay", std::to_string(calls), "11", "2000"});
-  EXPECT_TRUE(wbi::test::eventually(
-      [&] {
-        std::lock_guard lock(mutex);
-        return statuses.size() >= static_cast<std::size_t>(calls);
-      },
-      60s))
-      << client.output();
-  client.stop();
+  run.client_exit = client.wait(60s);
+  if (!run.client_exit) client.stop();
+  run.client_output = client.output();
+  run.relay_stats = relay.stats();
   std::lock_guard lock(mutex);
-  return statuses;
+  return run;
 }
 
 TEST(RpcProcesses, ACallOnTheReceiveThreadGetsItsReplyOnAThreadOfItsOwn) {
-  const auto statuses = relay_on_the_receive_thread(true, 50);
-  ASSERT_GE(statuses.size(), 50u);
-  for (std::size_t i = 0; i < statuses.size(); ++i) {
-    EXPECT_EQ(statuses[i], CallStatus::ok) << "onward call " << i;
+  const RelayRun run = relay_on_the_receive_thread(true, 50);
+  ASSERT_EQ(run.client_exit, 0) << run.client_output;
+  EXPECT_NE(run.client_output.find("client: ok 50"), std::string::npos) << run.client_output;
+  ASSERT_GE(run.statuses.size(), 50u);
+  for (std::size_t i = 0; i < run.statuses.size(); ++i) {
+    EXPECT_EQ(run.statuses[i], CallStatus::ok) << "onward call " << i;
+  }
+}
+
+// A relay slower than the client's first resend (2 ms): copies of a request
+// reach it after its reply was written and are answered again; the client
+// keeps the first reply and every answer stays right (two flake-runs failed
+// here when a loaded machine made the relay this slow).
+TEST(RpcProcesses, ARelaySlowerThanTheResendPeriodAnswersCopiesAgainAndStaysRight) {
+  const RelayRun run = relay_on_the_receive_thread(true, 10, 10ms);
+  ASSERT_EQ(run.client_exit, 0) << run.client_output;
+  EXPECT_NE(run.client_output.find("client: ok 10"), std::string::npos) << run.client_output;
+  EXPECT_GT(run.relay_stats.answered_again, 0u) << "no copy reached the relay: the case is not met";
+  for (std::size_t i = 0; i < run.statuses.size(); ++i) {
+    EXPECT_EQ(run.statuses[i], CallStatus::ok) << "onward call " << i;
   }
 }
 
 // The same without a thread of its own: the reply waits for the thread the
-// call blocks, and the call times out (what the option is for).
+// call blocks, the call times out (what the option is for) and the client
+// gets the relay's error.
 TEST(RpcProcesses, ACallOnTheReceiveThreadWithoutOneTimesOut) {
-  const auto statuses = relay_on_the_receive_thread(false, 1);
-  ASSERT_GE(statuses.size(), 1u);
-  EXPECT_EQ(statuses[0], CallStatus::no_reply);
+  const RelayRun run = relay_on_the_receive_thread(false, 1);
+  ASSERT_GE(run.statuses.size(), 1u);
+  EXPECT_EQ(run.statuses[0], CallStatus::no_reply);
+  EXPECT_EQ(run.client_exit, 1) << run.client_output;
+  EXPECT_NE(run.client_output.find("relay: onward call failed"), std::string::npos)
+      << run.client_output;
 }
 
 }  // namespace
