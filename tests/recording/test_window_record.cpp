@@ -257,7 +257,8 @@ TEST_F(WindowRecord, StaysWithinThePrintedMemoryBound) {
       "record", "-o",        directory_.string(), "--probe",      "0",   "--window",
       "1:0.5",  "--trigger", "LIFECYCLE",         "--max-memory", "16M", "wbi/win.*/sensors"};
   ChildProcess recorder(wbi::test::wbi_program(), args);
-  ASSERT_TRUE(recorder.wait_for_output("window: memory bound", 20s)) << recorder.output();
+  // std::cerr writes the line in pieces: wait for the byte count, not the line's start.
+  ASSERT_TRUE(recorder.wait_for_output(" bytes: ring", 20s)) << recorder.output();
   const long baseline = rss_bytes(recorder.pid());
   std::smatch bound_match;
   const std::string header = recorder.output();
