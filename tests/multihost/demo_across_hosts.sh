@@ -51,9 +51,11 @@ if [[ $mode == server ]]; then
   wait_for_text "$logs/server.log" "Server is running" 10 || { cat "$logs/server.log"; echo "FAIL: the discovery server did not start"; exit 1; }
 fi
 
+# A wbi_host whose secured start stalled (exit 75) is started again, as by
+# `wbi launch` (restart_on_stall.sh).
 host() {  # host a|b PROCESS
   "on_host_$1" "$logs/$2.log" env "WBI_DOMAIN_ID=${WBI_DOMAIN_ID:-0}" "${overrides[@]}" \
-    stdbuf -oL "$bin/wbi_host" "$deploy" --process "$2"
+    "$here/restart_on_stall.sh" stdbuf -oL "$bin/wbi_host" "$deploy" --process "$2"
 }
 started=$(date +%s%N)
 netns_start_all_but_controller "$mode" "$logs"

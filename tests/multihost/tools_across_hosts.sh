@@ -58,9 +58,12 @@ case "$mode" in
 esac
 
 domain="WBI_DOMAIN_ID=${WBI_DOMAIN_ID:-0}"
+# A wbi_host whose secured start stalled (exit 75) is started again, as by
+# `wbi launch` (restart_on_stall.sh): the model service once ended so 5 s
+# after the controller began and the robot waited for it (flake-run, 2026-12-04).
 host() {  # host a|b PROCESS
   "on_host_$1" "$logs/$2.log" env "$domain" "${overrides[@]}" \
-    stdbuf -oL "$bin/wbi_host" "$deploy" --process "$2"
+    "$here/restart_on_stall.sh" stdbuf -oL "$bin/wbi_host" "$deploy" --process "$2"
 }
 # tool LOG ARGS...: `wbi ARGS... --deploy FILE FLAGS...` on host B, in the
 # background; the environment has only the domain (no WBI_DDS_*): the tool
