@@ -27,5 +27,5 @@ for ((restarts = 0; ; restarts++)); do
     status=$?
   done
   ((status == 75 && restarts < 3 && stopping == 0)) || exit "$status"
-  echo "restart_on_stall.sh: $1 ended with exit code 75 (start-up stalled): starting it again"
+  echo "restart_on_stall.sh: '$*' ended with exit code 75 (start-up stalled): starting it again"
 done
